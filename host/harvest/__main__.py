@@ -1,0 +1,34 @@
+"""`python -m harvest <command> [args]`: dispatch to harvest.<command>.cli:main(argv)."""
+import importlib
+import sys
+
+COMMANDS = {
+    "sim": "simulated vehicle drive and SCARA joint controllers on python-can",
+    "scenario": "generate fruit maps (paper's uniform rows, clusters, gradients, long rows)",
+    "experiments": "run the paper's comparison (FOV, Serial, MILP), plots and report",
+    "telemetry": "log LCM telemetry and turn a log into a timeline plot",
+}
+
+
+def _usage(stream):
+    print("usage: python -m harvest <command> [--help] [args...]\n\ncommands:", file=stream)
+    for name, what in COMMANDS.items():
+        print(f"  {name:<12} {what}", file=stream)
+
+
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else argv
+    if not argv or argv[0] in ("-h", "--help"):
+        _usage(sys.stdout if argv else sys.stderr)
+        return 0 if argv else 2
+    name, rest = argv[0], argv[1:]
+    if name not in COMMANDS:
+        print(f"harvest: unknown command '{name}'", file=sys.stderr)
+        _usage(sys.stderr)
+        return 2
+    module = importlib.import_module(f"harvest.{name}.cli")
+    return module.main(rest)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

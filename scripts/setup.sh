@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# Install exactly what is missing for building, the demo and the tests, idempotently:
+# Debian packages with apt-get, Python packages into the project virtualenv (.venv).
+# Usage: scripts/setup.sh [--help]
+set -euo pipefail
+if [[ "${1:-}" == "--help" || "${1:-}" == "-h" ]]; then
+  sed -n '2,4p' "$0" | sed 's/^# \{0,1\}//'
+  exit 0
+fi
+root=$(cd "$(dirname "$0")/.." && pwd)
+
+# Debian packages, one line each with why.
+apt_pkgs=(
+  build-essential cmake ninja-build pkg-config   # C/C++ toolchain and build
+  libeigen3-dev                                  # tools/: cost table generator, mount search
+  libglpk-dev glpk-utils                         # planner/: the MILP (C API; glpsol to cross-check)
+  libcmocka-dev                                  # C unit tests
+  liblcm-dev liblcm-bin                          # telemetry: LCM library and lcm-gen
+  libmsgpack-dev                                 # CAN over UDP, python-can's udp_multicast format
+  python3 python3-venv python3-dev               # host/ package and pytest
+  iproute2 can-utils                             # network namespaces, vcan tools
+  qemu-system-x86 busybox-static cpio kmod       # the vcan test-bed guest (DESIGN §6)
+)
+missing=()
+for p in "${apt_pkgs[@]}"; do
+  [[ "$p" == \#* ]] && continue
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing Debian packages: ${missing[*]}"
+  sudo_cmd=(); [[ $(id -u) -ne 0 ]] && sudo_cmd=(sudo)
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+else
+  echo "setup: Debian packages present"
+fi
+
+# Python: a virtualenv of the project, on Debian's python3.
+venv="$root/.venv"
+if [[ ! -x "$venv/bin/python" ]]; then
+  echo "setup: creating virtualenv $venv"
+  /usr/bin/python3 -m venv "$venv"
+fi
+req="$root/host/requirements.txt"
+stamp="$venv/.requirements.sha256"
+want=$(sha256sum "$req" | cut -d' ' -f1)
+if [[ ! -f "$stamp" || "$(cat "$stamp")" != "$want" ]]; then
+  echo "setup: installing Python packages from host/requirements.txt"
+  "$venv/bin/python" -m pip install -q --disable-pip-version-check -r "$req"
+  echo "$want" > "$stamp"
+else
+  echo "setup: Python packages present"
+fi
