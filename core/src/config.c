@@ -241,12 +241,16 @@ void hv_config_arm_mounted(const hv_config_t *cfg, hv_side_t side, double offset
     memcpy(arm->home, cfg->home, sizeof arm->home);
     arm->elbow_free = cfg->elbow_free;
     arm->side = side;
-    /* docs/FRAMES.md: bases 0.47 m apart along the row, left ahead; D lateral */
+    /* docs/FRAMES.md: bases 0.47 m apart along the row, left ahead; D is measured
+     * laterally from the canopy's near face towards the aisle centre; theta turns the
+     * base clockwise (seen from above) for the right arm, the left arm is the right one
+     * turned half a turn about z. */
     double half = 0.5 * cfg->base_spacing_m;
-    arm->base_m[0] = side == HV_SIDE_LEFT ? -offset_m : offset_m;
+    double lateral = 0.5 * cfg->aisle_width_m - offset_m;
+    arm->base_m[0] = side == HV_SIDE_LEFT ? -lateral : lateral;
     arm->base_m[1] = side == HV_SIDE_LEFT ? half : -half;
     arm->base_m[2] = cfg->base_height_m;
-    arm->base_yaw_rad = hv_side_normal_heading(side) + theta_rad;
+    arm->base_yaw_rad = hv_side_normal_heading(side) - theta_rad;
 }
 
 void hv_config_arm(const hv_config_t *cfg, hv_side_t side, hv_arm_t *arm)

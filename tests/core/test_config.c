@@ -94,9 +94,11 @@ static void test_project_config_parses(void **state)
     hv_arm_t l, r;
     hv_config_arm(&cfg, HV_SIDE_LEFT, &l);
     hv_config_arm(&cfg, HV_SIDE_RIGHT, &r);
-    assert_float_equal(l.base_m[0], -0.26, 1e-12);
+    assert_float_equal(l.base_m[0], -(0.35 - 0.26), 1e-12);
+    assert_float_equal(r.base_m[0], 0.35 - 0.26, 1e-12);
     assert_float_equal(r.base_m[1], -0.235, 1e-12);
-    assert_float_equal(l.base_yaw_rad, M_PI + cfg.theta_rad[0], 1e-12);
+    assert_float_equal(l.base_yaw_rad, M_PI - cfg.theta_rad[0], 1e-12);
+    assert_float_equal(r.base_yaw_rad, -cfg.theta_rad[1], 1e-12);
 }
 
 static void test_missing_key(void **state)

@@ -31,9 +31,11 @@ typedef struct hv_config {
     double base_height_m;    /* mount.base_height */
     double base_spacing_m;   /* mount.base_spacing: along the row, left base ahead (+y) */
     double offset_m;         /* mount.offset: the paper's D, lateral distance of each base
-                                from the aisle centre line */
-    double theta_rad[2];     /* mount.theta_left_deg / theta_right_deg: base heading
-                                relative to the side's inward normal, CCW positive */
+                                from its canopy's near face (towards the aisle centre) */
+    double theta_rad[2];     /* mount.theta_left_deg / theta_right_deg: base rotation from
+                                the side's inward normal, clockwise seen from above for
+                                the right arm (the left arm is the right one turned half
+                                a turn about z) */
 
     /* row and fruit-planted area */
     double row_length_m;      /* row.length */

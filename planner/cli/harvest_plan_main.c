@@ -1,0 +1,517 @@
+/* harvest-plan: plan a row (MILP, FOV or Serial) and write a checked plan file, or check
+ * an existing plan file against its inputs. `harvest-plan --help`. */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "hv/baselines.h"
+#include "hv/file_io.h"
+#include "hv/fruit_map.h"
+#include "hv/horizon.h"
+#include "hv/milp.h"
+#include "hv/plan_build.h"
+#include "hv/plan_check.h"
+#include "hv/plan_eval.h"
+#include "hv/plan_io.h"
+
+enum { EXIT_INPUT = 1, EXIT_USAGE = 2, EXIT_NO_SOLUTION = 3, EXIT_CHECK = 4 };
+
+static const char k_usage[] =
+    "usage: harvest-plan --config CFG --left LEFT.tab --right RIGHT.tab --fruits MAP.csv\n"
+    "                    --method milp|fov|serial --out PLAN.json [options]\n"
+    "       harvest-plan check PLAN.json [--config CFG] [--left L.tab] [--right R.tab]\n"
+    "                    [--fruits MAP.csv] [--quiet]\n"
+    "\n"
+    "Plans the vehicle's stops along a row and assigns every fruit to an arm at one stop,\n"
+    "minimising the makespan (DESIGN §1). Every plan written has passed the independent\n"
+    "checker; the file is written atomically. Plan format: docs/PLAN_FORMAT.md.\n"
+    "\n"
+    "options:\n"
+    "  --time-limit S   solver time limit per solve, s (default 60)\n"
+    "  --gap G          relative gap at which the MILP stops (default 1e-6)\n"
+    "  --fov-width M    FOV baseline: camera field of view along the row, m (default 0.25)\n"
+    "  --horizon H      milp: receding horizon, plan H m windows (commit H/2 each)\n"
+    "  --commit M       with --horizon: length committed per window, m (default H/2)\n"
+    "  --compare-single with --horizon: also solve the whole row in one window and print\n"
+    "                   both makespans (the plan written is the horizon's)\n"
+    "  --row-length M   row length, m (default: row.length of the config)\n"
+    "  --export-lp FILE milp: write the model in CPLEX LP format\n"
+    "  --quiet          no progress lines on stderr (errors are still printed)\n"
+    "  --help           this text\n"
+    "\n"
+    "check: re-reads the fruit map, tables and config (paths default to the plan's inputs)\n"
+    "and verifies the plan: exit 0 if it holds, 4 with the first violation otherwise.\n"
+    "exit codes: 0 plan written / check passed, 1 bad input, 2 usage, 3 no solution,\n"
+    "4 the plan failed the independent check.\n";
+
+typedef struct args {
+    const char *config, *left, *right, *fruits, *method, *out, *export_lp;
+    double time_limit_s, gap, fov_width_m, horizon_m, commit_m, row_length_m;
+    int quiet;
+    int compare_single;
+} args_t;
+
+static int usage_error(const char *msg, const char *what)
+{
+    fprintf(stderr, "harvest-plan: %s%s%s (see --help)\n", msg, what ? ": " : "",
+            what ? what : "");
+    return EXIT_USAGE;
+}
+
+/* A positive finite number, or -1 with a message. */
+static int parse_pos(const char *flag, const char *text, double *out)
+{
+    char *end = NULL;
+    double v = strtod(text, &end);
+    if (end == text || *end != '\0' || !isfinite(v) || v <= 0) {
+        fprintf(stderr, "harvest-plan: %s: expected a positive number, got \"%s\"\n", flag, text);
+        return -1;
+    }
+    *out = v;
+    return 0;
+}
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int run_check(int argc, char **argv)
+{
+    const char *plan_path = NULL, *config = NULL, *left = NULL, *right = NULL, *fruits = NULL;
+    int quiet = 0;
+    for (int i = 2; i < argc; ++i) {
+        const char *a = argv[i];
+        const char **dst = NULL;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            fputs(k_usage, stdout);
+            return 0;
+        } else if (strcmp(a, "--quiet") == 0) {
+            quiet = 1;
+            continue;
+        } else if (strcmp(a, "--config") == 0) {
+            dst = &config;
+        } else if (strcmp(a, "--left") == 0) {
+            dst = &left;
+        } else if (strcmp(a, "--right") == 0) {
+            dst = &right;
+        } else if (strcmp(a, "--fruits") == 0) {
+            dst = &fruits;
+        } else if (a[0] == '-' ) {
+            return usage_error("unknown option", a);
+        } else if (plan_path == NULL) {
+            plan_path = a;
+            continue;
+        } else {
+            return usage_error("more than one plan file", a);
+        }
+        if (i + 1 >= argc) {
+            return usage_error("option needs a value", a);
+        }
+        *dst = argv[++i];
+    }
+    if (plan_path == NULL) {
+        return usage_error("check needs a PLAN.json", NULL);
+    }
+    char err[512] = "";
+    hv_plan_t plan;
+    hv_status_t st = hv_plan_load(plan_path, &plan, err, sizeof err);
+    if (st != HV_OK) {
+        fprintf(stderr, "harvest-plan: %s\n", err);
+        return EXIT_INPUT;
+    }
+    st = hv_plan_check_files(&plan, config, left, right, fruits, err, sizeof err);
+    int rc = 0;
+    if (st != HV_OK) {
+        int is_check = st <= HV_ERR_PLAN_CHECK_DUPLICATE && st >= HV_ERR_PLAN_CHECK_PARAMS;
+        fprintf(stderr, "harvest-plan: %s%s (%s)\n", is_check ? plan_path : "",
+                is_check ? ": " : "", err);
+        rc = is_check ? EXIT_CHECK : EXIT_INPUT;
+    } else if (!quiet) {
+        printf("%s: OK: %s, %zu stops, %zu fruits planned, %zu unreachable, makespan %.3f s\n",
+               plan_path, plan.method, plan.n_stops, plan.fruits_planned,
+               plan.fruits_unreachable, plan.makespan_s);
+    }
+    hv_plan_free(&plan);
+    return rc;
+}
+
+static int parse_args(int argc, char **argv, args_t *a)
+{
+    memset(a, 0, sizeof *a);
+    a->time_limit_s = 60.0;
+    a->gap = 1e-6;
+    a->fov_width_m = HV_FOV_DEFAULT_WIDTH_M;
+    for (int i = 1; i < argc; ++i) {
+        const char *f = argv[i];
+        if (strcmp(f, "--help") == 0 || strcmp(f, "-h") == 0) {
+            fputs(k_usage, stdout);
+            return 1;
+        }
+        if (strcmp(f, "--quiet") == 0) {
+            a->quiet = 1;
+            continue;
+        }
+        if (strcmp(f, "--compare-single") == 0) {
+            a->compare_single = 1;
+            continue;
+        }
+        static const char *const valued[] = {
+            "--config", "--left", "--right", "--fruits", "--method", "--out", "--export-lp",
+            "--time-limit", "--gap", "--fov-width", "--horizon", "--commit", "--row-length",
+            NULL};
+        int known = 0;
+        for (const char *const *k = valued; *k != NULL; ++k) {
+            known |= strcmp(*k, f) == 0;
+        }
+        if (!known) {
+            return usage_error(f[0] == '-' ? "unknown option" : "unexpected argument", f);
+        }
+        if (i + 1 >= argc) {
+            return usage_error("option needs a value", f);
+        }
+        const char *v = argv[++i];
+        if (strcmp(f, "--config") == 0) a->config = v;
+        else if (strcmp(f, "--left") == 0) a->left = v;
+        else if (strcmp(f, "--right") == 0) a->right = v;
+        else if (strcmp(f, "--fruits") == 0) a->fruits = v;
+        else if (strcmp(f, "--method") == 0) a->method = v;
+        else if (strcmp(f, "--out") == 0) a->out = v;
+        else if (strcmp(f, "--export-lp") == 0) a->export_lp = v;
+        else if (strcmp(f, "--time-limit") == 0) {
+            if (parse_pos(f, v, &a->time_limit_s)) return EXIT_USAGE;
+        } else if (strcmp(f, "--gap") == 0) {
+            char *end = NULL;
+            a->gap = strtod(v, &end);
+            if (end == v || *end != '\0' || !isfinite(a->gap) || a->gap < 0 || a->gap >= 1) {
+                fprintf(stderr, "harvest-plan: --gap: expected a number in [0, 1), got \"%s\"\n", v);
+                return EXIT_USAGE;
+            }
+        } else if (strcmp(f, "--fov-width") == 0) {
+            if (parse_pos(f, v, &a->fov_width_m)) return EXIT_USAGE;
+        } else if (strcmp(f, "--horizon") == 0) {
+            if (parse_pos(f, v, &a->horizon_m)) return EXIT_USAGE;
+        } else if (strcmp(f, "--commit") == 0) {
+            if (parse_pos(f, v, &a->commit_m)) return EXIT_USAGE;
+        } else if (strcmp(f, "--row-length") == 0) {
+            if (parse_pos(f, v, &a->row_length_m)) return EXIT_USAGE;
+        } else {
+            return usage_error("unknown option", f);
+        }
+    }
+    const char *missing = !a->config ? "--config" : !a->left ? "--left" : !a->right ? "--right"
+                        : !a->fruits ? "--fruits" : !a->method ? "--method" : !a->out ? "--out"
+                        : NULL;
+    if (missing != NULL) {
+        return usage_error("missing required option", missing);
+    }
+    if (strcmp(a->method, "milp") != 0 && strcmp(a->method, "fov") != 0 &&
+        strcmp(a->method, "serial") != 0) {
+        return usage_error("--method must be milp, fov or serial, not", a->method);
+    }
+    if (a->horizon_m > 0 && strcmp(a->method, "milp") != 0) {
+        return usage_error("--horizon applies to --method milp only", NULL);
+    }
+    if (a->compare_single && !(a->horizon_m > 0)) {
+        return usage_error("--compare-single needs --horizon", NULL);
+    }
+    if (a->commit_m > 0 && !(a->horizon_m > 0)) {
+        return usage_error("--commit needs --horizon", NULL);
+    }
+    if (a->horizon_m > 0 && a->commit_m > a->horizon_m) {
+        return usage_error("--commit must not exceed --horizon", NULL);
+    }
+    if (a->export_lp != NULL && (strcmp(a->method, "milp") != 0 || a->horizon_m > 0)) {
+        return usage_error("--export-lp applies to a single-window --method milp", NULL);
+    }
+    return 0;
+}
+
+static const char *solve_status_name(hv_solve_status_t s)
+{
+    switch (s) {
+    case HV_SOLVE_OPTIMAL: return "optimal";
+    case HV_SOLVE_FEASIBLE: return "feasible";
+    case HV_SOLVE_INFEASIBLE: return "infeasible";
+    case HV_SOLVE_NO_SOLUTION: return "time_limit";
+    default: return "error";
+    }
+}
+
+/* The whole row in one MILP solve, against the horizon plan `hz` (printed on stdout). */
+static hv_status_t compare_single(const hv_instance_t *inst, const hv_milp_options_t *mopt,
+                                  const hv_assignment_t *hz)
+{
+    hv_assignment_t warm = {0, NULL}, one = {0, NULL};
+    hv_milp_result_t mr;
+    memset(&mr, 0, sizeof mr);
+    hv_milp_options_t o = *mopt;
+    o.verbose = 0;
+    hv_status_t st = hv_assignment_alloc(&warm, inst->n_fruits);
+    if (st == HV_OK) {
+        st = hv_assignment_alloc(&one, inst->n_fruits);
+    }
+    if (st == HV_OK) {
+        st = hv_heuristic_solve(inst, &warm);
+    }
+    if (st == HV_OK) {
+        st = hv_milp_solve(inst, &o, &warm, &one, &mr);
+    }
+    double t_hz = 0.0, t_one = 0.0;
+    if (st == HV_OK) {
+        st = hv_assignment_makespan(inst, hz, &t_hz);
+    }
+    if (st == HV_OK && (mr.status == HV_SOLVE_OPTIMAL || mr.status == HV_SOLVE_FEASIBLE)) {
+        st = hv_assignment_makespan(inst, &one, &t_one);
+        if (st == HV_OK) {
+            printf("compare: horizon makespan %.3f s, single window %.3f s (%s, gap %.2f%%, "
+                   "%.1f s): horizon %+.2f%%\n",
+                   t_hz, t_one, solve_status_name(mr.status), 100.0 * mr.gap, mr.runtime_s,
+                   100.0 * (t_hz - t_one) / t_one);
+        }
+    } else if (st == HV_OK) {
+        printf("compare: horizon makespan %.3f s, single window: %s after %.1f s\n", t_hz,
+               solve_status_name(mr.status), mr.runtime_s);
+    }
+    hv_assignment_free(&warm);
+    hv_assignment_free(&one);
+    return st;
+}
+
+static int load_table(const char *path, hv_side_t side, const hv_config_t *cfg,
+                      hv_costtab_file_t *tf)
+{
+    char err[512];
+    if (hv_costtab_load(path, tf, err, sizeof err) != HV_OK) {
+        fprintf(stderr, "harvest-plan: %s\n", err);
+        return EXIT_INPUT;
+    }
+    hv_grid_t grid;
+    hv_diag_t d;
+    memset(&d, 0, sizeof d);
+    hv_config_grid(cfg, side, &grid);
+    if (hv_costtab_expect(&tf->tab, side, &grid, &d) != HV_OK) {
+        fprintf(stderr, "harvest-plan: %s: %s: %s\n", path, d.field, d.message);
+        hv_costtab_unload(tf);
+        return EXIT_INPUT;
+    }
+    return 0;
+}
+
+static int run_plan(const args_t *a)
+{
+    char err[512] = "";
+    hv_config_t cfg;
+    if (hv_config_load(a->config, &cfg, err, sizeof err) != HV_OK) {
+        fprintf(stderr, "harvest-plan: %s\n", err);
+        return EXIT_INPUT;
+    }
+    hv_instance_params_t params;
+    hv_instance_params_from_config(&cfg, &params);
+    if (a->row_length_m > 0) {
+        params.row_length_m = a->row_length_m;
+        params.travel_time_s = a->row_length_m / cfg.vehicle_speed_mps;
+    }
+    hv_costtab_file_t lt = {0}, rt = {0};
+    hv_fruitmap_t map = {0, NULL};
+    hv_instance_t inst;
+    memset(&inst, 0, sizeof inst);
+    hv_assignment_t sol = {0, NULL};
+    unsigned char *passes = NULL;
+    hv_plan_t plan;
+    memset(&plan, 0, sizeof plan);
+    int rc = load_table(a->left, HV_SIDE_LEFT, &cfg, &lt);
+    if (rc == 0) {
+        rc = load_table(a->right, HV_SIDE_RIGHT, &cfg, &rt);
+    }
+    if (rc == 0) {
+        hv_fruitmap_limits_t lim;
+        hv_fruitmap_limits_from_config(&cfg, params.row_start_m, params.row_length_m, &lim);
+        if (hv_fruitmap_load(a->fruits, &lim, &map, err, sizeof err) != HV_OK) {
+            fprintf(stderr, "harvest-plan: %s\n", err);
+            rc = EXIT_INPUT;
+        }
+    }
+    if (rc == 0) {
+        hv_diag_t d;
+        memset(&d, 0, sizeof d);
+        double t0 = now_s();
+        hv_status_t st = hv_instance_build(&params, map.fruits, map.n, &lt.tab, &rt.tab, &inst, &d);
+        if (st != HV_OK) {
+            fprintf(stderr, "harvest-plan: instance: %s: %s\n", d.field, d.message);
+            rc = EXIT_INPUT;
+        } else if (!a->quiet) {
+            size_t nl = 0;
+            for (size_t f = 0; f < map.n; ++f) {
+                nl += map.fruits[f].side == HV_SIDE_LEFT;
+            }
+            fprintf(stderr,
+                    "harvest-plan: %zu fruits (%zu left, %zu right), %zu candidate stops, "
+                    "%zu reachable pairs, %zu unreachable fruits (%.3f s)\n",
+                    map.n, nl, map.n - nl, inst.n_stops, inst.n_pairs,
+                    hv_instance_unreachable_count(&inst), now_s() - t0);
+        }
+    }
+    if (rc == 0 && hv_assignment_alloc(&sol, inst.n_fruits) != HV_OK) {
+        fprintf(stderr, "harvest-plan: out of memory\n");
+        rc = EXIT_INPUT;
+    }
+
+    hv_plan_meta_t meta;
+    memset(&meta, 0, sizeof meta);
+    meta.method = a->method;
+    meta.fruit_map = a->fruits;
+    meta.cost_table_left = a->left;
+    meta.cost_table_right = a->right;
+    meta.config = a->config;
+    meta.params = params;
+    meta.vehicle_speed_mps = cfg.vehicle_speed_mps;
+    meta.time_limit_s = a->time_limit_s;
+    meta.gap = -1.0;
+
+    hv_milp_options_t mopt;
+    hv_milp_options_default(&mopt);
+    mopt.time_limit_s = a->time_limit_s;
+    mopt.rel_gap = a->gap;
+    mopt.verbose = a->quiet ? 0 : 1;
+    mopt.export_lp_path = a->export_lp;
+
+    if (rc == 0) {
+        double t0 = now_s();
+        hv_status_t st = HV_OK;
+        if (strcmp(a->method, "fov") == 0) {
+            hv_fov_stats_t fs;
+            st = hv_fov_solve(&inst, a->fov_width_m, &sol, &fs);
+            meta.solver_status = "heuristic";
+            meta.time_limit_s = 0.0;
+            if (st == HV_OK && !a->quiet) {
+                fprintf(stderr,
+                        "harvest-plan: fov %.3f m: %zu windows, %zu stops, %zu fruits picked "
+                        "at another window's stop, %zu extra stops\n",
+                        a->fov_width_m, fs.windows, fs.stops, fs.moved, fs.extra_stops);
+            }
+        } else if (strcmp(a->method, "serial") == 0) {
+            hv_serial_result_t sr;
+            passes = malloc(inst.n_fruits ? inst.n_fruits : 1);
+            st = passes ? hv_serial_solve(&inst, &mopt, &sol, passes, &sr) : HV_ERR_PLAN_NOMEM;
+            if (st == HV_OK) {
+                meta.solver_status = sr.optimal ? "optimal" : "feasible";
+                meta.gap = sr.gap;
+                meta.nodes = sr.nodes;
+            }
+        } else if (a->horizon_m > 0) {
+            hv_horizon_options_t ho;
+            hv_horizon_options_default(&ho);
+            ho.window_m = a->horizon_m;
+            ho.commit_m = a->commit_m > 0 ? a->commit_m : a->horizon_m / 2.0;
+            ho.milp = mopt;
+            ho.milp.verbose = 0;
+            ho.progress = a->quiet ? NULL : stderr;
+            hv_horizon_result_t hr;
+            st = hv_horizon_solve(&inst, &ho, &sol, &hr);
+            if (st == HV_OK) {
+                /* each window may be optimal, the row as a whole is not proven */
+                meta.solver_status = "heuristic";
+                meta.nodes = hr.nodes;
+                meta.horizon.used = 1;
+                meta.horizon.window_m = ho.window_m;
+                meta.horizon.commit_m = ho.commit_m;
+                meta.horizon.windows = hr.windows;
+                meta.horizon.windows_optimal = hr.windows_optimal;
+            }
+            if (st == HV_OK && a->compare_single) {
+                st = compare_single(&inst, &mopt, &sol);
+            }
+        } else {
+            hv_assignment_t warm = {0, NULL};
+            hv_milp_result_t mr;
+            memset(&mr, 0, sizeof mr);
+            st = hv_assignment_alloc(&warm, inst.n_fruits);
+            if (st == HV_OK) {
+                st = hv_heuristic_solve(&inst, &warm);
+            }
+            if (st == HV_OK) {
+                st = hv_milp_solve(&inst, &mopt, &warm, &sol, &mr);
+            }
+            hv_assignment_free(&warm);
+            if (st == HV_OK && mr.status != HV_SOLVE_OPTIMAL && mr.status != HV_SOLVE_FEASIBLE) {
+                fprintf(stderr, "harvest-plan: milp: %s after %.1f s: no plan written\n",
+                        solve_status_name(mr.status), mr.runtime_s);
+                rc = EXIT_NO_SOLUTION;
+            } else if (st == HV_OK) {
+                meta.solver_status = solve_status_name(mr.status);
+                meta.gap = mr.gap;
+                meta.nodes = mr.nodes;
+            }
+        }
+        meta.runtime_s = now_s() - t0;
+        if (st != HV_OK && rc == 0) {
+            fprintf(stderr, "harvest-plan: %s: solve failed: %s\n", a->method,
+                    hv_plan_status_name(st));
+            rc = st == HV_ERR_PLAN_NO_SOLUTION ? EXIT_NO_SOLUTION : EXIT_INPUT;
+        }
+    }
+    if (rc == 0) {
+        hv_status_t st = hv_plan_build(&inst, &sol, passes, &meta, &plan);
+        if (st != HV_OK) {
+            fprintf(stderr, "harvest-plan: building the plan: %s\n", hv_plan_status_name(st));
+            rc = EXIT_INPUT;
+        }
+    }
+    if (rc == 0) {
+        /* the independent checker re-reads every input file */
+        hv_status_t st = hv_plan_check_files(&plan, a->config, a->left, a->right, a->fruits,
+                                             err, sizeof err);
+        if (st != HV_OK) {
+            fprintf(stderr, "harvest-plan: internal error, plan not written: %s\n", err);
+            rc = EXIT_CHECK;
+        }
+    }
+    if (rc == 0 && hv_plan_save(a->out, &plan, err, sizeof err) != HV_OK) {
+        fprintf(stderr, "harvest-plan: %s\n", err);
+        rc = EXIT_INPUT;
+    }
+    if (rc == 0 && !a->quiet) {
+        char gap[32] = "n/a";
+        if (plan.gap >= 0) {
+            snprintf(gap, sizeof gap, "%.4f%%", 100.0 * plan.gap);
+        }
+        fprintf(stderr,
+                "harvest-plan: %s %s (gap %s): makespan %.3f s = picks %.3f + stops %zu x %.1f "
+                "+ travel %.1f; %zu fruits, %zu unreachable, %.4f fruit/s; %.2f s -> %s\n",
+                plan.method, plan.solver_status, gap, plan.makespan_s, plan.pick_time_s,
+                plan.n_stops, plan.stop_penalty_s, plan.total_travel_time_s,
+                plan.fruits_planned, plan.fruits_unreachable, plan.throughput_fruit_per_s,
+                plan.runtime_s, a->out);
+    }
+    hv_plan_free(&plan);
+    free(passes);
+    hv_assignment_free(&sol);
+    hv_instance_free(&inst);
+    hv_fruitmap_free(&map);
+    hv_costtab_unload(&lt);
+    hv_costtab_unload(&rt);
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc >= 2 && strcmp(argv[1], "check") == 0) {
+        return run_check(argc, argv);
+    }
+    if (argc < 2) {
+        fputs(k_usage, stderr);
+        return EXIT_USAGE;
+    }
+    args_t a;
+    int rc = parse_args(argc, argv, &a);
+    if (rc != 0) {
+        return rc == 1 ? 0 : rc;
+    }
+    return run_plan(&a);
+}

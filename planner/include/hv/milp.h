@@ -1,0 +1,87 @@
+/* The stop-and-harvest MILP of the paper, solved with GLPK's C API (DESIGN §5, §10).
+ *
+ * Variables: b_p (stop p used), a_fp (fruit f picked at stop p, only for reachable pairs),
+ * C^L_p, C^R_p, C_p >= both; minimise sum C_p + tau * sum b_p + T_travel.
+ */
+#ifndef HV_MILP_H
+#define HV_MILP_H
+
+#include "hv/plan_instance.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum hv_solve_status {
+    HV_SOLVE_OPTIMAL = 0,     /* proven optimal (within rel_gap) */
+    HV_SOLVE_FEASIBLE = 1,    /* a solution, optimality not proven: see gap */
+    HV_SOLVE_INFEASIBLE = 2,  /* no assignment exists (cannot happen for reachable fruit) */
+    HV_SOLVE_NO_SOLUTION = 3, /* time limit hit before any solution */
+    HV_SOLVE_ERROR = 4
+} hv_solve_status_t;
+
+typedef struct hv_milp_options {
+    double time_limit_s;        /* wall-clock limit for the solver, > 0 */
+    double rel_gap;             /* stop when (obj - bound) / obj <= rel_gap; 0 = exact */
+    int verbose;                /* 0 quiet, 1 progress lines on stderr, 2 GLPK's own output */
+    const char *export_lp_path; /* when not NULL: write the model in CPLEX LP format */
+
+    /* Model and search choices; planner/SOLVER.md gives each one's measured effect.
+     * hv_milp_options_default() sets the fastest exact combination measured. */
+    int link_disaggregated;  /* 0: sum_f a_fp <= n_p b_p per stop; 1: a_fp <= b_p per pair;
+                                2: the per-stop rows plus a_fp <= b_p added where violated
+                                (LP rounds at the root, cuts in the tree) */
+    int heuristic_incumbent; /* 1: when `incumbent` is NULL, run hv_heuristic_solve first */
+    int branch_stops_first;  /* 1: branch on a fractional b_p before any a_fp */
+    int side_bounds;         /* 1: add sum C_p + tau sum b_p >= each side's own optimum */
+    int ms_granularity;      /* 1: when every cost is a whole number of ms, prune nodes that
+                                cannot beat the incumbent by 1 ms (exact, not a tolerance) */
+    int decompose;           /* 1: solve row segments that share no stop separately */
+    int glpk_cuts;           /* GLPK cut families: HV_MILP_CUT_* bits */
+    int glpk_cuts_phase2;    /* cut families added in the second (post-polish) phase */
+    int pcost_branching;     /* 1: GLPK's pseudocost branching (else its default) */
+    int backtracking;        /* GLPK node selection: 0 best local bound, 1 depth first,
+                                2 best projection */
+    int count_branching;     /* 1: integer stop-count columns (all stops, and per block of
+                                block_stops stops when > 0), branched on first */
+    int block_stops;
+    int polish_work;         /* > 0: when the root gap exceeds 0.2 %, run the local search
+                                from the incumbent with polish_work / n_fruits kicks first */
+    int pattern_cuts;        /* tree depth down to which stop-pattern cuts are separated
+                                (milp_cuts.h); -1: none */
+} hv_milp_options_t;
+
+enum { HV_MILP_CUT_GMI = 1, HV_MILP_CUT_MIR = 2, HV_MILP_CUT_COVER = 4, HV_MILP_CUT_CLIQUE = 8 };
+
+typedef struct hv_milp_result {
+    hv_solve_status_t status;
+    double objective_s; /* T of the returned assignment, incl. tau * stops and T_travel */
+    double bound_s;     /* best proven lower bound on T */
+    double gap;         /* (objective - bound) / objective, 0 when optimal */
+    long nodes;         /* branch-and-bound nodes (summed over sub-solves if any) */
+    double runtime_s;
+    double incumbent_s;   /* T of the starting incumbent (given or heuristic), INFINITY if none */
+    int incumbent_taken;  /* 1 when GLPK accepted that incumbent through its callback */
+    double root_bound_s;  /* LP relaxation bound at the root (with the added rows) */
+    int components;       /* independent row segments solved (1 without decomposition) */
+    long cuts;            /* stop-pattern cuts added */
+} hv_milp_result_t;
+
+/* Defaults: 60 s limit, gap 1e-6, quiet, no export, every improvement of SOLVER.md on. */
+void hv_milp_options_default(hv_milp_options_t *opt);
+
+/* Solve. `incumbent` (may be NULL) is a feasible assignment handed to the solver as its
+ * starting incumbent; `out` (out->fruit_stop has inst->n_fruits entries, caller-allocated)
+ * receives the best assignment found. Returns HV_OK when `res` is filled (whatever the
+ * solve status), or a negative code on bad arguments / GLPK failure. */
+hv_status_t hv_milp_solve(const hv_instance_t *inst, const hv_milp_options_t *opt,
+                          const hv_assignment_t *incumbent, hv_assignment_t *out,
+                          hv_milp_result_t *res);
+
+/* A strong heuristic plan (e.g. FOV-like seed + local search), deterministic. */
+hv_status_t hv_heuristic_solve(const hv_instance_t *inst, hv_assignment_t *out);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* HV_MILP_H */

@@ -1,0 +1,360 @@
+/* Independent plan checker (plan_check.h). Deliberately shares nothing with the instance
+ * builder or the evaluator: costs come straight from hv_costtab_lookup. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hv/file_io.h"
+#include "hv/fruit_map.h"
+#include "hv/plan_check.h"
+
+typedef struct ck {
+    char *err;
+    size_t errlen;
+} ck_t;
+
+static hv_status_t ck_fail(ck_t *c, hv_status_t code, const char *field, const char *fmt, ...)
+{
+    if (c->err != NULL && c->errlen > 0) {
+        char msg[256];
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(msg, sizeof msg, fmt, ap);
+        va_end(ap);
+        snprintf(c->err, c->errlen, "plan check: %s: %s", field, msg);
+    }
+    return code;
+}
+
+static int near(double a, double b, double tol) { return fabs(a - b) <= tol; }
+
+typedef struct id_ref {
+    const char *id;
+    size_t fruit;
+} id_ref_t;
+
+static int cmp_ref(const void *a, const void *b)
+{
+    return strcmp(((const id_ref_t *)a)->id, ((const id_ref_t *)b)->id);
+}
+
+static long find_fruit(const id_ref_t *refs, size_t n, const char *id)
+{
+    id_ref_t key = {id, 0};
+    const id_ref_t *r = bsearch(&key, refs, n, sizeof *refs, cmp_ref);
+    return r ? (long)r->fruit : -1;
+}
+
+static const hv_costtab_t *table_of(hv_side_t side, const hv_costtab_t *l,
+                                    const hv_costtab_t *r)
+{
+    return side == HV_SIDE_LEFT ? l : r;
+}
+
+hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
+                          const hv_fruit_t *fruits, size_t n_fruits, const hv_costtab_t *left,
+                          const hv_costtab_t *right, char *err, size_t errlen)
+{
+    ck_t c = {err, errlen};
+    if (plan == NULL || cfg == NULL || (fruits == NULL && n_fruits > 0) || left == NULL ||
+        right == NULL) {
+        return ck_fail(&c, HV_ERR_ARG, "arguments", "NULL");
+    }
+    const double tol = HV_CHECK_TOL_S;
+
+    /* --- parameters against the configuration --- */
+    if (!(plan->stop_step_m > 0) || !isfinite(plan->stop_step_m) ||
+        !near(plan->stop_step_m, cfg->grid_step_m, 1e-12)) {
+        return ck_fail(&c, HV_ERR_PLAN_CHECK_PARAMS, "params.stop_step_m",
+                       "%g, configuration grid.step is %g", plan->stop_step_m,
+                       cfg->grid_step_m);
+    }
+    if (!near(plan->stop_penalty_s, cfg->stop_penalty_s, 1e-12)) {
+        return ck_fail(&c, HV_ERR_PLAN_CHECK_PARAMS, "params.stop_penalty_s",
+                       "%g, configuration vehicle.stop_penalty is %g", plan->stop_penalty_s,
+                       cfg->stop_penalty_s);
+    }
+    if (!near(plan->vehicle_speed_mps, cfg->vehicle_speed_mps, 1e-12)) {
+        return ck_fail(&c, HV_ERR_PLAN_CHECK_PARAMS, "params.vehicle_speed_mps",
+                       "%g, configuration vehicle.speed is %g", plan->vehicle_speed_mps,
+                       cfg->vehicle_speed_mps);
+    }
+    if (!isfinite(plan->row_start_m) || !isfinite(plan->row_length_m) ||
+        plan->row_length_m < 0 || plan->row_length_m / plan->stop_step_m > 1e7) {
+        return ck_fail(&c, HV_ERR_PLAN_CHECK_PARAMS, "params.row_length_m", "invalid (%g)",
+                       plan->row_length_m);
+    }
+    double travel = plan->row_length_m / cfg->vehicle_speed_mps;
+    if (!near(plan->travel_time_s, travel, tol)) {
+        return ck_fail(&c, HV_ERR_PLAN_CHECK_PARAMS, "params.travel_time_s",
+                       "%.9g, row length / speed is %.9g", plan->travel_time_s, travel);
+    }
+    int serial = strcmp(plan->method, "serial") == 0;
+    if (!serial && strcmp(plan->method, "milp") != 0 && strcmp(plan->method, "fov") != 0) {
+        return ck_fail(&c, HV_ERR_PLAN_CHECK_PARAMS, "method", "unknown \"%s\"", plan->method);
+    }
+    uint32_t n_cand = (uint32_t)floor(plan->row_length_m / plan->stop_step_m + 0.5) + 1u;
+
+    /* --- fruit index --- */
+    id_ref_t *refs = malloc((n_fruits ? n_fruits : 1) * sizeof *refs);
+    unsigned char *seen = calloc(n_fruits ? n_fruits : 1, 1);
+    if (refs == NULL || seen == NULL) {
+        free(refs);
+        free(seen);
+        return ck_fail(&c, HV_ERR_PLAN_NOMEM, "checker", "out of memory");
+    }
+    for (size_t f = 0; f < n_fruits; ++f) {
+        refs[f].id = fruits[f].id;
+        refs[f].fruit = f;
+    }
+    qsort(refs, n_fruits, sizeof *refs, cmp_ref);
+
+    hv_status_t st = HV_OK;
+    char field[96];
+    double pick_sum = 0.0;
+    size_t planned = 0;
+    int prev_pass = -1;
+    double prev_y = 0.0;
+
+    /* --- stops and picks --- */
+    for (size_t s = 0; s < plan->n_stops && st == HV_OK; ++s) {
+        const hv_plan_stop_t *sp = &plan->stops[s];
+        snprintf(field, sizeof field, "stops[%zu]", s);
+        if (sp->index >= n_cand) {
+            st = ck_fail(&c, HV_ERR_PLAN_CHECK_STOP, field, "index %u beyond the row's %u stops",
+                         (unsigned)sp->index, (unsigned)n_cand);
+            break;
+        }
+        double y = plan->row_start_m + (double)sp->index * plan->stop_step_m;
+        if (!near(sp->y_m, y, 1e-9)) {
+            st = ck_fail(&c, HV_ERR_PLAN_CHECK_STOP, field,
+                         "y_m %.9g is not candidate stop %u (y %.9g)", sp->y_m,
+                         (unsigned)sp->index, y);
+            break;
+        }
+        if (sp->pass < 0 || sp->pass > (serial ? 1 : 0)) {
+            st = ck_fail(&c, HV_ERR_PLAN_CHECK_STOP, field, "pass %d not allowed for method %s",
+                         sp->pass, plan->method);
+            break;
+        }
+        if (sp->pass < prev_pass || (sp->pass == prev_pass && !(y > prev_y))) {
+            st = ck_fail(&c, HV_ERR_PLAN_CHECK_STOP, field,
+                         "not in driving order (pass, then increasing y) or listed twice");
+            break;
+        }
+        prev_pass = sp->pass;
+        prev_y = y;
+        if (sp->n_left + sp->n_right == 0) {
+            st = ck_fail(&c, HV_ERR_PLAN_CHECK_STOP, field, "a stop with no pick (unused stop)");
+            break;
+        }
+        if (serial && ((sp->pass == 0 && sp->n_right > 0) || (sp->pass == 1 && sp->n_left > 0))) {
+            st = ck_fail(&c, HV_ERR_PLAN_CHECK_STOP, field,
+                         "serial: pass 0 picks only left fruit, pass 1 only right fruit");
+            break;
+        }
+        double arm_sum[2] = {0.0, 0.0};
+        for (int side = 0; side < 2 && st == HV_OK; ++side) {
+            const hv_plan_pick_t *picks = side == 0 ? sp->left : sp->right;
+            size_t np = side == 0 ? sp->n_left : sp->n_right;
+            const hv_costtab_t *tab = table_of((hv_side_t)side, left, right);
+            for (size_t k = 0; k < np; ++k) {
+                const hv_plan_pick_t *pk = &picks[k];
+                snprintf(field, sizeof field, "stops[%zu].%s[%zu] (id %s)", s,
+                         side == 0 ? "left" : "right", k, pk->id);
+                long f = find_fruit(refs, n_fruits, pk->id);
+                if (f < 0) {
+                    st = ck_fail(&c, HV_ERR_PLAN_CHECK_UNKNOWN, field, "not in the fruit map");
+                    break;
+                }
+                const hv_fruit_t *fr = &fruits[f];
+                if ((int)fr->side != side) {
+                    st = ck_fail(&c, HV_ERR_PLAN_CHECK_UNKNOWN, field,
+                                 "the map puts it on the other side");
+                    break;
+                }
+                if (!near(pk->x_m, fr->x_m, 1e-9) || !near(pk->y_m, fr->y_m, 1e-9) ||
+                    !near(pk->z_m, fr->z_m, 1e-9) || !near(pk->yaw_rad, fr->yaw_rad, 1e-9)) {
+                    st = ck_fail(&c, HV_ERR_PLAN_CHECK_UNKNOWN, field,
+                                 "pose differs from the fruit map");
+                    break;
+                }
+                if (seen[f]) {
+                    st = ck_fail(&c, HV_ERR_PLAN_CHECK_DUPLICATE, field, "picked twice");
+                    break;
+                }
+                seen[f] = 1;
+                uint16_t ms = 0;
+                hv_status_t ls = hv_costtab_lookup(tab, fr->x_m, fr->y_m - y, fr->z_m,
+                                                   fr->yaw_rad, &ms);
+                if (ls != HV_OK) {
+                    st = ck_fail(&c, HV_ERR_PLAN_CHECK_PAIR, field,
+                                 "stop %u (y %.3f) cannot reach it (%s)", (unsigned)sp->index,
+                                 y, hv_status_name(ls));
+                    break;
+                }
+                double cost = (double)ms / 1000.0;
+                if (!near(pk->cost_s, cost, tol)) {
+                    st = ck_fail(&c, HV_ERR_PLAN_CHECK_COST, field,
+                                 "cost_s %.9g, the table says %.9g", pk->cost_s, cost);
+                    break;
+                }
+                if (!near(pk->start_s, arm_sum[side], tol)) {
+                    st = ck_fail(&c, HV_ERR_PLAN_CHECK_COST, field,
+                                 "start_s %.9g, the picks before it end at %.9g", pk->start_s,
+                                 arm_sum[side]);
+                    break;
+                }
+                arm_sum[side] += cost;
+                ++planned;
+            }
+        }
+        if (st != HV_OK) {
+            break;
+        }
+        snprintf(field, sizeof field, "stops[%zu]", s);
+        double cs = arm_sum[0] > arm_sum[1] ? arm_sum[0] : arm_sum[1];
+        const struct { const char *name; double have, want; } vals[5] = {
+            {"C_left_s", sp->c_left_s, arm_sum[0]},
+            {"C_right_s", sp->c_right_s, arm_sum[1]},
+            {"C_s", sp->c_s, cs},
+            {"idle_left_s", sp->idle_left_s, cs - arm_sum[0]},
+            {"idle_right_s", sp->idle_right_s, cs - arm_sum[1]}};
+        for (int v = 0; v < 5; ++v) {
+            if (!near(vals[v].have, vals[v].want, tol)) {
+                st = ck_fail(&c, HV_ERR_PLAN_CHECK_TOTAL, field, "%s %.9g, recomputed %.9g",
+                             vals[v].name, vals[v].have, vals[v].want);
+                break;
+            }
+        }
+        pick_sum += cs;
+    }
+
+    /* --- unreachable list --- */
+    for (size_t u = 0; u < plan->n_unreachable && st == HV_OK; ++u) {
+        const hv_plan_unreachable_t *ur = &plan->unreachable[u];
+        snprintf(field, sizeof field, "unreachable[%zu] (id %s)", u, ur->id);
+        long f = find_fruit(refs, n_fruits, ur->id);
+        if (f < 0) {
+            st = ck_fail(&c, HV_ERR_PLAN_CHECK_UNKNOWN, field, "not in the fruit map");
+            break;
+        }
+        const hv_fruit_t *fr = &fruits[f];
+        if (fr->side != ur->side) {
+            st = ck_fail(&c, HV_ERR_PLAN_CHECK_UNKNOWN, field, "the map puts it on the other side");
+            break;
+        }
+        if (seen[f]) {
+            st = ck_fail(&c, HV_ERR_PLAN_CHECK_DUPLICATE, field, "also picked or listed twice");
+            break;
+        }
+        seen[f] = 1;
+        const hv_costtab_t *tab = table_of(fr->side, left, right);
+        for (uint32_t p = 0; p < n_cand; ++p) {
+            double y = plan->row_start_m + (double)p * plan->stop_step_m;
+            uint16_t ms = 0;
+            if (hv_costtab_lookup(tab, fr->x_m, fr->y_m - y, fr->z_m, fr->yaw_rad, &ms) ==
+                HV_OK) {
+                st = ck_fail(&c, HV_ERR_PLAN_CHECK_REACHABLE, field,
+                             "listed unreachable, but stop %u (y %.3f) reaches it in %.3f s",
+                             (unsigned)p, y, ms / 1000.0);
+                break;
+            }
+        }
+    }
+
+    /* --- every fruit accounted for --- */
+    for (size_t f = 0; f < n_fruits && st == HV_OK; ++f) {
+        if (!seen[f]) {
+            st = ck_fail(&c, HV_ERR_PLAN_CHECK_MISSING, "fruit", "\"%s\" is neither picked nor "
+                         "listed unreachable", fruits[f].id);
+        }
+    }
+
+    /* --- totals --- */
+    if (st == HV_OK) {
+        size_t stops = plan->n_stops;
+        double stop_time = cfg->stop_penalty_s * (double)stops;
+        double travel_total = travel * (serial ? 2.0 : 1.0);
+        double makespan = pick_sum + stop_time + travel_total;
+        double thr = makespan > 0 ? (double)planned / makespan : 0.0;
+        const struct { const char *name; double have, want; } tot[5] = {
+            {"totals.pick_time_s", plan->pick_time_s, pick_sum},
+            {"totals.stop_time_s", plan->stop_time_s, stop_time},
+            {"totals.travel_time_s", plan->total_travel_time_s, travel_total},
+            {"totals.makespan_s", plan->makespan_s, makespan},
+            {"totals.throughput_fruit_per_s", plan->throughput_fruit_per_s, thr}};
+        for (int v = 0; v < 5; ++v) {
+            if (!near(tot[v].have, tot[v].want, tol)) {
+                st = ck_fail(&c, HV_ERR_PLAN_CHECK_TOTAL, tot[v].name, "%.9g, recomputed %.9g",
+                             tot[v].have, tot[v].want);
+                break;
+            }
+        }
+        if (st == HV_OK && plan->n_stops_total != stops) {
+            st = ck_fail(&c, HV_ERR_PLAN_CHECK_TOTAL, "totals.stops", "%zu, the plan lists %zu",
+                         plan->n_stops_total, stops);
+        } else if (st == HV_OK && plan->fruits_planned != planned) {
+            st = ck_fail(&c, HV_ERR_PLAN_CHECK_TOTAL, "totals.fruits_planned",
+                         "%zu, the plan picks %zu", plan->fruits_planned, planned);
+        } else if (st == HV_OK && plan->fruits_unreachable != plan->n_unreachable) {
+            st = ck_fail(&c, HV_ERR_PLAN_CHECK_TOTAL, "totals.fruits_unreachable",
+                         "%zu, the plan lists %zu", plan->fruits_unreachable,
+                         plan->n_unreachable);
+        }
+    }
+    free(refs);
+    free(seen);
+    return st;
+}
+
+hv_status_t hv_plan_check_files(const hv_plan_t *plan, const char *config_path,
+                                const char *left_path, const char *right_path,
+                                const char *fruits_path, char *err, size_t errlen)
+{
+    if (plan == NULL) {
+        return HV_ERR_ARG;
+    }
+    config_path = config_path ? config_path : plan->config;
+    left_path = left_path ? left_path : plan->cost_table_left;
+    right_path = right_path ? right_path : plan->cost_table_right;
+    fruits_path = fruits_path ? fruits_path : plan->fruit_map;
+
+    hv_config_t cfg;
+    hv_status_t st = hv_config_load(config_path, &cfg, err, errlen);
+    if (st != HV_OK) {
+        return st;
+    }
+    hv_costtab_file_t lt = {0}, rt = {0};
+    hv_fruitmap_t map = {0, NULL};
+    st = hv_costtab_load(left_path, &lt, err, errlen);
+    if (st == HV_OK) {
+        st = hv_costtab_load(right_path, &rt, err, errlen);
+    }
+    const char *paths[2] = {left_path, right_path};
+    const hv_costtab_file_t *tabs[2] = {&lt, &rt};
+    for (int side = 0; side < 2 && st == HV_OK; ++side) {
+        hv_grid_t grid;
+        hv_diag_t d;
+        memset(&d, 0, sizeof d);
+        hv_config_grid(&cfg, (hv_side_t)side, &grid);
+        st = hv_costtab_expect(&tabs[side]->tab, (hv_side_t)side, &grid, &d);
+        if (st != HV_OK && err != NULL && errlen > 0) {
+            snprintf(err, errlen, "%s: %s: %s", paths[side], d.field, d.message);
+        }
+    }
+    if (st == HV_OK) {
+        hv_fruitmap_limits_t lim;
+        hv_fruitmap_limits_from_config(&cfg, plan->row_start_m, plan->row_length_m, &lim);
+        st = hv_fruitmap_load(fruits_path, &lim, &map, err, errlen);
+    }
+    if (st == HV_OK) {
+        st = hv_plan_check(plan, &cfg, map.fruits, map.n, &lt.tab, &rt.tab, err, errlen);
+    }
+    hv_fruitmap_free(&map);
+    hv_costtab_unload(&lt);
+    hv_costtab_unload(&rt);
+    return st;
+}

@@ -1,0 +1,439 @@
+/* MILP, heuristic and local search against brute force on tiny instances (milp.h).
+ *
+ * Instances are filled directly (random reachability and whole-ms costs from a fixed
+ * seed); the brute force enumerates every assignment of every fruit to one of its
+ * reachable stops, which covers every stop subset with its best assignment.
+ */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "hv/milp.h"
+#include "hv/milp_local_search.h"
+#include "hv/milp_status.h"
+#include "hv/plan_eval.h"
+
+static uint64_t rng_next(uint64_t *s)
+{
+    uint64_t z = (*s += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+/* n_fruits fruits over n_stops stops; fruit f reaches each stop of a window of `window`
+ * stops around a random centre with probability 3/4 (at least one); costs 1..15 s in
+ * whole ms. `unreachable` fruits at the end get no pair. */
+static void make_instance(hv_instance_t *in, size_t nf, size_t ns, size_t window,
+                          size_t unreachable, uint64_t seed)
+{
+    memset(in, 0, sizeof *in);
+    in->n_fruits = nf;
+    in->n_stops = ns;
+    in->fruits = calloc(nf + 1, sizeof *in->fruits);
+    in->stop_y_m = calloc(ns + 1, sizeof *in->stop_y_m);
+    in->pairs = calloc(nf * ns + 1, sizeof *in->pairs);
+    in->fruit_begin = calloc(nf + 1, sizeof *in->fruit_begin);
+    assert_non_null(in->pairs);
+    in->stop_penalty_s = 5.0;
+    in->travel_time_s = 20.0;
+    for (size_t p = 0; p < ns; ++p) {
+        in->stop_y_m[p] = 0.01 * (double)p;
+    }
+    uint64_t s = seed;
+    for (size_t f = 0; f < nf; ++f) {
+        hv_fruit_t *fr = &in->fruits[f];
+        snprintf(fr->id, sizeof fr->id, "f%zu", f);
+        fr->side = (rng_next(&s) & 1) ? HV_SIDE_RIGHT : HV_SIDE_LEFT;
+        size_t centre = (size_t)(rng_next(&s) % ns);
+        fr->y_m = 0.01 * (double)centre;
+        in->fruit_begin[f] = in->n_pairs;
+        if (f >= nf - unreachable) {
+            continue;
+        }
+        size_t lo = centre >= window / 2 ? centre - window / 2 : 0;
+        size_t hi = lo + window > ns ? ns : lo + window;
+        size_t first = in->n_pairs;
+        for (size_t p = lo; p < hi; ++p) {
+            if (rng_next(&s) % 4 != 0 || (p + 1 == hi && in->n_pairs == first)) {
+                hv_pair_t *pr = &in->pairs[in->n_pairs++];
+                pr->fruit = (uint32_t)f;
+                pr->stop = (uint32_t)p;
+                pr->cost_s = (double)(1000 + rng_next(&s) % 14001) / 1000.0;
+            }
+        }
+    }
+    in->fruit_begin[nf] = in->n_pairs;
+}
+
+/* Optimum by enumeration: every fruit on every one of its stops. */
+static double brute_force(const hv_instance_t *in, uint32_t *best_stop)
+{
+    size_t nf = in->n_fruits;
+    size_t *idx = calloc(nf + 1, sizeof *idx);
+    hv_assignment_t a;
+    assert_int_equal(hv_assignment_alloc(&a, nf), HV_OK);
+    double best = INFINITY;
+    for (;;) {
+        for (size_t f = 0; f < nf; ++f) {
+            size_t b = in->fruit_begin[f];
+            a.fruit_stop[f] = b == in->fruit_begin[f + 1] ? HV_NO_STOP : in->pairs[b + idx[f]].stop;
+        }
+        double t;
+        assert_int_equal(hv_assignment_makespan(in, &a, &t), HV_OK);
+        if (t < best) {
+            best = t;
+            memcpy(best_stop, a.fruit_stop, nf * sizeof *best_stop);
+        }
+        size_t f = 0; /* odometer over the choices */
+        while (f < nf) {
+            size_t n = in->fruit_begin[f + 1] - in->fruit_begin[f];
+            if (n > 0 && ++idx[f] < n) {
+                break;
+            }
+            idx[f] = 0;
+            ++f;
+        }
+        if (f == nf) {
+            break;
+        }
+    }
+    free(idx);
+    hv_assignment_free(&a);
+    return best;
+}
+
+static void expect_optimal(const hv_instance_t *in, const hv_milp_options_t *opt, double best)
+{
+    hv_assignment_t out;
+    hv_milp_result_t res;
+    assert_int_equal(hv_assignment_alloc(&out, in->n_fruits), HV_OK);
+    assert_int_equal(hv_milp_solve(in, opt, NULL, &out, &res), HV_OK);
+    assert_int_equal(res.status, HV_SOLVE_OPTIMAL);
+    assert_true(fabs(res.objective_s - best) < 1e-6);
+    assert_true(res.bound_s <= res.objective_s + 1e-9);
+    assert_true(res.gap <= opt->rel_gap + 1e-12);
+    double t;
+    assert_int_equal(hv_assignment_makespan(in, &out, &t), HV_OK);
+    assert_true(fabs(t - best) < 1e-6);
+    for (size_t f = 0; f < in->n_fruits; ++f) {
+        if (in->fruit_begin[f] == in->fruit_begin[f + 1]) {
+            assert_int_equal(out.fruit_stop[f], HV_NO_STOP);
+        }
+    }
+    hv_assignment_free(&out);
+}
+
+/* Options with every improvement off: the model exactly as the paper writes it. */
+static void plain(hv_milp_options_t *o)
+{
+    hv_milp_options_default(o);
+    o->heuristic_incumbent = 0;
+    o->ms_granularity = 0;
+    o->decompose = 0;
+    o->link_disaggregated = 0;
+    o->pattern_cuts = -1;
+    o->polish_work = 0;
+}
+
+static void test_matches_brute_force(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 1; seed <= 24; ++seed) {
+        hv_instance_t in;
+        size_t nf = 3 + seed % 4, ns = 5 + seed % 4;
+        make_instance(&in, nf, ns, ns, seed % 5 == 0, seed);
+        uint32_t bs[8];
+        double best = brute_force(&in, bs);
+        hv_milp_options_t o;
+        hv_milp_options_default(&o);
+        expect_optimal(&in, &o, best);
+        plain(&o);
+        expect_optimal(&in, &o, best);
+        hv_milp_options_default(&o);
+        o.branch_stops_first = 1;
+        o.side_bounds = 1;
+        o.pcost_branching = 1;
+        o.glpk_cuts = HV_MILP_CUT_GMI | HV_MILP_CUT_MIR | HV_MILP_CUT_COVER | HV_MILP_CUT_CLIQUE;
+        o.count_branching = 1;
+        o.block_stops = 3;
+        o.pattern_cuts = 5;
+        o.backtracking = 1;
+        expect_optimal(&in, &o, best);
+        hv_milp_options_default(&o);
+        o.link_disaggregated = 2; /* lazy linking rows and cuts */
+        expect_optimal(&in, &o, best);
+        hv_instance_free(&in);
+    }
+}
+
+static void test_heuristic_and_local_search(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 101; seed <= 116; ++seed) {
+        hv_instance_t in;
+        make_instance(&in, 6, 8, 6, seed % 4 == 0, seed);
+        uint32_t bs[8];
+        double best = brute_force(&in, bs);
+        hv_assignment_t a;
+        assert_int_equal(hv_assignment_alloc(&a, in.n_fruits), HV_OK);
+        assert_int_equal(hv_heuristic_solve(&in, &a), HV_OK);
+        double t;
+        assert_int_equal(hv_assignment_makespan(&in, &a, &t), HV_OK);
+        assert_true(t >= best - 1e-9);
+        /* local search from the worst start (each fruit on its last stop) never worsens it */
+        for (size_t f = 0; f < in.n_fruits; ++f) {
+            size_t e = in.fruit_begin[f + 1];
+            a.fruit_stop[f] = e == in.fruit_begin[f] ? HV_NO_STOP : in.pairs[e - 1].stop;
+        }
+        double t0, t1;
+        assert_int_equal(hv_assignment_makespan(&in, &a, &t0), HV_OK);
+        hv_ls_options_t lo;
+        hv_ls_options_default(&lo);
+        assert_int_equal(hv_local_search(&in, &lo, &a, &t1), HV_OK);
+        assert_true(t1 <= t0 + 1e-9);
+        assert_true(t1 >= best - 1e-9);
+        assert_int_equal(hv_assignment_makespan(&in, &a, &t), HV_OK);
+        assert_true(fabs(t - t1) < 1e-6);
+        hv_assignment_free(&a);
+        hv_instance_free(&in);
+    }
+}
+
+/* A mid-size instance whose root LP is fractional, so GLPK asks for heuristic solutions. */
+static void test_incumbent_callback(void **state)
+{
+    (void)state;
+    hv_instance_t in;
+    make_instance(&in, 30, 40, 12, 0, 7);
+    hv_assignment_t inc, out;
+    assert_int_equal(hv_assignment_alloc(&inc, in.n_fruits), HV_OK);
+    assert_int_equal(hv_assignment_alloc(&out, in.n_fruits), HV_OK);
+    assert_int_equal(hv_heuristic_solve(&in, &inc), HV_OK);
+    double t_inc;
+    assert_int_equal(hv_assignment_makespan(&in, &inc, &t_inc), HV_OK);
+    hv_milp_options_t o;
+    hv_milp_options_default(&o);
+    o.decompose = 0;
+    o.time_limit_s = 600;
+    hv_milp_result_t res;
+    assert_int_equal(hv_milp_solve(&in, &o, &inc, &out, &res), HV_OK);
+    assert_true(res.root_bound_s < res.objective_s - 1e-6); /* precondition: not LP-integral */
+    assert_true(fabs(res.incumbent_s - t_inc) < 1e-9);
+    assert_int_equal(res.incumbent_taken, 1);
+    assert_int_equal(res.status, HV_SOLVE_OPTIMAL);
+    assert_true(res.objective_s <= t_inc + 1e-9);
+    /* the same optimum without the incumbent */
+    hv_milp_result_t r2;
+    o.heuristic_incumbent = 0;
+    assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &r2), HV_OK);
+    assert_int_equal(r2.incumbent_taken, 0);
+    assert_true(fabs(r2.objective_s - res.objective_s) < 1e-6);
+    hv_assignment_free(&inc);
+    hv_assignment_free(&out);
+    hv_instance_free(&in);
+}
+
+/* Whatever the clock does, the result is honest: OPTIMAL with a closed gap, FEASIBLE with
+ * a plan whose makespan is the objective and a bound below it, or NO_SOLUTION. */
+static void check_honest(const hv_instance_t *in, const hv_assignment_t *out,
+                         const hv_milp_result_t *r, double rel_gap)
+{
+    if (r->status == HV_SOLVE_NO_SOLUTION) {
+        return;
+    }
+    assert_true(r->status == HV_SOLVE_OPTIMAL || r->status == HV_SOLVE_FEASIBLE);
+    double t;
+    assert_int_equal(hv_assignment_makespan(in, out, &t), HV_OK);
+    assert_true(fabs(t - r->objective_s) < 1e-6);
+    assert_true(r->bound_s <= r->objective_s + 1e-9);
+    assert_true(fabs(r->gap - (r->objective_s - r->bound_s) / r->objective_s) < 1e-9 ||
+                (isinf(r->gap) && isinf(r->bound_s)));
+    if (r->status == HV_SOLVE_OPTIMAL) {
+        assert_true(r->gap <= rel_gap + 1e-12);
+    } else {
+        assert_true(r->gap > rel_gap);
+    }
+}
+
+static void test_time_limit_is_honest(void **state)
+{
+    (void)state;
+    hv_instance_t in;
+    make_instance(&in, 120, 200, 30, 0, 99);
+    hv_assignment_t out;
+    assert_int_equal(hv_assignment_alloc(&out, in.n_fruits), HV_OK);
+    hv_milp_options_t o;
+    hv_milp_options_default(&o);
+    o.time_limit_s = 0.05;
+    hv_milp_result_t r;
+    assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &r), HV_OK);
+    check_honest(&in, &out, &r, o.rel_gap);
+    /* with the heuristic on there is always a plan to return */
+    assert_int_not_equal(r.status, HV_SOLVE_NO_SOLUTION);
+    o.heuristic_incumbent = 0;
+    o.time_limit_s = 0.001;
+    assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &r), HV_OK);
+    check_honest(&in, &out, &r, o.rel_gap);
+    hv_assignment_free(&out);
+    hv_instance_free(&in);
+}
+
+static void test_bad_input(void **state)
+{
+    (void)state;
+    hv_instance_t in;
+    make_instance(&in, 4, 6, 6, 1, 3);
+    hv_assignment_t out;
+    hv_milp_result_t r;
+    hv_milp_options_t o;
+    hv_milp_options_default(&o);
+    assert_int_equal(hv_assignment_alloc(&out, in.n_fruits), HV_OK);
+    assert_int_equal(hv_milp_solve(NULL, &o, NULL, &out, &r), HV_ERR_ARG);
+    o.time_limit_s = 0;
+    assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &r), HV_ERR_ARG);
+    hv_milp_options_default(&o);
+    /* an incumbent that puts a reachable fruit nowhere is refused, not trusted */
+    for (size_t f = 0; f < in.n_fruits; ++f) {
+        out.fruit_stop[f] = HV_NO_STOP;
+    }
+    hv_assignment_t bad = out;
+    hv_assignment_t res_out;
+    assert_int_equal(hv_assignment_alloc(&res_out, in.n_fruits), HV_OK);
+    assert_int_equal(hv_milp_solve(&in, &o, &bad, &res_out, &r), HV_ERR_MILP_INCUMBENT);
+    hv_assignment_free(&res_out);
+    hv_assignment_free(&out);
+    hv_instance_free(&in);
+}
+
+/* Two groups of fruit that no stop serves together: two segments, same optimum. */
+static void test_decomposition(void **state)
+{
+    (void)state;
+    hv_instance_t a;
+    make_instance(&a, 6, 8, 4, 0, 5);
+    /* shift fruits 3.. to stops 8..15 of a 16-stop row */
+    hv_instance_t in = a;
+    in.n_stops = 16;
+    in.stop_y_m = calloc(16, sizeof *in.stop_y_m);
+    for (size_t p = 0; p < 16; ++p) {
+        in.stop_y_m[p] = 0.01 * (double)p;
+    }
+    for (size_t f = 0; f < in.n_fruits; ++f) {
+        size_t b = in.fruit_begin[f], e = in.fruit_begin[f + 1];
+        for (size_t k = b; k < e; ++k) {
+            if (f >= 3) {
+                in.pairs[k].stop += 8;
+            } else if (in.pairs[k].stop >= 8) {
+                in.pairs[k].stop = 7;
+            }
+        }
+    }
+    free(a.stop_y_m);
+    uint32_t bs[8];
+    double best = brute_force(&in, bs);
+    hv_milp_options_t o;
+    hv_milp_options_default(&o);
+    hv_assignment_t out;
+    hv_milp_result_t r;
+    assert_int_equal(hv_assignment_alloc(&out, in.n_fruits), HV_OK);
+    assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &r), HV_OK);
+    assert_true(r.components >= 2);
+    assert_int_equal(r.status, HV_SOLVE_OPTIMAL);
+    assert_true(fabs(r.objective_s - best) < 1e-6);
+    hv_assignment_free(&out);
+    hv_instance_free(&in);
+}
+
+/* Read "Objective:  NAME = VALUE (MINimum)" from glpsol's solution report. */
+static int glpsol_objective(const char *lp_path, const char *dir, double *obj)
+{
+    char cmd[2048], out_path[512];
+    snprintf(out_path, sizeof out_path, "%s/sol.txt", dir);
+    snprintf(cmd, sizeof cmd, "glpsol --lp '%s' -o '%s' >/dev/null 2>&1", lp_path, out_path);
+    if (system(cmd) != 0) {
+        return -1;
+    }
+    FILE *f = fopen(out_path, "r");
+    if (f == NULL) {
+        return -1;
+    }
+    char line[512];
+    int found = -1;
+    while (fgets(line, sizeof line, f) != NULL) {
+        char *p = strchr(line, '=');
+        if (strncmp(line, "Objective:", 10) == 0 && p != NULL) {
+            *obj = strtod(p + 1, NULL);
+            found = 0;
+        }
+    }
+    fclose(f);
+    return found;
+}
+
+static void test_export_lp_resolved_by_glpsol(void **state)
+{
+    (void)state;
+    if (system("glpsol --version >/dev/null 2>&1") != 0) {
+        skip(); /* SKIPPED: glpsol not installed (Debian glpk-utils) */
+    }
+    char dir[] = "/tmp/hv_test_milp_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char lp_path[512];
+    snprintf(lp_path, sizeof lp_path, "%s/model.lp", dir);
+    for (uint64_t seed = 41; seed <= 44; ++seed) {
+        hv_instance_t in;
+        make_instance(&in, 6, 8, 8, seed == 42, seed);
+        hv_milp_options_t o;
+        hv_milp_options_default(&o);
+        o.export_lp_path = lp_path;
+        hv_assignment_t out;
+        hv_milp_result_t r;
+        assert_int_equal(hv_assignment_alloc(&out, in.n_fruits), HV_OK);
+        assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &r), HV_OK);
+        assert_int_equal(r.status, HV_SOLVE_OPTIMAL);
+        double glp = NAN;
+        assert_int_equal(glpsol_objective(lp_path, dir, &glp), 0);
+        assert_true(fabs(glp - r.objective_s) < 1e-4);
+        hv_assignment_free(&out);
+        hv_instance_free(&in);
+    }
+    /* a path that cannot be written is an error, not a silent skip */
+    hv_instance_t in;
+    make_instance(&in, 4, 6, 6, 0, 9);
+    hv_milp_options_t o;
+    hv_milp_options_default(&o);
+    o.export_lp_path = "/nonexistent-dir/model.lp";
+    hv_assignment_t out;
+    hv_milp_result_t r;
+    assert_int_equal(hv_assignment_alloc(&out, in.n_fruits), HV_OK);
+    assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &r), HV_ERR_MILP_EXPORT);
+    hv_assignment_free(&out);
+    hv_instance_free(&in);
+    char cmd[600];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_matches_brute_force),
+        cmocka_unit_test(test_heuristic_and_local_search),
+        cmocka_unit_test(test_incumbent_callback),
+        cmocka_unit_test(test_time_limit_is_honest),
+        cmocka_unit_test(test_bad_input),
+        cmocka_unit_test(test_decomposition),
+        cmocka_unit_test(test_export_lp_resolved_by_glpsol),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

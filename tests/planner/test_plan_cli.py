@@ -1,0 +1,286 @@
+"""harvest-plan end to end: plans written and checked, bad input refused with one line,
+tampered plans caught by `harvest-plan check`. Tables are synthetic (band model,
+tests/planner/support) on the real configuration's grid."""
+import json
+import os
+import random
+import subprocess
+
+import pytest
+
+SRC = os.environ.get("HV_SOURCE_DIR", os.path.dirname(os.path.dirname(os.path.dirname(
+    os.path.abspath(__file__)))))
+BUILD = os.environ.get("HV_BUILD_DIR", os.path.join(SRC, "build"))
+PLAN = os.path.join(BUILD, "planner", "harvest-plan")
+SYNTH = os.path.join(BUILD, "tests", "planner", "planner_synth_tables")
+CONFIG = os.path.join(SRC, "config", "harvest.cfg")
+
+pytestmark = pytest.mark.skipif(
+    not (os.access(PLAN, os.X_OK) and os.access(SYNTH, os.X_OK)),
+    reason="SKIPPED: harvest-plan or planner_synth_tables not built in HV_BUILD_DIR")
+
+
+def run(*args, check=None):
+    p = subprocess.run([PLAN, *map(str, args)], capture_output=True, text=True, timeout=600)
+    if check is not None:
+        assert p.returncode == check, (p.returncode, p.stdout, p.stderr)
+    return p
+
+
+@pytest.fixture(scope="module")
+def tables(tmp_path_factory):
+    d = tmp_path_factory.mktemp("tables")
+    subprocess.run([SYNTH, CONFIG, str(d), "0.30"], check=True)
+    return str(d / "left.tab"), str(d / "right.tab")
+
+
+def write_map(path, fruits):
+    with open(path, "w") as f:
+        f.write("id,side,x,y,z,yaw\n")
+        for fr in fruits:
+            f.write(",".join(str(v) for v in fr) + "\n")
+    return str(path)
+
+
+def random_fruits(n_left, n_right, length=2.0, seed=1):
+    rnd = random.Random(seed)
+    out = []
+    for side, n in (("L", n_left), ("R", n_right)):
+        for i in range(n):
+            x = rnd.uniform(0.36, 0.49) * (-1 if side == "L" else 1)
+            out.append((f"{side}{i}", side, round(x, 4), round(rnd.uniform(0, length), 4),
+                        round(rnd.uniform(0.41, 0.74), 4), round(rnd.uniform(-0.7, 0.7), 4)))
+    return out
+
+
+def plan_args(tables, fruits, out, method, *extra):
+    return ["--config", CONFIG, "--left", tables[0], "--right", tables[1], "--fruits", fruits,
+            "--method", method, "--out", out, *extra]
+
+
+def test_help():
+    p = run("--help", check=0)
+    for flag in ("--config", "--left", "--right", "--fruits", "--method", "--out",
+                 "--time-limit", "--gap", "--fov-width", "--horizon", "--export-lp", "--quiet",
+                 "check"):
+        assert flag in p.stdout
+    assert run("check", "--help", check=0).stdout.startswith("usage")
+
+
+def test_usage_errors(tables, tmp_path):
+    fruits = write_map(tmp_path / "m.csv", random_fruits(3, 3))
+    out = str(tmp_path / "p.json")
+    for args, needle in (
+        (plan_args(tables, fruits, out, "greedy"), "--method"),
+        (plan_args(tables, fruits, out, "fov", "--fov-width", "-1"), "--fov-width"),
+        (plan_args(tables, fruits, out, "fov", "--horizon", "2"), "--horizon"),
+        (plan_args(tables, fruits, out, "milp", "--gap", "abc"), "--gap"),
+        (["--config", CONFIG], "missing required option: --left"),
+        (plan_args(tables, fruits, out, "milp", "--bogus"), "unknown option: --bogus"),
+    ):
+        p = run(*args, check=2)
+        assert needle in p.stderr
+        assert len(p.stderr.strip().splitlines()) == 1, p.stderr
+    assert not os.path.exists(out)
+
+
+@pytest.mark.parametrize("method", ["fov", "serial", "milp"])
+def test_methods_write_checked_plans(tables, tmp_path, method):
+    fr = random_fruits(8, 8, seed=3)
+    fr.append(("far", "R", 0.45, 1.0, 0.6, 0.0))
+    fruits = write_map(tmp_path / "m.csv", fr)
+    out = str(tmp_path / "plan.json")
+    p = run(*plan_args(tables, fruits, out, method, "--time-limit", "60"), check=0)
+    assert "makespan" in p.stderr
+    plan = json.load(open(out))
+    assert plan["format"] == "harvest-plan" and plan["method"] == method
+    picked = [pk["id"] for s in plan["stops"] for arm in ("left", "right") for pk in s[arm]]
+    assert sorted(picked) == sorted(f[0] for f in fr)  # all reachable here
+    t = plan["totals"]
+    assert t["fruits_planned"] == len(fr) and t["stops"] == len(plan["stops"])
+    assert abs(t["makespan_s"] - (t["pick_time_s"] + t["stop_time_s"] + t["travel_time_s"])) < 1e-6
+    if method == "fov":
+        assert plan["solver"]["status"] == "heuristic" and plan["solver"]["gap"] is None
+    else:
+        assert plan["solver"]["status"] in ("optimal", "feasible")
+    if method == "serial":
+        assert t["travel_time_s"] == pytest.approx(40.0)
+        assert {s["pass"] for s in plan["stops"]} == {0, 1}
+    q = run("check", out, check=0)
+    assert "OK" in q.stdout
+
+
+def test_milp_no_worse_than_fov(tables, tmp_path):
+    fr = random_fruits(10, 10, seed=5)
+    fruits = write_map(tmp_path / "m.csv", fr)
+    res = {}
+    for m in ("fov", "milp"):
+        out = str(tmp_path / f"{m}.json")
+        run(*plan_args(tables, fruits, out, m, "--quiet"), check=0)
+        res[m] = json.load(open(out))["totals"]["makespan_s"]
+    assert res["milp"] <= res["fov"] + 1e-6
+
+
+def test_unreachable_listed(tables, tmp_path):
+    # the synthetic tables reach nothing above z = 0.75 m
+    fr = random_fruits(3, 3, seed=7) + [("high", "L", -0.4, 1.0, 0.78, 0.0)]
+    fruits = write_map(tmp_path / "m.csv", fr)
+    out = str(tmp_path / "p.json")
+    for method in ("fov", "milp"):
+        run(*plan_args(tables, fruits, out, method, "--quiet"), check=0)
+        plan = json.load(open(out))
+        assert plan["totals"]["fruits_unreachable"] == 1
+        assert plan["unreachable"] == [{"id": "high", "side": "L", "reason": "no stop reaches it"}]
+        assert plan["totals"]["fruits_planned"] == 6
+        run("check", out, check=0)
+
+
+BAD_MAPS = [
+    ("", "empty"),
+    ("id,side,x,y,z,yaw\n", "no fruit"),
+    ("id,side,x,y,z,yaw\n1,L,-0.4,0.5,0.6,0\n1,R,0.4,0.6,0.6,0\n", "m.csv:3: id: duplicate"),
+    ("id,side,x,y,z,yaw\n1,Q,-0.4,0.5,0.6,0\n", "m.csv:2: side"),
+    ("id,side,x,y,z,yaw\n1,L,-0.4,nan,0.6,0\n", "m.csv:2: y: not finite"),
+    ("id,side,x,y,z,yaw\n1,L,-0.4,0.5,0.6,0.9\n", "m.csv:2: yaw"),
+    ("id,side,x,y,z,yaw\n1,L,-0.4,2.5,0.6,0\n", "m.csv:2: y: 2.5 outside the row"),
+    ("id,side,x,y,z,yaw\n1,R,-0.4,0.5,0.6,0\n", "m.csv:2: x"),
+]
+
+
+@pytest.mark.parametrize("text,needle", BAD_MAPS)
+def test_bad_map(tables, tmp_path, text, needle):
+    path = tmp_path / "m.csv"
+    path.write_text(text)
+    out = str(tmp_path / "p.json")
+    p = run(*plan_args(tables, str(path), out, "fov"), check=1)
+    assert needle in p.stderr, p.stderr
+    assert len(p.stderr.strip().splitlines()) == 1, p.stderr
+    assert not os.path.exists(out)
+
+
+def test_bad_tables(tables, tmp_path):
+    fruits = write_map(tmp_path / "m.csv", random_fruits(2, 2))
+    out = str(tmp_path / "p.json")
+    swapped = (tables[1], tables[0])
+    p = run(*plan_args(swapped, fruits, out, "fov"), check=1)
+    assert tables[1] in p.stderr and "side" in p.stderr
+    broken = tmp_path / "broken.tab"
+    data = bytearray(open(tables[0], "rb").read())
+    data[-1] ^= 0xFF
+    broken.write_bytes(bytes(data))
+    p = run(*plan_args((str(broken), tables[1]), fruits, out, "fov"), check=1)
+    assert str(broken) in p.stderr
+    p = run(*plan_args((str(tmp_path / "none.tab"), tables[1]), fruits, out, "fov"), check=1)
+    assert "none.tab" in p.stderr
+    assert not os.path.exists(out)
+
+
+def test_check_catches_tampering(tables, tmp_path):
+    fr = random_fruits(6, 6, seed=11)
+    fruits = write_map(tmp_path / "m.csv", fr)
+    out = tmp_path / "p.json"
+    run(*plan_args(tables, fruits, str(out), "fov", "--quiet"), check=0)
+    good = json.loads(out.read_text())
+
+    def tampered(edit):
+        plan = json.loads(json.dumps(good))
+        edit(plan)
+        path = tmp_path / "t.json"
+        path.write_text(json.dumps(plan))
+        return run("check", str(path))
+
+    p = tampered(lambda pl: pl["totals"].__setitem__("makespan_s", pl["totals"]["makespan_s"] + 1))
+    assert p.returncode == 4 and "totals.makespan_s" in p.stderr
+    p = tampered(lambda pl: pl["stops"][0]["right" if pl["stops"][0]["right"] else "left"].pop())
+    assert p.returncode == 4
+    p = tampered(lambda pl: pl["stops"].append(dict(pl["stops"][-1])))
+    assert p.returncode == 4 and "driving order" in p.stderr
+    p = tampered(lambda pl: pl.__setitem__("extra", 1))
+    assert p.returncode == 1 and "extra: unknown field" in p.stderr
+    # the same plan checked against another map: fruits missing / unknown
+    other = write_map(tmp_path / "other.csv", random_fruits(6, 6, seed=12))
+    p = run("check", str(out), "--fruits", other)
+    assert p.returncode == 4
+
+
+def test_export_lp(tables, tmp_path):
+    fruits = write_map(tmp_path / "m.csv", random_fruits(4, 4, seed=2))
+    out, lp = str(tmp_path / "p.json"), tmp_path / "model.lp"
+    run(*plan_args(tables, fruits, out, "milp", "--export-lp", str(lp), "--quiet"), check=0)
+    text = lp.read_text()
+    assert "Minimize" in text or "minimize" in text.lower()
+
+
+def test_out_dir_missing(tables, tmp_path):
+    fruits = write_map(tmp_path / "m.csv", random_fruits(2, 2))
+    out = str(tmp_path / "no" / "such" / "dir" / "p.json")
+    p = run(*plan_args(tables, fruits, out, "fov"), check=1)
+    assert "p.json" in p.stderr
+
+
+def test_horizon_long_row(tables, tmp_path):
+    length = 8.0
+    fr = random_fruits(40, 40, length=length, seed=21)
+    fruits = write_map(tmp_path / "m.csv", fr)
+    out = str(tmp_path / "p.json")
+    p = run(*plan_args(tables, fruits, out, "milp", "--row-length", length, "--horizon", "2",
+                       "--time-limit", "5", "--gap", "0.01"), check=0)
+    assert p.stderr.count("horizon: window") >= 7  # progress, one line per window
+    plan = json.load(open(out))
+    assert plan["horizon"]["windows"] >= 7 and plan["solver"]["status"] == "heuristic"
+    picked = [pk["id"] for s in plan["stops"] for arm in ("left", "right") for pk in s[arm]]
+    assert sorted(picked) == sorted(f[0] for f in fr)  # every fruit exactly once
+    run("check", out, check=0)
+
+
+COSTGEN = os.path.join(BUILD, "tools", "costgen")
+
+
+@pytest.fixture(scope="module")
+def real_tables(tmp_path_factory):
+    if not os.access(COSTGEN, os.X_OK):
+        pytest.skip("SKIPPED: tools/costgen not built (HV_WITH_TOOLS=OFF)")
+    d = tmp_path_factory.mktemp("real")
+    subprocess.run([COSTGEN, "--config", CONFIG, "--side", "both", "--out-dir", str(d)],
+                   check=True, capture_output=True, timeout=600)
+    return str(d / "costtab_left.bin"), str(d / "costtab_right.bin")
+
+
+def test_real_tables_all_methods(real_tables, tmp_path):
+    """The arm's real cost tables (costgen): every method writes a plan that passes the
+    checker, unreachable fruit are listed, and the MILP is no worse than either baseline."""
+    rnd = random.Random(8)
+    fr = []
+    for side, n in (("L", 12), ("R", 4)):
+        for i in range(n):
+            x = rnd.uniform(0.35, 0.50) * (-1 if side == "L" else 1)
+            fr.append((f"{side}{i}", side, round(x, 4), round(rnd.uniform(0, 2), 4),
+                       round(rnd.uniform(0.40, 0.80), 4), round(rnd.uniform(-0.78, 0.78), 4)))
+    fruits = write_map(tmp_path / "m.csv", fr)
+    makespan = {}
+    for method in ("fov", "serial", "milp"):
+        out = str(tmp_path / f"{method}.json")
+        run(*plan_args(real_tables, fruits, out, method, "--quiet", "--time-limit", "120"),
+            check=0)
+        plan = json.load(open(out))
+        t = plan["totals"]
+        assert t["fruits_planned"] + t["fruits_unreachable"] == len(fr)
+        makespan[method] = t["makespan_s"]
+        run("check", out, check=0)
+    assert makespan["milp"] <= makespan["fov"] + 1e-6
+    assert makespan["milp"] <= makespan["serial"] + 1e-6
+
+
+def test_horizon_compare_single(tables, tmp_path):
+    fruits = write_map(tmp_path / "m.csv", random_fruits(12, 12, seed=31))
+    out = str(tmp_path / "p.json")
+    p = run(*plan_args(tables, fruits, out, "milp", "--horizon", "1", "--compare-single",
+                       "--time-limit", "60", "--quiet"), check=0)
+    line = [ln for ln in p.stdout.splitlines() if ln.startswith("compare:")]
+    assert len(line) == 1, p.stdout
+    horizon = float(line[0].split("horizon makespan ")[1].split(" s")[0])
+    assert horizon == pytest.approx(json.load(open(out))["totals"]["makespan_s"], abs=1e-3)
+    if "(optimal" in line[0]:
+        single = float(line[0].split("single window ")[1].split(" s")[0])
+        assert horizon >= single - 1e-3  # a window plan cannot beat the row's optimum
+    run(*plan_args(tables, fruits, out, "milp", "--compare-single"), check=2)
