@@ -1,0 +1,242 @@
+"""One SCARA joint controller with its end effector (DBC nodes ARM_L / ARM_R).
+
+Setpoints move all four joints at once, each on its own trapezoid at the config's limits;
+a setpoint outside a joint's range is refused with fault bit 11 and not echoed. The end
+effector cuts or releases in a configurable (simulated) time, only while the arm stands.
+Injected faults (stall, joint fault, reject) are applied here, counted per arm.
+"""
+from .node import ESTOP, FAULT, IDLE, MOVING, STATE_NAMES, Node
+from .profile import Profile
+
+# FaultBits of <Arm>Status (DBC comment)
+BIT_LIMIT = 0          # + joint index 0..3
+BIT_FOLLOWING = 4      # + joint index 0..3
+BIT_EE = 8
+BIT_COMM = 9
+BIT_ESTOP = 10
+BIT_REJECTED = 11
+
+# EeStatus.State and EeCommand.Action (VAL_ of the DBC)
+EE_IDLE, EE_BUSY, EE_DONE, EE_FAILED, EE_FAULT = range(5)
+EE_STATE_NAMES = ("IDLE", "BUSY", "DONE", "FAILED", "FAULT")
+ACT_NONE, ACT_CUT, ACT_RELEASE = range(3)
+ACTION_NAMES = ("NONE", "CUT", "RELEASE")
+
+# "Within tolerance of the setpoint": the DBC's resolution of a joint position.
+REACHED_TOL = 1e-4
+
+
+def check_ee_against(proto, prefix):
+    for msg, sig, names in ((f"{prefix}EeStatus", "State", EE_STATE_NAMES),
+                            (f"{prefix}EeStatus", "Action", ACTION_NAMES),
+                            (f"{prefix}EeCommand", "Action", ACTION_NAMES)):
+        want = dict(enumerate(names))
+        if proto.choices(msg, sig) != want:
+            raise ValueError(f"{proto.path}: {msg}.{sig} values {proto.choices(msg, sig)} "
+                             f"differ from the simulator's {want}")
+
+
+class ArmNode(Node):
+    ESTOP_BIT = BIT_ESTOP
+    COMM_BIT = BIT_COMM
+
+    def __init__(self, name, model, log, faults=(), start=None, cut_s=1.0, release_s=0.5,
+                 vehicle_position=lambda t: 0.0):
+        start = list(model.home if start is None else start)
+        super().__init__(name, start, [(j.vmax, j.amax) for j in model.joints], log)
+        self.model = model
+        self.cut_s, self.release_s = cut_s, release_s
+        self.vehicle_position = vehicle_position
+        self.faults = [f for f in faults if f.get("node") == name]
+        self.target_reached = False
+        self.setpoint_seq = 0
+        self.setpoints_received = 0
+        self.setpoints_accepted = 0
+        self.cuts_received = 0
+        self.picks = 0
+        self.ee_state, self.ee_action, self.ee_seq = EE_IDLE, ACT_NONE, 0
+        self.ee_done_t = None
+        self.fruit_held = False
+        self.ee_changed = True
+        self.pending_fault = None   # (t, joint index, bits, why) of a scheduled joint fault
+
+    # -- Node hooks ----------------------------------------------------------------------
+    def home_targets(self):
+        return list(self.model.home)
+
+    def on_new_motion(self, t):
+        if self.target_reached:
+            self.target_reached = False
+            self.changed = True
+        self.pending_fault = None
+        self._fail_ee(t, "arm started moving")
+
+    def on_stopped(self, t, why):
+        self.pending_fault = None
+        self._fail_ee(t, why)
+
+    def on_motion_done(self, t, motion):
+        if motion["kind"] == "setpoint":
+            self.target_reached = True
+            self.changed = True
+            self.log(t, "target_reached", seq=motion["seq"], positions=self.positions(t),
+                     elapsed=t - motion["t_start"], planned=max(motion["durations"]))
+
+    # -- inputs ----------------------------------------------------------------------------
+    def on_setpoint(self, t, q, seq):
+        """Handle <Arm>Setpoint with joint positions q (m, rad) and its 5-bit sequence."""
+        self.setpoints_received += 1
+        reason, bits = "", 0
+        injected = next((f for f in self.faults if f["type"] == "reject"
+                         and f["setpoint"] == self.setpoints_received), None)
+        if self.state not in (IDLE, MOVING):
+            reason = f"state {STATE_NAMES[self.state]}"
+        elif injected is not None:
+            reason, bits = f"injected reject of setpoint #{self.setpoints_received}", 1 << BIT_REJECTED
+        else:
+            for j, (qj, lim) in enumerate(zip(q, self.model.joints)):
+                if not lim.contains(qj):
+                    reason = f"joint {j + 1} = {qj:.4f} outside [{lim.min}, {lim.max}]"
+                    bits = 1 << BIT_REJECTED
+                    break
+        if reason:
+            self.set_bits(bits)
+            self.log(t, "setpoint", seq=seq, positions=list(q), accepted=False, reason=reason,
+                     number=self.setpoints_received)
+            return
+        self.setpoints_accepted += 1
+        self.clear_bits(1 << BIT_REJECTED)
+        if seq != self.setpoint_seq:
+            self.setpoint_seq = seq
+            self.changed = True
+        motion = self.start_motion(t, q, "setpoint", seq)
+        self.on_new_motion(t)
+        fields = {}
+        stall = next((f for f in self.faults if f["type"] == "stall"
+                      and f["setpoint"] == self.setpoints_accepted), None)
+        if stall is not None:
+            self._stall(t, stall, motion)
+            fields["stall"] = {"joint": stall["joint"], "fraction": stall["fraction"]}
+        jf = next((f for f in self.faults if f["type"] == "joint_fault"
+                   and f.get("setpoint") == self.setpoints_accepted), None)
+        if jf is not None:
+            at = t + jf["at"] * (motion["t_end"] - t)
+            self.pending_fault = (at, jf)
+            fields["joint_fault_at"] = at
+        self.set_state(t, MOVING, "setpoint")
+        self.log(t, "setpoint", seq=seq, positions=list(q), accepted=True, reason="",
+                 number=self.setpoints_received, durations=motion["durations"],
+                 duration=motion["t_end"] - t, **fields)
+
+    def _stall(self, t, stall, motion):
+        """The joint stops part of the way: its profile ends short and the motion never ends."""
+        j = stall["joint"] - 1
+        p, v = self.axes[j].state(t)
+        stop = p + stall["fraction"] * (motion["targets"][j] - p)
+        vmax, amax = self.limits[j]
+        self.axes[j] = Profile(t, p, v, stop, vmax, amax)
+        motion["stalled"] = True
+
+    def on_ee(self, t, action, seq):
+        """Handle <Arm>EeCommand: CUT at the fruit, RELEASE at home."""
+        name = ACTION_NAMES[action] if 0 <= action < len(ACTION_NAMES) else str(action)
+        self.ee_seq, self.ee_action = seq, action if action < len(ACTION_NAMES) else ACT_NONE
+        self.ee_changed = True
+        if action == ACT_CUT:
+            self.cuts_received += 1
+            jf = next((f for f in self.faults if f["type"] == "joint_fault"
+                       and f.get("pick") == self.cuts_received), None)
+            if jf is not None and self.state not in (FAULT, ESTOP):
+                self.log(t, "ee", action=name, seq=seq, accepted=False,
+                         reason=f"injected joint fault at pick #{self.cuts_received}")
+                self._joint_fault(t, jf)
+                self._set_ee(t, EE_FAILED)
+                return
+        reason = ""
+        if action not in (ACT_NONE, ACT_CUT, ACT_RELEASE):
+            reason = f"unknown action {action}"
+        elif action == ACT_NONE:
+            self.ee_done_t = None
+            self._set_ee(t, EE_IDLE)
+        elif self.state != IDLE:
+            reason = f"arm {STATE_NAMES[self.state]}, not standing"
+        elif self.ee_state == EE_BUSY:
+            reason = "end effector busy"
+        elif action == ACT_CUT and self.fruit_held:
+            reason = "already holding a fruit"
+        if reason:
+            self._set_ee(t, EE_FAULT if self.state in (FAULT, ESTOP) else EE_FAILED)
+            self.log(t, "ee", action=name, seq=seq, accepted=False, reason=reason)
+            return
+        if action != ACT_NONE:
+            self.ee_done_t = t + (self.cut_s if action == ACT_CUT else self.release_s)
+            self._set_ee(t, EE_BUSY)
+        self.log(t, "ee", action=name, seq=seq, accepted=True, reason="",
+                 done_at=self.ee_done_t)
+
+    # -- faults and the end effector ----------------------------------------------------------
+    def _joint_fault(self, t, jf):
+        j = jf["joint"] - 1
+        bit = (BIT_FOLLOWING if jf["kind"] == "following" else BIT_LIMIT) + j
+        self.log(t, "fault_injected", fault="joint_fault", joint=jf["joint"], kind=jf["kind"],
+                 bits=1 << bit)
+        self.fault(t, 1 << bit, f"injected {jf['kind']} fault on joint {jf['joint']}")
+
+    def _set_ee(self, t, state):
+        if state != self.ee_state:
+            self.ee_state = state
+            self.ee_changed = True
+
+    def _fail_ee(self, t, why):
+        if self.ee_state == EE_BUSY:
+            self.ee_done_t = None
+            self._set_ee(t, EE_FAILED)
+            self.log(t, "ee_done", action=ACTION_NAMES[self.ee_action], seq=self.ee_seq,
+                     result="FAILED", reason=why)
+
+    # -- time ------------------------------------------------------------------------------
+    def update(self, t):
+        if self.pending_fault is not None and t >= self.pending_fault[0]:
+            at, jf = self.pending_fault
+            self.pending_fault = None
+            self._joint_fault(at, jf)
+        super().update(t)
+        if self.ee_done_t is not None and t >= self.ee_done_t:
+            done, self.ee_done_t = self.ee_done_t, None
+            q = self.positions(done)
+            if self.ee_action == ACT_CUT:
+                self.fruit_held = True
+                self.picks += 1
+                self.log(done, "pick", pick=self.picks, seq=self.ee_seq, positions=q,
+                         vehicle_position=self.vehicle_position(done))
+            else:
+                self.log(done, "release", seq=self.ee_seq, fruit=self.fruit_held, positions=q)
+                self.fruit_held = False
+            self._set_ee(done, EE_DONE)
+            self.log(done, "ee_done", action=ACTION_NAMES[self.ee_action], seq=self.ee_seq,
+                     result="DONE")
+
+    def next_event(self):
+        times = [x for x in (super().next_event(), self.ee_done_t,
+                             self.pending_fault[0] if self.pending_fault else None)
+                 if x is not None]
+        return min(times) if times else None
+
+    # -- frames ----------------------------------------------------------------------------
+    def status_signals(self):
+        return {"State": self.state, "TargetReached": int(self.target_reached),
+                "Homed": int(self.homed), "SetpointSeq": self.setpoint_seq,
+                "CommandSeq": self.command_seq, "FaultBits": self.fault_bits}
+
+    def joint_state_signals(self, t, counter):
+        q = self.positions(t)
+        return {"Joint1Position": q[0], "Joint2Position": q[1], "Joint3Position": q[2],
+                "Joint4Position": q[3], "Counter": counter}
+
+    def joint_velocity_signals(self, t):
+        v = self.velocities(t)
+        return {f"Joint{j + 1}Velocity": v[j] for j in range(4)}
+
+    def ee_status_signals(self):
+        return {"State": self.ee_state, "Action": self.ee_action, "EeSeq": self.ee_seq,
+                "FruitHeld": int(self.fruit_held)}

@@ -1,0 +1,206 @@
+"""The simulator's parts without a bus: profiles, fault specs, the node state machines."""
+import json
+import math
+
+import pytest
+
+from harvest.sim import arm as arm_mod
+from harvest.sim import faults
+from harvest.sim import node as node_mod
+from harvest.sim.arm import ArmNode
+from harvest.sim.clock import ScaledClock
+from harvest.sim.model import ConfigError, Model
+from harvest.sim.profile import Profile, trapezoid_time
+from harvest.sim.vehicle import VehicleNode
+
+MODEL = Model.load()
+
+
+def formula(d, v, a):
+    d = abs(d)
+    return 2 * math.sqrt(d / a) if d <= v * v / a else d / v + v / a
+
+
+def sample(p, n=2000):
+    ts = [p.t0 + p.duration * k / n for k in range(n + 1)]
+    return ts, [p.state(t) for t in ts]
+
+
+# -- profiles -------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("d", [0.0, 0.001, 0.05, 0.1, 0.2, 1.4, -0.7, -3.0])
+def test_rest_to_rest_time_is_the_trapezoid_formula(d):
+    p = Profile(2.0, 0.5, 0.0, 0.5 + d, 0.2, 0.2)
+    assert p.duration == pytest.approx(formula(d, 0.2, 0.2), abs=1e-12)
+    assert trapezoid_time(d, 0.2, 0.2) == pytest.approx(formula(d, 0.2, 0.2), abs=1e-12)
+    assert p.state(p.t_end) == (0.5 + d, 0.0)
+    assert p.state(1.0) == (0.5, 0.0)   # before the start
+
+
+@pytest.mark.parametrize("p0,v0,target", [
+    (0.0, 0.1, 1.0),     # moving towards, will cruise
+    (0.0, 0.2, 0.05),    # too fast to stop in time: brake, come back
+    (0.0, -0.15, 0.5),   # moving away: brake first
+    (0.3, 0.15, 0.3),    # already on the target but moving
+    (0.0, 0.25, 2.0),    # faster than a lowered vmax
+])
+def test_profile_from_motion_is_continuous_and_within_limits(p0, v0, target):
+    vmax, amax = 0.2, 0.2
+    p = Profile(0.0, p0, v0, target, vmax, amax)
+    ts, states = sample(p)
+    dt = ts[1] - ts[0]
+    assert states[0] == pytest.approx((p0, v0))
+    assert states[-1] == (target, 0.0)
+    for (x1, v1), (x2, v2) in zip(states, states[1:]):
+        assert abs(v2 - v1) <= amax * dt + 1e-9              # bounded acceleration
+        assert abs(x2 - x1) <= max(abs(v1), abs(v2)) * dt + 1e-9
+    assert all(abs(v) <= max(vmax, abs(v0)) + 1e-9 for _, v in states)
+
+
+def test_brake_stops_at_full_deceleration():
+    p = Profile.brake(1.0, 0.2, -0.1, 0.1)
+    assert p.duration == pytest.approx(1.0)
+    assert p.state(p.t_end) == (pytest.approx(0.2 - 0.05), 0.0)
+
+
+def test_scaled_clock_runs_faster():
+    now = [100.0]
+    c = ScaledClock(20, lambda: now[0])
+    now[0] = 100.5
+    assert c.sim() == pytest.approx(10.0) and c.to_wall(10.0) == pytest.approx(0.5)
+    with pytest.raises(ValueError):
+        ScaledClock(0)
+
+
+# -- model ------------------------------------------------------------------------------------
+
+def test_model_reads_the_config(tmp_path):
+    assert [j.vmax for j in MODEL.joints] == [0.1, 0.2, 0.2, 0.2]
+    assert len(MODEL.home) == 4 and MODEL.vehicle_speed == 0.1
+    bad = tmp_path / "bad.cfg"
+    text = open(MODEL.path).read().replace("joint3.max = 2.8", "joint3.max = -1")
+    bad.write_text(text)
+    with pytest.raises(ConfigError, match=r"bad.cfg.*joint3.max"):
+        Model.load(str(bad))
+
+
+# -- fault specs --------------------------------------------------------------------------------
+
+def test_fault_flags_parse_with_defaults():
+    assert faults.parse_flag("drop:fraction=0.25") == {
+        "type": "drop", "fraction": 0.25, "direction": "tx", "node": "all"}
+    assert faults.parse_flag("stall:node=left_arm,joint=2") == {
+        "type": "stall", "node": "left_arm", "joint": 2, "setpoint": 1, "fraction": 0.5}
+    assert faults.parse_flag("joint_fault:node=right_arm,joint=4,pick=3")["kind"] == "following"
+    assert faults.parse_flag("silent:after_s=2.5,node=vehicle,frames=heartbeat")["after_s"] == 2.5
+
+
+@pytest.mark.parametrize("flag,field", [
+    ("drop:fraction=0", "fraction"), ("drop:fraction=x", "fraction"),
+    ("drop:fraction=0.1,node=arm", "node"), ("delay:delay_s=-1", "delay_s"),
+    ("stall:node=vehicle,joint=1", "node"), ("stall:node=left_arm,joint=5", "joint"),
+    ("stall:node=left_arm,joint=1.5", "joint"), ("joint_fault:node=left_arm,joint=1", "pick"),
+    ("joint_fault:node=left_arm,joint=1,pick=1,setpoint=2", "pick"),
+    ("silent:node=vehicle", "after_s"), ("reject:node=left_arm,setpoint=0", "setpoint"),
+    ("reject:node=left_arm,setpoint=1,colour=red", "colour"), ("explode:x=1", "type"),
+    ("drop:fraction", "fraction"),
+])
+def test_bad_fault_flags_name_the_field(flag, field):
+    with pytest.raises(faults.FaultError, match=field):
+        faults.parse_flag(flag)
+
+
+def test_scenario_file(tmp_path):
+    path = tmp_path / "s.json"
+    path.write_text(json.dumps({"seed": 4, "faults": [{"type": "reject", "node": "left_arm",
+                                                       "setpoint": 2}]}))
+    assert faults.load_scenario(str(path)) == (4, [{"type": "reject", "node": "left_arm",
+                                                    "setpoint": 2}])
+    path.write_text(json.dumps({"faults": [{"type": "drop", "fraction": 1},
+                                           {"type": "delay", "delay_s": "soon"}]}))
+    with pytest.raises(faults.FaultError, match=r"s.json: faults\[1\]: field 'delay_s'"):
+        faults.load_scenario(str(path))
+    path.write_text("{not json")
+    with pytest.raises(faults.FaultError, match=r"s.json:1: not valid JSON"):
+        faults.load_scenario(str(path))
+
+
+# -- node state machines, driven by hand ----------------------------------------------------------
+
+class Log(list):
+    def __call__(self, t, event, **fields):
+        self.append(dict(t=t, event=event, **fields))
+
+    def of(self, event):
+        return [e for e in self if e["event"] == event]
+
+
+def test_arm_state_machine_and_setpoint():
+    log = Log()
+    a = ArmNode("left_arm", MODEL, log)
+    a.on_setpoint(0.0, [0.3, 0.0, 1.4, 0.0], 1)
+    assert a.setpoint_seq == 0 and log.of("setpoint")[-1]["accepted"] is False
+    a.on_command(0.0, node_mod.CMD_ENABLE, 1)
+    assert a.state == node_mod.IDLE and a.command_seq == 1
+    q = [0.35, 0.5, 1.0, -0.5]
+    a.on_setpoint(1.0, q, 2)
+    assert a.state == node_mod.MOVING and a.setpoint_seq == 2 and not a.target_reached
+    t_end = 1.0 + max(formula(b - x, j.vmax, j.amax) for x, b, j in zip(MODEL.home, q, MODEL.joints))
+    assert a.next_event() == pytest.approx(t_end)
+    a.update(t_end - 1e-6)
+    assert not a.target_reached
+    a.update(t_end + 5.0)
+    assert a.target_reached and a.state == node_mod.IDLE
+    assert log.of("target_reached")[-1]["t"] == pytest.approx(t_end)
+    assert a.positions(t_end + 5) == q
+    # out of range: bit 11, not echoed, state kept
+    a.on_setpoint(20.0, [0.3, 0.0, 3.0, 0.0], 3)
+    assert a.fault_bits == 1 << arm_mod.BIT_REJECTED and a.setpoint_seq == 2
+    assert a.state == node_mod.IDLE and a.health() == node_mod.HEALTH_WARNING
+
+
+def test_arm_estop_brakes_and_latches():
+    log = Log()
+    a = ArmNode("right_arm", MODEL, log)
+    a.on_command(0.0, node_mod.CMD_ENABLE, 1)
+    a.on_setpoint(0.0, [0.45, 1.5, 0.2, 3.0], 1)
+    a.update(3.0)
+    _, v = a.axes[1].state(3.0)
+    assert v > 0
+    a.estop(3.0, "test")
+    assert a.state == node_mod.ESTOP and a.fault_bits == 1 << arm_mod.BIT_ESTOP
+    stop = a.axes[1].t_end
+    assert stop == pytest.approx(3.0 + v / MODEL.joints[1].amax)
+    a.update(stop + 1)
+    assert a.velocities(stop + 1) == [0.0] * 4 and not a.target_reached
+    a.on_command(stop + 1, node_mod.CMD_ENABLE, 2)
+    assert a.state == node_mod.ESTOP and a.command_seq == 1
+    a.on_command(stop + 1, node_mod.CMD_CLEAR_FAULT, 3)
+    assert a.state == node_mod.DISABLED and a.fault_bits == 0
+
+
+def test_end_effector_cut_counts_picks():
+    log = Log()
+    a = ArmNode("left_arm", MODEL, log, cut_s=1.5, release_s=0.5,
+                vehicle_position=lambda t: 0.7)
+    a.on_command(0.0, node_mod.CMD_ENABLE, 1)
+    a.on_ee(1.0, arm_mod.ACT_CUT, 5)
+    assert a.ee_state == arm_mod.EE_BUSY and a.next_event() == pytest.approx(2.5)
+    a.update(3.0)
+    assert a.ee_state == arm_mod.EE_DONE and a.fruit_held and a.picks == 1
+    pick = log.of("pick")[0]
+    assert pick["t"] == pytest.approx(2.5) and pick["vehicle_position"] == 0.7
+    a.on_ee(3.0, arm_mod.ACT_CUT, 6)      # still holding one
+    assert a.ee_state == arm_mod.EE_FAILED and a.picks == 1
+
+
+def test_vehicle_move_and_limits():
+    log = Log()
+    v = VehicleNode(MODEL, log, travel=(0.0, 2.0))
+    v.on_command(0.0, node_mod.CMD_ENABLE, 1)
+    v.on_move(0.0, 2.0, 0.0, 1)
+    assert v.next_event() == pytest.approx(formula(2.0, MODEL.vehicle_speed, MODEL.vehicle_accel))
+    v.update(100.0)
+    assert v.arrived and v.positions(100.0) == [2.0]
+    v.on_move(100.0, 2.5, 0.0, 2)
+    assert v.move_seq == 1 and v.fault_bits == 0b10 and v.arrived  # the refused move changes nothing
