@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Run the benchmarks and print their figures; each compares against a baseline measured in
+# the same run. Release build in build/. Usage: scripts/bench.sh [--help] [core|planner|can|executor ...]
+# (default: all four). Timings depend on the machine's load: run it on a quiet machine.
+set -euo pipefail
+if [[ "${1:-}" == "--help" || "${1:-}" == "-h" ]]; then
+  sed -n '2,4p' "$0" | sed 's/^# \{0,1\}//'
+  exit 0
+fi
+root=$(cd "$(dirname "$0")/.." && pwd)
+build="$root/build"
+which=("$@")
+((${#which[@]})) || which=(core planner can executor)
+
+"$root/scripts/setup.sh" >/dev/null
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$build" -j"$(nproc)" >/dev/null
+export HV_BUILD_DIR="$build" HV_SOURCE_DIR="$root" PYTHONPATH="$root/host"
+for b in "${which[@]}"; do
+  echo "=== bench: $b ==="
+  case "$b" in
+    core) "$build/bench/core/bench_costtab" --config "$root/config/harvest.cfg" ;;
+    planner) "$build/bench/planner/bench_milp" ;;
+    can) "$root/.venv/bin/python" "$root/bench/can/bench_can.py" ;;
+    executor) cmake --build "$build" --target bench_executor ;;
+    *) echo "bench: unknown benchmark '$b' (core, planner, can, executor)" >&2; exit 2 ;;
+  esac
+done
