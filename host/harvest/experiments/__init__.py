@@ -1,0 +1,1 @@
+"""The paper's comparison (FOV, Serial, MILP) on the real planner: runner, plots, report."""

@@ -1,0 +1,229 @@
+"""`python -m harvest experiments`: the paper's comparison in one command.
+
+  run       plan every (alpha, seed, method) with the planner CLI -> OUT/results.csv
+  plots     box plots (stops, throughput, runtime) and a top view of one plan
+  analysis  the cost-G and coverage figures from cost tables made by costgen
+  report    OUT/report.md: our numbers beside each claim of the paper
+  all       run, plots, analysis and report (the default)
+"""
+import argparse
+import json
+import math
+import os
+import platform
+import sys
+
+from ..scenario import fruit_map
+from ..scenario.config import Config, ConfigError, Row, default_config_path
+from . import analysis_tables, box_plots, cost_analysis, cost_table, plan_file, plan_view, report
+from . import results as results_mod
+from .binaries import COSTGEN, PLANNER, MissingProgram, find
+from .runner import (METHODS, PAPER_ALPHAS, PAPER_SEEDS, QUICK_ALPHAS, QUICK_SEEDS, RunError,
+                     Settings, run)
+
+STEPS = ("run", "plots", "analysis", "report", "all")
+
+
+def build_parser():
+    p = argparse.ArgumentParser(
+        prog="python -m harvest experiments",
+        description="Reproduce the paper's comparison (FOV, Serial, MILP) on the real planner: "
+                    "instances, a resumable runner, plots, analysis figures and a report.",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog=__doc__.split("\n", 2)[2] +
+        "\nAn interrupted run (Ctrl-C, kill) resumes where it stopped when run again with "
+        "the same --out:\nfinished rows are never recomputed.")
+    p.add_argument("step", nargs="?", choices=STEPS, default="all")
+    p.add_argument("--out", required=True, help="output directory (created; reused to resume)")
+    p.add_argument("--config", default=default_config_path(), help="harvest config (default: %(default)s)")
+    p.add_argument("--build-dir", default=None,
+                   help="build directory with planner/harvest-plan and tools/costgen "
+                        "(default: $HV_BUILD_DIR)")
+    p.add_argument("--planner", default=None, help="path of harvest-plan (overrides --build-dir)")
+    p.add_argument("--costgen", default=None, help="path of costgen (overrides --build-dir)")
+    p.add_argument("--quick", action="store_true",
+                   help=f"quick set: alphas {', '.join(f'{a:g}' for a in QUICK_ALPHAS)} x "
+                        f"{len(QUICK_SEEDS)} seeds (the tests use it)")
+    p.add_argument("--alphas", default=None,
+                   help="comma-separated alphas (default: the paper's 0.25,0.4,1,2.5,4)")
+    p.add_argument("--seeds", type=int, default=None, help="seeds 0..N-1 (default: 10)")
+    p.add_argument("--methods", default=",".join(METHODS), help="default: %(default)s")
+    p.add_argument("--time-limit", type=float, default=None,
+                   help="planner --time-limit in s (default: the planner's own)")
+    p.add_argument("--fov-width", type=float, default=None,
+                   help="planner --fov-width in m (default: the planner's own)")
+    p.add_argument("--jobs", type=int, default=1,
+                   help="planners run at once (default 1: the MILP runtime is benchmarked)")
+    p.add_argument("--distribution", choices=("uniform", "clustered", "gradient"),
+                   default="uniform", help="fruit distribution of the instances "
+                   "(default: the paper's uniform rows; see 'python -m harvest scenario --help')")
+    p.add_argument("--retry-errors", action="store_true",
+                   help="run again the rows whose plan failed (they are kept as final otherwise)")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    return p
+
+
+def _settings(args, need_planner):
+    alphas = QUICK_ALPHAS if args.quick else PAPER_ALPHAS
+    if args.alphas:
+        try:
+            alphas = tuple(float(a) for a in args.alphas.split(","))
+        except ValueError:
+            raise RunError(f"--alphas: not a comma-separated list of numbers: {args.alphas!r}") from None
+    seeds = QUICK_SEEDS if args.quick else PAPER_SEEDS
+    if args.seeds is not None:
+        seeds = tuple(range(args.seeds))
+    methods = tuple(m for m in args.methods.split(",") if m)
+    unknown = [m for m in methods if m not in METHODS]
+    if unknown or not methods:
+        raise RunError(f"--methods: unknown {', '.join(unknown) or '(empty)'}; use {', '.join(METHODS)}")
+    if any(a < 0 or not math.isfinite(a) for a in alphas) or not seeds:
+        raise RunError("--alphas must be >= 0 and --seeds >= 1")
+    if args.jobs < 1:
+        raise RunError("--jobs must be >= 1")
+    if args.time_limit is not None and not args.time_limit > 0:
+        raise RunError("--time-limit must be > 0")
+    planner = find(PLANNER, args.planner, args.build_dir) if need_planner else ""
+    costgen = find(COSTGEN, args.costgen, args.build_dir) if need_planner else ""
+    return Settings(config=os.path.abspath(args.config), out_dir=os.path.abspath(args.out),
+                    planner=planner, costgen=costgen, alphas=alphas, seeds=seeds,
+                    methods=methods, distribution=args.distribution, time_limit_s=args.time_limit, fov_width_m=args.fov_width,
+                    jobs=args.jobs, progress=not args.no_progress)
+
+
+def _rows(out):
+    path = os.path.join(out, "results.csv")
+    rows = results_mod.read(path)
+    if not rows:
+        raise RunError(f"{path}: no results yet: run 'experiments run --out {out}' first")
+    return rows
+
+
+def _pick_plan(out, rows):
+    """The plan to draw: MILP at the alpha nearest 1, lowest seed (the balanced case)."""
+    cands = [r for r in rows if r["method"] == "milp" and r["plan"] and r["status"] != "error"]
+    if not cands:
+        cands = [r for r in rows if r["plan"] and r["status"] != "error"]
+    if not cands:
+        return None
+    return min(cands, key=lambda r: (abs(r["alpha"] - 1.0), r["seed"]))
+
+
+def do_plots(args, row_cfg):
+    out = os.path.abspath(args.out)
+    rows = _rows(out)
+    fig_dir = os.path.join(out, "figures")
+    paths = box_plots.write_all(rows, fig_dir)
+    r = _pick_plan(out, rows)
+    if r is not None:
+        plan = plan_file.load(os.path.join(out, r["plan"]))
+        name = os.path.basename(r["plan"]).rsplit("_", 1)[0]
+        fruits = fruit_map.read(os.path.join(out, "instances", name + ".csv"))
+        paths += plan_view.write(plan, fruits, row_cfg.base_spacing_m, row_cfg.mount_offset_m, fig_dir, "plan_top_view",
+                                 title=f"{r['method'].upper()} plan, alpha {r['alpha']:g}, seed "
+                                       f"{r['seed']}: {r['stops']} stops, makespan "
+                                       f"{r['makespan_s']:.1f} s, status {r['status']}")
+    print(f"experiments: {len(paths)} figure files in {fig_dir}")
+    return paths
+
+
+def do_analysis(args, row_cfg):
+    out = os.path.abspath(args.out)
+    costgen = find(COSTGEN, args.costgen, args.build_dir)
+    lim_path, free_path = analysis_tables.ensure(costgen, args.config, row_cfg, out, sys.stderr)
+    limited, free = cost_table.load(lim_path), cost_table.load(free_path)
+    base_xy = (limited.base[0], limited.base[1])
+    fig_dir = os.path.join(out, "figures")
+    paths = cost_analysis.write_figures(limited, free, row_cfg, row_cfg.yaw_max_rad, base_xy, fig_dir)
+    g_l = cost_analysis.z_slice(limited)[:, cost_analysis.yaw_index(limited, 0.0), :]
+    g_f = cost_analysis.z_slice(free)[:, cost_analysis.yaw_index(free, 0.0), :]
+    numbers = {"coverage_m2": cost_analysis.coverage_numbers(limited, free, row_cfg, row_cfg.yaw_max_rad),
+               "roughness_s": {"limited": cost_analysis.roughness(g_l),
+                               "free": cost_analysis.roughness(g_f)},
+               "z_m": limited.axes["z"].origin}
+    with open(os.path.join(out, "analysis.json"), "w", encoding="utf-8") as f:
+        json.dump(numbers, f, indent=1)
+    print(f"experiments: analysis figures in {fig_dir}")
+    return paths
+
+
+_DIST_TEXT = {"uniform": "the paper's uniform rows",
+              "clustered": "clustered rows (trusses; not the paper's data)",
+              "gradient": "rows with a ripeness gradient (not the paper's data)"}
+
+
+def _show_path(path):
+    """A path relative to the source tree when inside it (the report is read there)."""
+    src = os.path.dirname(os.path.dirname(default_config_path()))
+    rel = os.path.relpath(path, src)
+    return path if rel.startswith("..") else rel
+
+
+def do_report(args, s):
+    out = os.path.abspath(args.out)
+    rows = _rows(out)
+    fig_dir = os.path.join(out, "figures")
+    figures = {}
+    captions = {"boxplot_stops": "Number of stops by alpha and method",
+                "boxplot_throughput": "Throughput by alpha and method",
+                "boxplot_runtime": "Planner runtime by alpha and method",
+                "plan_top_view": "Top view of one plan: fruits, stops, arms, busy and idle time",
+                "cost_G_joint3": "Cost G with joint 3 unlimited and limited",
+                "coverage_pick_modes": "Coverage per pick mode; single-sided coverage"}
+    for stem, cap in captions.items():
+        p = os.path.join(fig_dir, stem + ".png")
+        if os.path.exists(p):
+            figures[cap] = p
+    run_info = os.path.join(out, "run.json")
+    tl = "the planner's default"
+    build = ""
+    if os.path.exists(run_info):
+        with open(run_info, encoding="utf-8") as f:
+            info = json.load(f)
+        if info.get("time_limit_s") is not None:
+            tl = f"{info['time_limit_s']:g} s"
+        b = info.get("planner_build") or {}
+        if b:
+            sanitized = b.get("HV_SANITIZE", "OFF").upper() in ("ON", "1", "TRUE", "YES")
+            build = (f"; planner build {b.get('CMAKE_BUILD_TYPE') or '?'}"
+                     + (", **with ASan+UBSan: runtimes are inflated by the sanitizers and not "
+                        "comparable with the paper's**" if sanitized else ", no sanitizers"))
+    alphas = sorted({r["alpha"] for r in rows})
+    seeds = sorted({r["seed"] for r in rows})
+    settings_text = (
+        f"- Instances: {_DIST_TEXT.get(rows[0]['distribution'], rows[0]['distribution'])}, m^L = {rows[0]['n_left']}, alpha in "
+        f"{{{', '.join(f'{a:g}' for a in alphas)}}}, seeds {seeds[0]}..{seeds[-1]} "
+        f"({len(seeds)} per alpha); config `{_show_path(s.config)}`.\n"
+        f"- Planner: `harvest-plan` (GLPK), MILP time limit {tl}{build}; {os.cpu_count()} CPU(s), "
+        f"{platform.machine()}, Python {platform.python_version()}.\n"
+        "- Paper: Gurobi on an AMD 7950, 128 GB.")
+    path = report.write(os.path.join(out, "report.md"), rows, settings_text, figures,
+                        report.analysis_section(os.path.join(out, "analysis.json")))
+    print(f"experiments: report {path}")
+    return path
+
+
+def main(argv):
+    args = build_parser().parse_args(argv)
+    try:
+        row_cfg = Row(Config.load(args.config))
+        need_planner = args.step in ("run", "all")
+        s = _settings(args, need_planner)
+        os.makedirs(s.out_dir, exist_ok=True)
+        if args.step in ("run", "all"):
+            ran, total = run(s, retry_errors=args.retry_errors)
+            print(f"experiments: {ran} plan(s) computed now, {total} in "
+                  f"{os.path.join(s.out_dir, 'results.csv')}")
+        if args.step in ("plots", "all"):
+            do_plots(args, row_cfg)
+        if args.step in ("analysis", "all"):
+            do_analysis(args, row_cfg)
+        if args.step in ("report", "all"):
+            do_report(args, s)
+    except KeyboardInterrupt:
+        return 130
+    except (ConfigError, RunError, MissingProgram, results_mod.ResultsError, plan_file.PlanError,
+            cost_table.CostTableError, fruit_map.FruitMapError, OSError) as e:
+        print(f"experiments: {e}", file=sys.stderr)
+        return 1
+    return 0

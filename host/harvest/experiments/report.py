@@ -1,0 +1,296 @@
+"""The generated Markdown report: our numbers beside each claim of the paper.
+
+Every number here is computed from results.csv (and the analysis tables); the text around
+it is chosen by those numbers, so the report cannot claim agreement the data does not show.
+"""
+import json
+import math
+import os
+import statistics
+
+PAPER_GAIN_LO, PAPER_GAIN_HI = 0.10, 0.20   # throughput gain of MILP over FOV (paper)
+PAPER_DUAL_RATIO = 2.0                      # dual arm / single arm at alpha = 1 (paper)
+PAPER_RUNTIME_S = 7.0                       # MILP runtime, Gurobi, AMD 7950 (paper)
+PROVEN = ("optimal",)
+
+
+def _ok(r):
+    return r["status"] != "error" and r["makespan_s"] is not None
+
+
+def by_instance(rows):
+    """{(distribution, alpha, seed): {method: row}} of rows that produced a plan."""
+    out = {}
+    for r in rows:
+        if _ok(r):
+            out.setdefault((r["distribution"], r["alpha"], r["seed"]), {})[r["method"]] = r
+    return out
+
+
+def _med(v):
+    return statistics.median(v) if v else math.nan
+
+
+def _fmt(v, nd=2):
+    return "n/a" if v is None or (isinstance(v, float) and math.isnan(v)) else f"{v:.{nd}f}"
+
+
+def _pct(v):
+    return "n/a" if v is None or math.isnan(v) else f"{100.0 * v:+.1f} %"
+
+
+def summary_table(rows, methods):
+    alphas = sorted({r["alpha"] for r in rows})
+    lines = ["| alpha | method | plans | stops (median) | makespan s (median) | "
+             "throughput fruit/s (median) | runtime s (median / max) | status | unreachable |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for a in alphas:
+        for m in methods:
+            rs = [r for r in rows if r["alpha"] == a and r["method"] == m]
+            ok = [r for r in rs if _ok(r)]
+            if not rs:
+                continue
+            statuses = {}
+            for r in rs:
+                statuses[r["status"]] = statuses.get(r["status"], 0) + 1
+            st = ", ".join(f"{k} {v}" for k, v in sorted(statuses.items()))
+            rt = [r["runtime_s"] for r in ok]
+            lines.append(
+                f"| {a:g} | {m} | {len(ok)}/{len(rs)} | {_fmt(_med([r['stops'] for r in ok]), 1)} | "
+                f"{_fmt(_med([r['makespan_s'] for r in ok]), 1)} | "
+                f"{_fmt(_med([r['throughput_fruit_per_s'] for r in ok]), 3)} | "
+                f"{_fmt(_med(rt), 2)} / {_fmt(max(rt) if rt else math.nan, 2)} | {st} | "
+                f"{sum(r['fruits_unreachable'] or 0 for r in ok)} |")
+    return "\n".join(lines)
+
+
+def claim_stops(inst):
+    """Paper: MILP needs the fewest stops (and their number grows with alpha)."""
+    n, fewest, worse = 0, 0, {"fov": [], "serial": []}
+    for key, ms in sorted(inst.items()):
+        if not all(m in ms for m in ("milp", "fov", "serial")):
+            continue
+        n += 1
+        s = ms["milp"]["stops"]
+        fewest += s <= min(ms["fov"]["stops"], ms["serial"]["stops"])
+        for other in worse:
+            if s > ms[other]["stops"]:
+                worse[other].append(f"alpha {key[1]:g} seed {key[2]}")
+    med = {m: {} for m in ("fov", "serial", "milp")}
+    for key, ms in inst.items():
+        for m in med:
+            if m in ms:
+                med[m].setdefault(key[1], []).append(ms[m]["stops"])
+    trend = "; ".join(f"{m}: " + ", ".join(f"{_fmt(_med(v), 1)} at alpha {a:g}"
+                                           for a, v in sorted(med[m].items())) for m in med)
+    text = ["**Paper:** MILP consistently needs the fewest stops; stops rise with alpha.",
+            f"**Ours:** MILP has no more stops than both baselines on {fewest} of {n} instances; "
+            f"more than FOV on {len(worse['fov'])}, more than Serial on {len(worse['serial'])}. "
+            f"Median stops per method: {trend}."]
+    if n and fewest == n:
+        text.append("**Verdict:** holds.")
+    elif n:
+        why = ("the objective is time, not stops: one more stop costs tau = 5 s and pays off "
+               "when it saves more than that in picking (G grows fast with the fruit's distance "
+               "from the arm's sweet spot, see the cost figure) or in one arm waiting for the "
+               "other")
+        per_fruit = {m: _med([ms[m]["pick_time_s"] / ms[m]["fruits_planned"]
+                              for ms in inst.values() if m in ms and ms[m]["fruits_planned"]])
+                     for m in ("fov", "milp")}
+        why += (f"; median pick time per fruit (stop time C_p shared out): FOV "
+                f"{_fmt(per_fruit['fov'])} s, MILP {_fmt(per_fruit['milp'])} s")
+        if worse["fov"]:
+            why += ("; FOV stops once per camera window (plus a few stops for fruits no window "
+                    "stop reaches), whatever the pick times, so it trades long picks for few stops")
+        text.append(f"**Verdict:** differs on {n - fewest} of {n} instances. Why: {why}. "
+                    "The paper's FOV window is not given; a wider window means even fewer FOV "
+                    "stops, a narrower one more.")
+    return "\n\n".join(text), {"fewest": fewest, "n": n,
+                                "more_than_fov": len(worse["fov"]),
+                                "more_than_serial": len(worse["serial"])}
+
+
+def claim_throughput(inst, rows):
+    gains, per_alpha = [], {}
+    for key, ms in inst.items():
+        if "milp" in ms and "fov" in ms:
+            g = ms["milp"]["throughput_fruit_per_s"] / ms["fov"]["throughput_fruit_per_s"] - 1.0
+            gains.append(g)
+            per_alpha.setdefault(key[1], []).append(g)
+    med = _med(gains)
+    parts = [f"alpha {a:g}: {_pct(_med(v))}" for a, v in sorted(per_alpha.items())]
+    text = ["**Paper:** MILP raises throughput by 10-20 % over FOV.",
+            f"**Ours:** median gain {_pct(med)} over {len(gains)} instances "
+            f"(range {_pct(min(gains) if gains else math.nan)} to "
+            f"{_pct(max(gains) if gains else math.nan)}); per alpha {'; '.join(parts)}."]
+    if not gains:
+        text.append("**Verdict:** no data.")
+    elif PAPER_GAIN_LO <= med <= PAPER_GAIN_HI:
+        text.append("**Verdict:** holds: the median gain is inside the paper's band.")
+    else:
+        where = "above" if med > PAPER_GAIN_HI else "below"
+        off = med - (PAPER_GAIN_HI if med > PAPER_GAIN_HI else PAPER_GAIN_LO)
+        text.append(
+            f"**Verdict:** differs: the median is {where} the paper's band by "
+            f"{100.0 * abs(off):.1f} points. Why: the gain over FOV depends on how wide the "
+            "camera's field of view is taken (the paper does not give it; our planner's "
+            "default is used unless --fov-width is given) and on the pick costs, which depend "
+            "on our home pose and mount choices (config/harvest.cfg); "
+            + ("MILP plans stopped by the time limit are feasible, not optimal: proven optima "
+               "would " + ("raise the gain further." if med > PAPER_GAIN_HI else
+                           "raise the gain, mostly where the balanced case is hard for GLPK.")
+               if any(r["method"] == "milp" and r["status"] not in PROVEN for r in rows if _ok(r))
+               else "every MILP plan here is proven optimal, so the difference is not the solver's."))
+    return "\n\n".join(text), {"median_gain": med, "per_alpha": {a: _med(v) for a, v in per_alpha.items()}}
+
+
+def _breakdown(rs):
+    """Median makespan split (s): picks (sum of C_p, idle included), stops x tau, travel."""
+    parts = [("picks", "pick_time_s"), ("stops", "stop_time_s"), ("travel", "travel_time_s")]
+    return ", ".join(f"{name} {_fmt(_med([r[c] for r in rs if r[c] is not None]), 0)}"
+                     for name, c in parts) + f" (makespan {_fmt(_med([r['makespan_s'] for r in rs]), 0)})"
+
+
+def claim_dual_arm(inst):
+    pairs = [(ms["milp"], ms["serial"]) for key, ms in inst.items()
+             if key[1] == 1.0 and "milp" in ms and "serial" in ms]
+    ratios = [m["throughput_fruit_per_s"] / s["throughput_fruit_per_s"] for m, s in pairs]
+    med = _med(ratios)
+    text = ["**Paper:** at alpha = 1 the dual-arm robot nearly doubles the single-arm "
+            "throughput.",
+            f"**Ours:** MILP / Serial throughput at alpha = 1: median {_fmt(med, 2)}x over "
+            f"{len(ratios)} instances (range {_fmt(min(ratios) if ratios else math.nan, 2)}x to "
+            f"{_fmt(max(ratios) if ratios else math.nan, 2)}x)."]
+    if not ratios:
+        text.append("**Verdict:** no data at alpha = 1.")
+        return "\n\n".join(text), {"median_ratio": med}
+    text.append(f"Median makespan split in s: MILP {_breakdown([m for m, _ in pairs])}; "
+                f"Serial {_breakdown([s for _, s in pairs])}.")
+    if abs(med - PAPER_DUAL_RATIO) <= 0.2:
+        text.append(f"**Verdict:** holds (within 0.2 of 2x; off by {med - PAPER_DUAL_RATIO:+.2f}).")
+    else:
+        text.append(
+            f"**Verdict:** differs by {med - PAPER_DUAL_RATIO:+.2f} from 2x. Why (from the split "
+            "above): exactly 2x would need the dual plan's picks to be half of Serial's with no "
+            "waiting; but at every stop the faster arm waits for the slower one (its idle time "
+            "is inside the picks), and each Serial pass places its stops for one side alone, "
+            "so its picks are cheaper per fruit; the travel and stop terms do not halve either.")
+    return "\n\n".join(text), {"median_ratio": med}
+
+
+def claim_runtime(rows):
+    milp = [r for r in rows if r["method"] == "milp" and _ok(r)]
+    rt = [r["runtime_s"] for r in milp]
+    not_proven = [r for r in milp if r["status"] not in PROVEN]
+    gaps = [r["gap"] for r in not_proven if r["gap"] is not None]
+    by_alpha = {}
+    for r in milp:
+        by_alpha.setdefault(r["alpha"], []).append(r["runtime_s"])
+    parts = [f"alpha {a:g}: median {_fmt(_med(v))} s, max {_fmt(max(v))} s"
+             for a, v in sorted(by_alpha.items())]
+    mx = max(rt) if rt else math.nan
+    per_method = ", ".join(
+        f"{m} {_med([r['runtime_s'] for r in rows if r['method'] == m and _ok(r)]):.3g} s"
+        for m in ("fov", "serial", "milp"))
+    text = [f"**Paper:** the MILP solves within about {PAPER_RUNTIME_S:g} s (Gurobi, AMD 7950); "
+            "FOV is the fastest method.",
+            f"**Ours, median runtime per method:** {per_method}.",
+            f"**Ours (GLPK):** max {_fmt(mx)} s, median {_fmt(_med(rt))} s over {len(rt)} plans; "
+            f"{'; '.join(parts)}. {len(milp) - len(not_proven)} of {len(milp)} proven optimal"
+            + (f"; {len(not_proven)} stopped early (median gap "
+               f"{_fmt(100.0 * _med(gaps), 2)} %, max {_fmt(100.0 * max(gaps), 2)} %)"
+               if not_proven and gaps else "") + "."]
+    if not rt:
+        text.append("**Verdict:** no data.")
+    elif mx <= PAPER_RUNTIME_S and not not_proven:
+        text.append("**Verdict:** holds: every plan proven optimal within the paper's time.")
+    else:
+        text.append(
+            f"**Verdict:** differs: {'the slowest plan takes ' + _fmt(mx) + ' s, ' if mx > PAPER_RUNTIME_S else ''}"
+            f"{len(not_proven)} plan(s) not proven optimal. Why: GLPK's branch and bound is much "
+            "weaker than Gurobi's on this model; the balanced case (alpha near 1) is the hard "
+            "one, because near-identical neighbouring stops make the tree huge and the LP bound "
+            "is weak where max(C^L, C^R) binds (DESIGN §10); our machine has 2 shared cores.")
+    return "\n\n".join(text), {"max_s": mx, "not_proven": len(not_proven)}
+
+
+def sanity(inst):
+    """MILP is warm-started from a heuristic: its makespan should never exceed FOV's/Serial's."""
+    bad = []
+    for key, ms in sorted(inst.items()):
+        if "milp" not in ms:
+            continue
+        for other in ("fov", "serial"):
+            if other in ms and ms["milp"]["makespan_s"] > ms[other]["makespan_s"] * (1 + 1e-9) + 1e-6:
+                bad.append(f"alpha {key[1]:g} seed {key[2]}: MILP {ms['milp']['makespan_s']:.2f} s "
+                           f"> {other} {ms[other]['makespan_s']:.2f} s")
+    return bad
+
+
+def analysis_section(path):
+    """The analysis figures' numbers (analysis.json written by the analysis step), or None."""
+    if not os.path.exists(path):
+        return None
+    with open(path, encoding="utf-8") as f:
+        a = json.load(f)
+    cov = a["coverage_m2"]
+    lines = [f"Slice z = {a['z_m']:.2f} m, right arm, canopy band of one stop "
+             "(|x| over the canopy depth, fruit y - stop y over the table's span):", "",
+             "| pick mode | area of the canopy band covered (m^2) |", "|---|---|"]
+    lines += [f"| {k} | {v:.4f} |" for k, v in cov.items()]
+    r = a["roughness_s"]
+    lines += ["", f"Roughness of G at yaw 0 (mean |difference| between neighbouring reachable "
+                  f"cells): joint 3 limited {r['limited']:.4f} s, unlimited {r['free']:.4f} s. "
+              "The paper reads the unlimited cost as less smooth (two IK branches meet) and "
+              "keeps the elbow on one side; "
+              + ("our numbers agree." if r["free"] >= r["limited"] else
+                 "our numbers show the opposite on this slice: with our home pose the other "
+                 "elbow branch is rarely the faster one, so the lifted limit mostly adds "
+                 "reachable cells rather than jumps.")]
+    return "\n".join(lines)
+
+
+def write(path, rows, settings_text, figures, analysis=None, methods=("fov", "serial", "milp")):
+    """Write the report; `figures` maps a caption to a path (relative links are made)."""
+    inst = by_instance(rows)
+    base = os.path.dirname(os.path.abspath(path))
+    c1, _ = claim_stops(inst)
+    c2, _ = claim_throughput(inst, rows)
+    c3, _ = claim_dual_arm(inst)
+    c4, _ = claim_runtime(rows)
+    bad = sanity(inst)
+    errors = [r for r in rows if r["status"] == "error"]
+    out = ["# Reproducing the paper's comparison (FOV, Serial, MILP)", "",
+           "Generated by `python -m harvest experiments` from `results.csv`; every number below "
+           "is computed from it.", "", "## Set-up", "", settings_text, "",
+           "## Results by alpha and method", "", summary_table(rows, methods), "",
+           "## The paper's claims beside ours", "",
+           "### 1. Fewest stops", "", c1, "",
+           "### 2. Throughput over FOV", "", c2, "",
+           "### 3. Dual arm vs single arm at alpha = 1", "", c3, "",
+           "### 4. Runtime", "", c4, "",
+           "## Checks", ""]
+    out.append(f"- MILP makespan never above FOV's or Serial's on the same instance: "
+               + ("yes, on every instance." if not bad else
+                  f"**no**, on {len(bad)}: " + "; ".join(bad[:5])))
+    out.append(f"- Planner failures: {len(errors)}"
+               + ("" if not errors else " (" + "; ".join(
+                   f"{r['method']} alpha {r['alpha']:g} seed {r['seed']}: {r['error']}"
+                   for r in errors[:5]) + ")"))
+    unreachable = sum(r["fruits_unreachable"] or 0 for r in rows if _ok(r) and r["method"] == "milp")
+    out.append(f"- Fruits no stop can reach (left out of every plan and of its throughput): "
+               f"{unreachable} over all MILP plans"
+               + ("." if not unreachable else ": the uniform box reaches beyond our arm's "
+                  "coverage at some heights and yaws (see the coverage figure); the paper "
+                  "counts all m^L + m^R fruits."))
+    if analysis:
+        out += ["", "## Analysis figures from our cost tables", "", analysis]
+    if figures:
+        out += ["", "## Figures", ""]
+        for caption, p in figures.items():
+            out += [f"![{caption}]({os.path.relpath(p, base)})", "", f"*{caption}*", ""]
+    tmp = path + ".tmp"
+    with open(tmp, "w", encoding="utf-8") as f:
+        f.write("\n".join(out) + "\n")
+    os.replace(tmp, path)
+    return path

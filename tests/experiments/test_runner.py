@@ -1,0 +1,160 @@
+"""The experiment runner on the real planner CLI: the quick set, plots, report, resume."""
+import csv
+import os
+import re
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+from harvest.experiments import results
+from harvest.experiments.runner import METHODS, QUICK_ALPHAS, QUICK_SEEDS
+
+from exp_helpers import BUILD_DIR, CONFIG, COSTGEN, PLANNER, SOURCE_DIR, harvest, require
+
+# The MILP must not run for ever on a test machine; what the limit cuts short is reported
+# by the planner (status and gap) and still has to beat the baselines.
+TIME_LIMIT_S = "20"
+
+
+@pytest.fixture(scope="module")
+def quick_run(tmp_path_factory):
+    require(PLANNER, "planner/harvest-plan")
+    require(COSTGEN, "tools/costgen")
+    out = tmp_path_factory.mktemp("quick")
+    r = harvest("experiments", "all", "--quick", "--out", str(out), "--config", CONFIG,
+                "--time-limit", TIME_LIMIT_S, "--no-progress")
+    assert r.returncode == 0, r.stdout + r.stderr
+    return out, r
+
+
+def test_quick_set_gives_a_complete_results_csv(quick_run):
+    out, _ = quick_run
+    rows = results.read(str(out / "results.csv"))
+    keys = {(r["alpha"], r["seed"], r["method"]) for r in rows}
+    want = {(a, s, m) for a in QUICK_ALPHAS for s in QUICK_SEEDS for m in METHODS}
+    assert keys == want and len(rows) == len(want)
+    for r in rows:
+        assert r["status"] != "error", r
+        assert r["stops"] >= 1 and r["makespan_s"] > 0 and r["runtime_s"] >= 0
+        assert r["n_right"] == round(r["alpha"] * r["n_left"])
+        # throughput is fruits planned over the makespan (paper's eq. 6)
+        assert r["throughput_fruit_per_s"] == pytest.approx(r["fruits_planned"] / r["makespan_s"], rel=1e-6)
+        assert (out / r["plan"]).is_file()
+
+
+def test_every_plan_passes_the_planners_independent_check(quick_run):
+    out, _ = quick_run
+    for r in results.read(str(out / "results.csv")):
+        c = subprocess.run([PLANNER, "check", str(out / r["plan"]), "--quiet"],
+                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        assert c.returncode == 0, (r["plan"], c.stdout)
+
+
+def test_milp_never_worse_than_fov_or_serial(quick_run):
+    out, _ = quick_run
+    by = {}
+    for r in results.read(str(out / "results.csv")):
+        by.setdefault((r["alpha"], r["seed"]), {})[r["method"]] = r
+    for key, m in by.items():
+        for other in ("fov", "serial"):
+            assert m["milp"]["makespan_s"] <= m[other]["makespan_s"] + 1e-6, (key, other, m)
+
+
+def test_plots_and_report_are_written(quick_run):
+    out, _ = quick_run
+    for stem in ("boxplot_stops", "boxplot_throughput", "boxplot_runtime", "plan_top_view",
+                 "cost_G_joint3", "coverage_pick_modes"):
+        for ext in ("png", "svg"):
+            assert (out / "figures" / f"{stem}.{ext}").stat().st_size > 5_000, stem
+    text = (out / "report.md").read_text()
+    for heading in ("Fewest stops", "Throughput over FOV", "Dual arm vs single arm",
+                    "Runtime", "Verdict"):
+        assert heading in text
+    assert "figures/boxplot_stops.png" in text
+    # the report's numbers are the CSV's: the MILP median makespan at alpha 1 appears
+    assert re.search(r"\| 1 \| milp \| 2/2 \|", text)
+
+
+def _data_rows(path):
+    if not os.path.exists(path):
+        return 0
+    with open(path) as f:
+        return max(0, sum(1 for line in f if line.endswith("\n")) - 1)
+
+
+def test_interrupted_run_resumes_without_recomputing(tmp_path):
+    require(PLANNER, "planner/harvest-plan")
+    require(COSTGEN, "tools/costgen")
+    out = tmp_path / "resume"
+    csv_path = str(out / "results.csv")
+    args = [sys.executable, "-m", "harvest", "experiments", "run", "--out", str(out),
+            "--config", CONFIG, "--alphas", "0.25,0.4", "--seeds", "3",
+            "--time-limit", TIME_LIMIT_S, "--no-progress"]
+    env = dict(os.environ, PYTHONPATH=os.path.join(SOURCE_DIR, "host"), HV_BUILD_DIR=BUILD_DIR)
+    total = 2 * 3 * len(METHODS)
+    proc = subprocess.Popen(args, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            start_new_session=True)
+    try:
+        while _data_rows(csv_path) < 2 and proc.poll() is None:
+            time.sleep(0.02)
+    finally:
+        # A hard kill of the runner and any planner it started: no handler runs.
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+        proc.wait()
+    assert proc.returncode == -signal.SIGKILL, "the run ended before it could be interrupted"
+    with open(csv_path, "rb") as f:
+        before_bytes = f.read()
+    before_bytes = before_bytes[:before_bytes.rfind(b"\n") + 1]  # a torn tail is recomputed
+    before = list(csv.DictReader(before_bytes.decode().splitlines()))
+    kept = len(before)
+    assert 2 <= kept < total
+    mtimes = {r["plan"]: os.stat(out / r["plan"]).st_mtime_ns for r in before}
+
+    r = subprocess.run(args, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert r.returncode == 0, r.stderr
+    assert f"resuming: {kept} of {total} rows already" in r.stderr
+    assert f"{total - kept} plan(s) computed now" in r.stdout
+    after = results.read(csv_path)
+    assert len(after) == total
+    assert len({results.row_key(x) for x in after}) == total
+    with open(csv_path, "rb") as f:
+        assert f.read().startswith(before_bytes)  # finished rows untouched, in place
+    for plan, mt in mtimes.items():
+        assert os.stat(out / plan).st_mtime_ns == mt, f"{plan} was recomputed"
+
+    # A third run has nothing left to do.
+    r = subprocess.run(args, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    assert r.returncode == 0 and "0 plan(s) computed now" in r.stdout
+    assert len(results.read(csv_path)) == total
+
+
+def test_sigterm_stops_the_planners_and_keeps_finished_rows(tmp_path):
+    require(PLANNER, "planner/harvest-plan")
+    require(COSTGEN, "tools/costgen")
+    out = tmp_path / "term"
+    csv_path = str(out / "results.csv")
+    args = [sys.executable, "-m", "harvest", "experiments", "run", "--out", str(out),
+            "--config", CONFIG, "--alphas", "0.25", "--seeds", "3",
+            "--time-limit", TIME_LIMIT_S, "--no-progress"]
+    env = dict(os.environ, PYTHONPATH=os.path.join(SOURCE_DIR, "host"), HV_BUILD_DIR=BUILD_DIR)
+    proc = subprocess.Popen(args, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True, start_new_session=True)
+    try:
+        while _data_rows(csv_path) < 1 and proc.poll() is None:
+            time.sleep(0.02)
+        proc.send_signal(signal.SIGTERM)
+        _, err = proc.communicate(timeout=120)
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+    assert proc.returncode == 130, err
+    kept = len(results.read(csv_path))
+    assert f"interrupted: {kept} of {3 * len(METHODS)} rows are saved" in err
+    # no planner outlives the runner: its process group is empty
+    with pytest.raises(ProcessLookupError):
+        os.killpg(proc.pid, 0)
