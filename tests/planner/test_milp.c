@@ -313,6 +313,19 @@ static void test_bad_input(void **state)
     hv_assignment_free(&res_out);
     hv_assignment_free(&out);
     hv_instance_free(&in);
+
+    /* no fruit reachable at all: the empty plan, T = T_travel, proven */
+    make_instance(&in, 3, 5, 5, 3, 8);
+    assert_int_equal(in.n_pairs, 0);
+    assert_int_equal(hv_assignment_alloc(&out, in.n_fruits), HV_OK);
+    assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &r), HV_OK);
+    assert_int_equal(r.status, HV_SOLVE_OPTIMAL);
+    assert_true(fabs(r.objective_s - in.travel_time_s) < 1e-9);
+    for (size_t f = 0; f < in.n_fruits; ++f) {
+        assert_int_equal(out.fruit_stop[f], HV_NO_STOP);
+    }
+    hv_assignment_free(&out);
+    hv_instance_free(&in);
 }
 
 /* Two groups of fruit that no stop serves together: two segments, same optimum. */

@@ -13,8 +13,8 @@ from matplotlib.colors import ListedColormap
 from .figures import plt, save
 
 # CHOICE: the lateral band of the analysis grid (m, right arm): wide enough to show the
-# whole reach of an arm mounted at D = 0.26 m, without the other arm's side.
-ANALYSIS_X_NEAR_M = 0.05
+# whole reach of the arm, without the other arm's side.
+ANALYSIS_X_NEAR_M = 0.10
 ANALYSIS_X_FAR_M = 0.85
 FULL_CIRCLE_DEG = 180
 
@@ -22,7 +22,11 @@ FULL_CIRCLE_DEG = 180
 def analysis_overrides(row):
     """Config keys to override for the analysis tables (see the module comment)."""
     z_mid = row.canopy_z_min_m + row.canopy_height_m / 2.0
+    # mount.offset is measured from the canopy's near face (docs/FRAMES.md): moving that
+    # face to ANALYSIS_X_NEAR_M must not move the arm, so the offset moves with it.
+    offset = row.mount_offset_m + ANALYSIS_X_NEAR_M - row.x_near_m
     return {
+        "mount.offset": f"{offset:.12g}",
         "row.aisle_width": f"{2.0 * ANALYSIS_X_NEAR_M:g}",
         "row.canopy_depth": f"{ANALYSIS_X_FAR_M - ANALYSIS_X_NEAR_M:g}",
         "row.canopy_z_min": f"{z_mid:g}",

@@ -1,0 +1,34 @@
+#!/bin/sh
+# Ablation of the MILP's improvements (planner/SOLVER.md): the default solver, then the
+# default with one choice switched, on the same instances in the same run.
+# usage: bench/planner/ablation.sh BUILD_DIR [ALPHAS] [SEEDS] [LIMIT_S]
+set -eu
+if [ "${1:-}" = "--help" ] || [ $# -lt 1 ]; then
+    echo "usage: $0 BUILD_DIR [ALPHAS=1,4] [SEEDS=3] [LIMIT_S=10]"
+    echo "Runs bench_milp once per variant and prints each variant's summary rows."
+    exit 0
+fi
+bench="$1/bench/planner/bench_milp"
+alphas="${2:-1,4}"
+seeds="${3:-3}"
+limit="${4:-10}"
+[ -x "$bench" ] || { echo "ablation.sh: $bench not built" >&2; exit 1; }
+for variant in \
+    "" \
+    "--set link_disaggregated=0" \
+    "--set link_disaggregated=2" \
+    "--set heuristic_incumbent=0" \
+    "--set polish_work=0" \
+    "--set pattern_cuts=-1" \
+    "--set glpk_cuts=15" \
+    "--set glpk_cuts_phase2=0" \
+    "--set pcost_branching=1" \
+    "--set branch_stops_first=1" \
+    "--set side_bounds=1" \
+    "--set count_branching=1" \
+    "--set backtracking=2"; do
+    echo "== variant: ${variant:-default}"
+    # shellcheck disable=SC2086
+    "$bench" --alphas "$alphas" --seeds "$seeds" --plain-seeds 0 --time-limit "$limit" \
+        --no-baselines $variant 2>/dev/null | sed -n '/^# Summary/,$p' | tail -n +3
+done

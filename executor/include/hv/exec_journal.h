@@ -1,0 +1,63 @@
+/* The harvest journal: an append-only text file that survives a crash (DESIGN §7).
+ *
+ * One record per line, each ending in " *" + the CRC-32 (hex) of the text before it:
+ *   HVJ 1 plan=<crc32 of the plan's stops and picks> picks=<n> stops=<n>   (first line)
+ *   S <stop> t=<s>                      stop reached (position in the plan's stop list)
+ *   C <L|R> <fruit id> a=<attempt> t=<s>     cut issued
+ *   R <L|R> <fruit id> a=<attempt> t=<s>     release issued
+ *   F <L|R> <fruit id> <picked|failed|skipped> <reason> a=<attempt> t=<s>
+ *   D t=<s>                             row done
+ * t is the executor's run time (s, informational). Each record is written with one
+ * write() and made durable with fdatasync() before the call returns, so the program
+ * carries out the next action only after the record is on disk.
+ *
+ * Opening an existing journal replays it into an hv_exec_progress_t: a torn last line
+ * (a crash in the middle of a write: no newline) is cut off; a complete line with a bad
+ * CRC, an unknown record or a fruit the plan does not have is an error naming the line.
+ */
+#ifndef HV_EXEC_JOURNAL_H
+#define HV_EXEC_JOURNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "hv/exec_outcome.h"
+#include "hv/exec_plan.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct hv_exec_journal {
+    int fd;              /* -1 when closed */
+    uint32_t plan_hash;
+    const hv_exec_plan_t *plan;
+    unsigned records;    /* records replayed + written */
+    unsigned torn_bytes; /* bytes of a torn last line removed at open */
+    char path[512];
+} hv_exec_journal_t;
+
+/* CRC-32 over what identifies a plan for the journal: stops and picks (ids, sides, order). */
+uint32_t hv_exec_plan_hash(const hv_exec_plan_t *plan);
+
+/* Open (create when absent) the journal of `plan` at `path`; replay what it holds into
+ * `progress` (zeroed first). Codes: HV_ERR_EXEC_JOURNAL_IO, _FORMAT, _PLAN, _UNKNOWN;
+ * `err` gets "<path>: line <n>: <what>". */
+hv_status_t hv_exec_journal_open(hv_exec_journal_t *j, const char *path,
+                                 const hv_exec_plan_t *plan, hv_exec_progress_t *progress,
+                                 char *err, size_t errlen);
+
+/* Append one record and make it durable. HV_ERR_EXEC_JOURNAL_IO on failure. */
+hv_status_t hv_exec_journal_stop(hv_exec_journal_t *j, int stop, double t_s);
+hv_status_t hv_exec_journal_cut(hv_exec_journal_t *j, int pick, int attempt, double t_s);
+hv_status_t hv_exec_journal_release(hv_exec_journal_t *j, int pick, int attempt, double t_s);
+hv_status_t hv_exec_journal_outcome(hv_exec_journal_t *j, int pick, int outcome, int reason,
+                                    int attempt, double t_s);
+hv_status_t hv_exec_journal_done(hv_exec_journal_t *j, double t_s);
+
+void hv_exec_journal_close(hv_exec_journal_t *j);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* HV_EXEC_JOURNAL_H */

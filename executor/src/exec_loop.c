@@ -1,0 +1,242 @@
+/* The executor's event loop (see hv/exec_loop.h). */
+#define _POSIX_C_SOURCE 200809L
+#include "hv/exec_loop.h"
+
+#include <errno.h>
+#include <poll.h>
+#include <string.h>
+#include <time.h>
+
+#include "hv/exec_status.h"
+
+uint64_t hv_exec_now_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
+}
+
+static int64_t wall_utime(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+}
+
+static void step(hv_exec_loop_t *L, const hv_exec_event_t *ev, uint64_t now);
+
+static void report(hv_exec_loop_t *L, const hv_exec_action_t *a, uint64_t now)
+{
+    if (!L->progress)
+        return;
+    const hv_exec_sm_t *sm = L->sm;
+    double t = hv_exec_executed_s(sm, now);
+    if (a->kind == HV_ACT_PHASE) {
+        if (sm->phase == HV_PH_SAFE)
+            fprintf(L->progress, "harvest-exec: [%8.2f s] SAFE: %s (node %d)\n", t,
+                    hv_exec_safe_reason_name(sm->safe_reason), sm->safe_node);
+        else if (sm->phase == HV_PH_HARVEST)
+            fprintf(L->progress, "harvest-exec: [%8.2f s] stop %d/%u at %.3f m\n", t,
+                    sm->stop + 1, (unsigned)sm->plan->n_stops,
+                    sm->plan->stops[sm->stop].y_m);
+        else
+            fprintf(L->progress, "harvest-exec: [%8.2f s] %s\n", t,
+                    hv_exec_phase_name(sm->phase));
+    } else if (a->kind == HV_ACT_FRUIT_EVENT && a->u.fe.kind == HV_FE_OUTCOME &&
+               a->u.fe.outcome != HV_OUT_PICKED) {
+        const hv_exec_pick_t *pk = &sm->plan->picks[a->u.fe.pick];
+        fprintf(L->progress, "harvest-exec: [%8.2f s] fruit %s (%c): %s, %s\n", t, pk->id,
+                pk->side == HV_SIDE_LEFT ? 'L' : 'R', hv_exec_outcome_name(a->u.fe.outcome),
+                hv_exec_reason_name(a->u.fe.reason));
+    } else if (a->kind == HV_ACT_FRUIT_EVENT && a->u.fe.kind == HV_FE_FAULT) {
+        const hv_exec_pick_t *pk = &sm->plan->picks[a->u.fe.pick];
+        fprintf(L->progress, "harvest-exec: [%8.2f s] fault at fruit %s (%c): %s, recovering\n",
+                t, pk->id, pk->side == HV_SIDE_LEFT ? 'L' : 'R',
+                hv_exec_reason_name(a->u.fe.reason));
+    }
+    fflush(L->progress);
+}
+
+static hv_status_t journal_action(hv_exec_loop_t *L, const hv_exec_action_t *a, double t)
+{
+    if (!L->journal)
+        return HV_OK;
+    hv_status_t st = HV_ERR_ARG;
+    switch (a->u.jr.kind) {
+    case HV_JR_STOP: st = hv_exec_journal_stop(L->journal, a->u.jr.stop, t); break;
+    case HV_JR_CUT: st = hv_exec_journal_cut(L->journal, a->u.jr.pick, a->u.jr.attempt, t); break;
+    case HV_JR_RELEASE:
+        st = hv_exec_journal_release(L->journal, a->u.jr.pick, a->u.jr.attempt, t);
+        break;
+    case HV_JR_OUTCOME:
+        st = hv_exec_journal_outcome(L->journal, a->u.jr.pick, a->u.jr.outcome, a->u.jr.reason,
+                                     a->u.jr.attempt, t);
+        break;
+    case HV_JR_DONE: st = hv_exec_journal_done(L->journal, t); break;
+    }
+    if (st == HV_OK)
+        L->st.journal_records++;
+    return st;
+}
+
+/* Carry out the actions in order. A journal record that cannot be written stops the
+ * batch there: what comes after it must not happen without it. */
+static void carry_out(hv_exec_loop_t *L, const hv_exec_actions_t *out, uint64_t now)
+{
+    for (unsigned i = 0; i < out->n; i++) {
+        const hv_exec_action_t *a = &out->a[i];
+        switch (a->kind) {
+        case HV_ACT_JOURNAL:
+            if (journal_action(L, a, hv_exec_executed_s(L->sm, now)) != HV_OK) {
+                if (L->progress)
+                    fprintf(L->progress, "harvest-exec: %s: journal write failed: %s\n",
+                            L->journal->path, strerror(errno));
+                hv_exec_event_t ev;
+                memset(&ev, 0, sizeof ev);
+                ev.kind = HV_EV_JOURNAL_FAILED;
+                step(L, &ev, now);
+                return;
+            }
+            break;
+        case HV_ACT_FRUIT_EVENT:
+            hv_exec_tm_fruit(L->tm, L->sm, a, now, wall_utime());
+            report(L, a, now);
+            break;
+        case HV_ACT_PHASE:
+            hv_exec_tm_state(L->tm, L->sm, now, wall_utime());
+            report(L, a, now);
+            break;
+        default: {
+            hv_can_frame_t f;
+            int has;
+            if (hv_exec_can_encode(a, &L->tx, &f, &has) != HV_OK) {
+                L->st.encode_errors++;
+                break;
+            }
+            if (!has)
+                break;
+            if (hv_can_send(L->bus, &f, 10) == HV_OK)
+                L->st.frames_tx++;
+            else
+                L->st.send_failures++;
+            break;
+        }
+        }
+    }
+}
+
+static void step(hv_exec_loop_t *L, const hv_exec_event_t *ev, uint64_t now)
+{
+    hv_exec_actions_t out;
+    out.n = 0;
+    uint64_t t0 = hv_exec_now_ns();
+    hv_status_t st = hv_exec_step(L->sm, ev, now, &out);
+    uint64_t dt = hv_exec_now_ns() - t0;
+    L->st.steps++;
+    L->st.step_ns_total += dt;
+    if (dt > L->st.step_ns_max)
+        L->st.step_ns_max = dt;
+    if (st != HV_OK && st != HV_ERR_EXEC_ACTIONS_FULL)
+        return; /* an event out of its domain: the state machine ignored it */
+    carry_out(L, &out, now);
+}
+
+static void periodic_telemetry(hv_exec_loop_t *L, uint64_t now)
+{
+    if (!L->tm)
+        return;
+    if (now >= L->next_state_pub_ns) {
+        hv_exec_tm_state(L->tm, L->sm, now, wall_utime());
+        L->next_state_pub_ns = now + 100000000ull; /* 10 Hz */
+    }
+    if (now >= L->next_stats_pub_ns) {
+        hv_can_stats_t cs;
+        hv_can_get_stats(L->bus, &cs);
+        hv_exec_bus_stats_t s = {hv_can_name(L->bus), cs.tx_frames, cs.rx_frames,
+                                 cs.rx_error_frames, cs.rx_malformed, cs.rx_unsupported,
+                                 cs.rx_filtered, cs.rx_kernel_drops, cs.tx_failures};
+        hv_exec_tm_can_stats(L->tm, &s, wall_utime());
+        L->next_stats_pub_ns = now + 1000000000ull; /* 1 Hz */
+    }
+}
+
+static void handle_frame(hv_exec_loop_t *L, const hv_can_frame_t *f, uint64_t now)
+{
+    hv_exec_event_t ev;
+    L->st.frames_rx++;
+    switch (hv_exec_can_decode(f, &ev, L->samples)) {
+    case HV_RX_EVENT:
+        step(L, &ev, now);
+        break;
+    case HV_RX_VELOCITIES: {
+        /* the velocity frame follows the joint state frame: publish the pair, 20 Hz max */
+        int side = ev.node;
+        if (now >= L->next_arm_pub_ns[side]) {
+            hv_exec_tm_arm(L->tm, L->sm, &L->samples[side], wall_utime());
+            L->next_arm_pub_ns[side] = now + 50000000ull;
+        }
+        break;
+    }
+    case HV_RX_MALFORMED:
+        L->st.frames_rx_malformed++;
+        break;
+    default:
+        break;
+    }
+}
+
+hv_status_t hv_exec_loop_run(hv_exec_loop_t *L)
+{
+    if (!L || !L->sm || !L->bus)
+        return HV_ERR_ARG;
+    if (L->tick_s <= 0.0)
+        L->tick_s = 0.01;
+    uint64_t tick_ns = (uint64_t)(L->tick_s * 1e9);
+    uint64_t end_ns = 0;
+    uint64_t next_tick = hv_exec_now_ns();
+    int stop_sent = 0;
+    for (;;) {
+        uint64_t now = hv_exec_now_ns();
+        if (L->stop && *L->stop && !stop_sent) {
+            hv_exec_event_t ev;
+            memset(&ev, 0, sizeof ev);
+            ev.kind = HV_EV_STOP_REQUEST;
+            step(L, &ev, now);
+            stop_sent = 1;
+        }
+        if (hv_exec_finished(L->sm)) {
+            if (!end_ns)
+                end_ns = now + (uint64_t)(L->linger_s * 1e9);
+            else if (now >= end_ns)
+                break;
+        }
+        int wait_ms = next_tick > now ? (int)((next_tick - now + 999999u) / 1000000u) : 0;
+        struct pollfd pfd = {hv_can_fd(L->bus), POLLIN, 0};
+        int pr = poll(&pfd, 1, wait_ms);
+        if (pr < 0 && errno != EINTR)
+            return HV_ERR_IO;
+        if (pr > 0) {
+            /* drain what is waiting; each frame is one event */
+            for (int k = 0; k < 256; k++) {
+                hv_can_frame_t f;
+                hv_status_t rs = hv_can_recv(L->bus, &f, 0);
+                if (rs != HV_OK)
+                    break;
+                handle_frame(L, &f, hv_exec_now_ns());
+            }
+        }
+        now = hv_exec_now_ns();
+        if (now >= next_tick) {
+            hv_exec_event_t tick;
+            memset(&tick, 0, sizeof tick);
+            tick.kind = HV_EV_TICK;
+            step(L, &tick, now);
+            periodic_telemetry(L, now);
+            next_tick += tick_ns;
+            if (next_tick <= now)
+                next_tick = now + tick_ns;
+        }
+    }
+    hv_exec_tm_state(L->tm, L->sm, hv_exec_now_ns(), wall_utime());
+    return HV_OK;
+}

@@ -1,0 +1,441 @@
+/* harvest-exec: run a plan on the CAN bus (DESIGN §7). See --help. */
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
+#include <getopt.h>
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hv/config.h"
+#include "hv/exec_can.h"
+#include "hv/exec_journal.h"
+#include "hv/exec_loop.h"
+#include "hv/exec_plan_json.h"
+#include "hv/exec_status.h"
+#include "hv/exec_telemetry.h"
+#include "hv/file_io.h"
+
+enum { EXIT_ROW_DONE = 0, EXIT_RUNTIME = 1, EXIT_USAGE = 2, EXIT_SAFE = 3 };
+
+/* The only mutable global: a signal handler can reach nothing else. */
+static volatile sig_atomic_t stop_requested;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    stop_requested = 1;
+}
+
+static void usage(FILE *out)
+{
+    fprintf(out,
+"usage: harvest-exec --plan PLAN.json --config harvest.cfg --journal FILE [options]\n"
+"\n"
+"Run a harvest plan on the CAN bus: wait for the vehicle drive and both arms, enable and\n"
+"home them, drive to each stop, run both arms' pick cycles, and stop safely (e-stop) on\n"
+"any fault. Every outcome is journalled before the next action; restarting with the same\n"
+"plan and journal resumes without picking a fruit twice.\n"
+"\n"
+"input:\n"
+"  --plan FILE             plan file (docs/PLAN_FORMAT.md), required\n"
+"  --config FILE           harvest.cfg: arm, mount, vehicle speed/accel, required\n"
+"  --cost-table-left FILE  optional: take the left arm from this table's header (it must\n"
+"  --cost-table-right FILE   match the config's arm); same for the right\n"
+"bus:\n"
+"  --transport T           socketcan | udp (default udp)\n"
+"  --channel C             socketcan: interface (vcan0); udp: multicast group\n"
+"                          (default 239.74.163.2, python-can udp_multicast's)\n"
+"  --port N                udp port (default 43113)\n"
+"timing:\n"
+"  --time-scale K          expected node time scale; 0 = take the nodes' (default 0)\n"
+"  --cut-time S            end-effector cut, simulated s (default 1.0)\n"
+"  --release-time S        end-effector release, simulated s (default 0.5)\n"
+"  --margin M              timeout = planned * (1 + M) + slack (default 0.5)\n"
+"  --slack S               simulated s added to every timeout (default 1.0)\n"
+"  --max-retries N         further attempts of a fruit after a recoverable fault (2)\n"
+"  --startup-timeout S     wall s to see every node (default 10)\n"
+"  --heartbeat-timeout S   wall s without a node's heartbeat = lost (default 0.5, the DBC's)\n"
+"  --latency S             wall s added to every motion timeout for the bus (default 0.3)\n"
+"record and telemetry:\n"
+"  --journal FILE          harvest journal (created, or resumed), required\n"
+"  --lcm-url URL           publish LCM telemetry here (memq://, udpm://...?ttl=0);\n"
+"                          default: no telemetry\n"
+"  --summary FILE          write a JSON summary of the run here\n"
+"  --quiet                 no progress lines on stderr\n"
+"  -h, --help              this text\n"
+"\n"
+"exit status: 0 row done, 3 stopped in the safe state, 2 bad input, 1 runtime error.\n"
+"Expected makespan (compared with the executed one): per stop the slower arm's sum of\n"
+"pick cycles (2 x IK move time home->fruit + cut + release) plus trapezoid vehicle moves\n"
+"between stops, from the row start and to the row end.\n");
+}
+
+typedef struct opts {
+    const char *plan, *config, *table[2], *transport, *channel, *journal, *lcm_url, *summary;
+    int port, quiet;
+    double time_scale, cut_s, release_s, margin, slack_s, startup_s, hb_timeout_s, latency_s;
+    long max_retries;
+} opts_t;
+
+static int parse_double(const char *name, const char *s, double min, double *out)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (errno || *end || end == s || !isfinite(v) || v < min) {
+        fprintf(stderr, "harvest-exec: --%s: expected a number >= %g, got '%s'\n", name, min, s);
+        return -1;
+    }
+    *out = v;
+    return 0;
+}
+
+static int parse_args(int argc, char **argv, opts_t *o)
+{
+    static const struct option lo[] = {
+        {"plan", required_argument, 0, 'p'},        {"config", required_argument, 0, 'c'},
+        {"cost-table-left", required_argument, 0, 'L'},
+        {"cost-table-right", required_argument, 0, 'R'},
+        {"transport", required_argument, 0, 't'},   {"channel", required_argument, 0, 'C'},
+        {"port", required_argument, 0, 'P'},        {"time-scale", required_argument, 0, 'k'},
+        {"cut-time", required_argument, 0, 'u'},    {"release-time", required_argument, 0, 'r'},
+        {"margin", required_argument, 0, 'm'},      {"slack", required_argument, 0, 's'},
+        {"max-retries", required_argument, 0, 'n'},
+        {"startup-timeout", required_argument, 0, 'w'},
+        {"heartbeat-timeout", required_argument, 0, 'H'},
+        {"latency", required_argument, 0, 'a'},
+        {"journal", required_argument, 0, 'j'},     {"lcm-url", required_argument, 0, 'l'},
+        {"summary", required_argument, 0, 'S'},     {"quiet", no_argument, 0, 'q'},
+        {"help", no_argument, 0, 'h'},              {0, 0, 0, 0}};
+    memset(o, 0, sizeof *o);
+    o->transport = "udp";
+    o->port = HV_CAN_UDP_DEFAULT_PORT;
+    o->cut_s = 1.0;
+    o->release_s = 0.5;
+    o->margin = 0.5;
+    o->slack_s = 1.0;
+    o->startup_s = 10.0;
+    o->hb_timeout_s = 0.5;
+    o->latency_s = 0.3;
+    o->max_retries = 2;
+    int c;
+    double v;
+    while ((c = getopt_long(argc, argv, "h", lo, NULL)) != -1) {
+        switch (c) {
+        case 'p': o->plan = optarg; break;
+        case 'c': o->config = optarg; break;
+        case 'L': o->table[0] = optarg; break;
+        case 'R': o->table[1] = optarg; break;
+        case 't': o->transport = optarg; break;
+        case 'C': o->channel = optarg; break;
+        case 'P':
+            if (parse_double("port", optarg, 1, &v) || v > 65535 || v != floor(v))
+                return -1;
+            o->port = (int)v;
+            break;
+        case 'k': if (parse_double("time-scale", optarg, 0, &o->time_scale)) return -1; break;
+        case 'u': if (parse_double("cut-time", optarg, 1e-3, &o->cut_s)) return -1; break;
+        case 'r': if (parse_double("release-time", optarg, 1e-3, &o->release_s)) return -1; break;
+        case 'm': if (parse_double("margin", optarg, 0, &o->margin)) return -1; break;
+        case 's': if (parse_double("slack", optarg, 0, &o->slack_s)) return -1; break;
+        case 'w': if (parse_double("startup-timeout", optarg, 0.1, &o->startup_s)) return -1; break;
+        case 'H': if (parse_double("heartbeat-timeout", optarg, 0.05, &o->hb_timeout_s)) return -1; break;
+        case 'a': if (parse_double("latency", optarg, 0, &o->latency_s)) return -1; break;
+        case 'n':
+            if (parse_double("max-retries", optarg, 0, &v) || v > 20 || v != floor(v))
+                return -1;
+            o->max_retries = (long)v;
+            break;
+        case 'j': o->journal = optarg; break;
+        case 'l': o->lcm_url = optarg; break;
+        case 'S': o->summary = optarg; break;
+        case 'q': o->quiet = 1; break;
+        case 'h': usage(stdout); exit(0);
+        default: return -1;
+        }
+    }
+    if (optind < argc) {
+        fprintf(stderr, "harvest-exec: unexpected argument '%s'\n", argv[optind]);
+        return -1;
+    }
+    const char *missing = !o->plan ? "--plan" : !o->config ? "--config" : !o->journal ? "--journal" : NULL;
+    if (missing) {
+        fprintf(stderr, "harvest-exec: %s is required (see --help)\n", missing);
+        return -1;
+    }
+    if (strcmp(o->transport, "udp") != 0 && strcmp(o->transport, "socketcan") != 0) {
+        fprintf(stderr, "harvest-exec: --transport: expected socketcan or udp, got '%s'\n",
+                o->transport);
+        return -1;
+    }
+    if (!o->channel)
+        o->channel = strcmp(o->transport, "udp") == 0 ? HV_CAN_UDP_DEFAULT_GROUP : "vcan0";
+    return 0;
+}
+
+/* The arm a cost table was built for must be the configured one: the plan's costs and
+ * the executor's IK would otherwise disagree. Tolerance 1e-6 (um, urad): the table's
+ * header and the config may compute the same mount in a different order of operations. */
+static int near(double a, double b)
+{
+    return fabs(a - b) <= 1e-6;
+}
+
+static int same_arm(const hv_arm_t *a, const hv_arm_t *b, const char **field)
+{
+    for (int j = 0; j < HV_NJOINTS; j++) {
+        if (!near(a->home[j], b->home[j])) { *field = "home"; return 0; }
+        if (!near(a->limit[j].min, b->limit[j].min) || !near(a->limit[j].max, b->limit[j].max) ||
+            !near(a->limit[j].vmax, b->limit[j].vmax) || !near(a->limit[j].amax, b->limit[j].amax)) {
+            *field = "joint limits";
+            return 0;
+        }
+    }
+    for (int i = 0; i < 3; i++)
+        if (!near(a->base_m[i], b->base_m[i])) { *field = "mount base"; return 0; }
+    if (!near(a->base_yaw_rad, b->base_yaw_rad)) { *field = "mount heading"; return 0; }
+    for (int l = 0; l < 5; l++)
+        for (int i = 0; i < 3; i++)
+            if (!near(a->origin_m[l][i], b->origin_m[l][i])) { *field = "link origins"; return 0; }
+    return 1;
+}
+
+/* Everything the run needs, allocated once at start-up. */
+typedef struct world {
+    hv_exec_plan_t plan;
+    hv_exec_sm_t sm;
+    hv_exec_progress_t prog;
+    hv_exec_journal_t journal;
+    hv_can_bus_t bus;
+    hv_exec_telemetry_t tm;
+    hv_exec_loop_t loop;
+} world_t;
+
+static void write_summary(const opts_t *o, const world_t *w, double wall_s, double cpu_s,
+                          long peak_rss_kb)
+{
+    const hv_exec_sm_t *sm = &w->sm;
+    const hv_exec_loop_stats_t *st = &w->loop.st;
+    char buf[2048];
+    unsigned outcome[HV_OUT_COUNT] = {0, 0, 0};
+    for (uint16_t i = 0; i < w->plan.n_picks; i++)
+        if (sm->prog.pick[i] == HV_PROG_DONE)
+            outcome[sm->prog.outcome[i]]++;
+    int n = snprintf(buf, sizeof buf,
+        "{\n  \"phase\": \"%s\",\n  \"safe_reason\": \"%s\",\n  \"safe_node\": %d,\n"
+        "  \"fruits_planned\": %u,\n  \"picked\": %u,\n  \"failed\": %u,\n  \"skipped\": %u,\n"
+        "  \"remaining\": %u,\n  \"picked_this_run\": %u,\n  \"failed_this_run\": %u,\n"
+        "  \"skipped_this_run\": %u,\n  \"faults\": %u,\n"
+        "  \"planned_makespan_s\": %.6f,\n  \"expected_makespan_s\": %.6f,\n"
+        "  \"executed_makespan_s\": %.6f,\n  \"time_scale\": %.6f,\n"
+        "  \"wall_s\": %.6f,\n  \"cpu_s\": %.6f,\n  \"peak_rss_kb\": %ld,\n"
+        "  \"steps\": %llu,\n  \"step_ns_mean\": %.1f,\n  \"step_ns_max\": %llu,\n"
+        "  \"frames_rx\": %llu,\n  \"frames_tx\": %llu,\n  \"send_failures\": %llu,\n"
+        "  \"journal_records\": %llu,\n  \"journal\": \"%s\",\n  \"bus\": \"%s\"\n}\n",
+        hv_exec_phase_name(sm->phase), hv_exec_safe_reason_name(sm->safe_reason), sm->safe_node,
+        (unsigned)w->plan.n_picks, outcome[HV_OUT_PICKED], outcome[HV_OUT_FAILED],
+        outcome[HV_OUT_SKIPPED], hv_exec_remaining(sm), sm->picked, sm->failed, sm->skipped,
+        sm->faults, w->plan.planned_makespan_s, w->plan.expected_makespan_s,
+        hv_exec_executed_s(sm, hv_exec_now_ns()), sm->time_scale, wall_s, cpu_s, peak_rss_kb,
+        (unsigned long long)st->steps,
+        st->steps ? (double)st->step_ns_total / (double)st->steps : 0.0,
+        (unsigned long long)st->step_ns_max, (unsigned long long)st->frames_rx,
+        (unsigned long long)st->frames_tx, (unsigned long long)st->send_failures,
+        (unsigned long long)st->journal_records, o->journal, hv_can_name(&w->bus));
+    char err[256];
+    if (n < 0 || (size_t)n >= sizeof buf ||
+        hv_file_write_atomic(o->summary, buf, (size_t)n, err, sizeof err) != HV_OK)
+        fprintf(stderr, "harvest-exec: %s: cannot write the summary\n", o->summary);
+}
+
+#include <sys/resource.h>
+#include <time.h>
+
+/* Peak resident memory of this program (kB): VmHWM, which execve resets; ru_maxrss is not
+ * used because Linux carries it over from the parent that forked us. -1 when unknown. */
+static long peak_rss_kb(void)
+{
+    FILE *f = fopen("/proc/self/status", "r");
+    char line[256];
+    long kb = -1;
+    while (f && fgets(line, sizeof line, f))
+        if (sscanf(line, "VmHWM: %ld kB", &kb) == 1)
+            break;
+    if (f)
+        fclose(f);
+    return kb;
+}
+
+int main(int argc, char **argv)
+{
+    opts_t o;
+    if (parse_args(argc, argv, &o) != 0)
+        return EXIT_USAGE;
+    char err[512];
+    hv_config_t cfg;
+    if (hv_config_load(o.config, &cfg, err, sizeof err) != HV_OK) {
+        fprintf(stderr, "harvest-exec: %s\n", err);
+        return EXIT_USAGE;
+    }
+    hv_arm_t arms[2];
+    for (int s = 0; s < 2; s++) {
+        hv_config_arm(&cfg, (hv_side_t)s, &arms[s]);
+        if (!o.table[s])
+            continue;
+        hv_costtab_file_t tf;
+        if (hv_costtab_load(o.table[s], &tf, err, sizeof err) != HV_OK) {
+            fprintf(stderr, "harvest-exec: %s\n", err);
+            return EXIT_USAGE;
+        }
+        const char *field = "";
+        int same = same_arm(&tf.tab.arm, &arms[s], &field);
+        int side_ok = tf.tab.arm.side == (hv_side_t)s;
+        hv_costtab_unload(&tf);
+        if (!side_ok || !same) {
+            fprintf(stderr, "harvest-exec: %s: %s: the table was built for another arm than "
+                    "%s's %s arm\n", o.table[s], side_ok ? field : "side", o.config,
+                    s ? "right" : "left");
+            return EXIT_USAGE;
+        }
+    }
+
+    world_t *w = calloc(1, sizeof *w);
+    if (!w) {
+        fprintf(stderr, "harvest-exec: out of memory\n");
+        return EXIT_RUNTIME;
+    }
+    hv_status_t st = hv_exec_plan_load_json(o.plan, &w->plan, err, sizeof err);
+    if (st != HV_OK) {
+        fprintf(stderr, "harvest-exec: %s\n", err);
+        free(w);
+        return EXIT_USAGE;
+    }
+    hv_exec_timing_t timing = {o.cut_s, o.release_s, cfg.vehicle_speed_mps, cfg.vehicle_accel_mps2};
+    if ((st = hv_exec_plan_prepare(&w->plan, arms, &timing)) != HV_OK) {
+        fprintf(stderr, "harvest-exec: %s: cannot prepare the plan: %s\n", o.plan,
+                hv_exec_status_name(st));
+        free(w);
+        return EXIT_USAGE;
+    }
+    for (uint16_t i = 0; i < w->plan.n_picks; i++)
+        if (!w->plan.picks[i].reachable)
+            fprintf(stderr, "harvest-exec: %s: fruit %s (%c): the IK finds no pose within the "
+                    "joint limits (%s): it will be skipped\n", o.plan, w->plan.picks[i].id,
+                    w->plan.picks[i].side == HV_SIDE_LEFT ? 'L' : 'R',
+                    hv_status_name(w->plan.picks[i].ik_status));
+
+    if ((st = hv_exec_journal_open(&w->journal, o.journal, &w->plan, &w->prog, err, sizeof err)) != HV_OK) {
+        fprintf(stderr, "harvest-exec: %s\n", err);
+        free(w);
+        return EXIT_USAGE;
+    }
+    unsigned done = 0;
+    for (uint16_t i = 0; i < w->plan.n_picks; i++)
+        done += w->prog.pick[i] == HV_PROG_DONE;
+    if (w->prog.row_done) {
+        printf("harvest-exec: %s: the journal says this row is done (%u/%u fruits have an "
+               "outcome): nothing to do\n", o.journal, done, (unsigned)w->plan.n_picks);
+        hv_exec_journal_close(&w->journal);
+        free(w);
+        return EXIT_ROW_DONE;
+    }
+    if (done || w->journal.records > 1)
+        fprintf(stderr, "harvest-exec: resuming from %s: %u of %u fruits already have an "
+                "outcome%s\n", o.journal, done, (unsigned)w->plan.n_picks,
+                w->journal.torn_bytes ? " (a torn last record was cut off)" : "");
+
+    hv_exec_params_t prm;
+    hv_exec_params_default(&prm);
+    prm.time_scale = o.time_scale;
+    prm.margin = o.margin;
+    prm.slack_s = o.slack_s;
+    prm.startup_timeout_s = o.startup_s;
+    prm.heartbeat_timeout_s = o.hb_timeout_s;
+    prm.latency_s = o.latency_s;
+    prm.cut_s = o.cut_s;
+    prm.release_s = o.release_s;
+    prm.vehicle_speed_mps = cfg.vehicle_speed_mps;
+    prm.vehicle_accel_mps2 = cfg.vehicle_accel_mps2;
+    prm.max_retries = (unsigned)o.max_retries;
+    double h0 = hv_exec_home_max_s(&arms[0]), h1 = hv_exec_home_max_s(&arms[1]);
+    prm.home_max_s = h0 > h1 ? h0 : h1;
+    if ((st = hv_exec_init(&w->sm, &w->plan, &prm, &w->prog)) != HV_OK) {
+        fprintf(stderr, "harvest-exec: bad parameters: %s\n", hv_exec_status_name(st));
+        hv_exec_journal_close(&w->journal);
+        free(w);
+        return EXIT_USAGE;
+    }
+
+    if (strcmp(o.transport, "udp") == 0)
+        st = hv_can_udp_open(&w->bus, o.channel, (uint16_t)o.port, NULL, NULL, 0);
+    else
+        st = hv_can_socketcan_open(&w->bus, o.channel, NULL, 0);
+    if (st != HV_OK) {
+        fprintf(stderr, "harvest-exec: cannot open the %s bus '%s': %s (%s)\n", o.transport,
+                o.channel, hv_can_status_name(st), strerror(hv_can_last_errno(&w->bus)));
+        hv_exec_journal_close(&w->journal);
+        free(w);
+        return EXIT_RUNTIME;
+    }
+    if (o.lcm_url) {
+        if (hv_exec_telemetry_lcm_open(&w->tm, o.lcm_url, err, sizeof err) != HV_OK) {
+            fprintf(stderr, "harvest-exec: %s\n", err);
+            hv_can_close(&w->bus);
+            hv_exec_journal_close(&w->journal);
+            free(w);
+            return EXIT_RUNTIME;
+        }
+    } else {
+        hv_exec_telemetry_null(&w->tm);
+    }
+
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    hv_exec_tm_plan(&w->tm, &w->plan, o.plan, &prm, o.time_scale,
+                    (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000);
+    if (!o.quiet)
+        fprintf(stderr, "harvest-exec: %u stops, %u fruits on %s; expected makespan %.1f s "
+                "(plan's objective %.1f s); waiting for the nodes\n",
+                (unsigned)w->plan.n_stops, (unsigned)w->plan.n_picks, hv_can_name(&w->bus),
+                w->plan.expected_makespan_s, w->plan.planned_makespan_s);
+
+    w->loop.sm = &w->sm;
+    w->loop.bus = &w->bus;
+    w->loop.journal = &w->journal;
+    w->loop.tm = &w->tm;
+    w->loop.stop = &stop_requested;
+    w->loop.progress = o.quiet ? NULL : stderr;
+    w->loop.tick_s = 0.01;
+    w->loop.linger_s = 0.5; /* e-stops repeat meanwhile when safe */
+    uint64_t t0 = hv_exec_now_ns();
+    st = hv_exec_loop_run(&w->loop);
+    double wall_s = (double)(hv_exec_now_ns() - t0) * 1e-9;
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    double cpu_s = (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec * 1e-6 +
+                   (double)ru.ru_stime.tv_sec + (double)ru.ru_stime.tv_usec * 1e-6;
+
+    int rc = st != HV_OK ? EXIT_RUNTIME : w->sm.phase == HV_PH_ROW_DONE ? EXIT_ROW_DONE : EXIT_SAFE;
+    printf("harvest-exec: %s%s%s: picked %u, failed %u, skipped %u this run (%u remaining), "
+           "faults %u; executed %.2f s vs expected %.2f s (plan's objective %.2f s)\n",
+           hv_exec_phase_name(w->sm.phase), w->sm.phase == HV_PH_SAFE ? " " : "",
+           w->sm.phase == HV_PH_SAFE ? hv_exec_safe_reason_name(w->sm.safe_reason) : "",
+           w->sm.picked, w->sm.failed, w->sm.skipped, hv_exec_remaining(&w->sm), w->sm.faults,
+           hv_exec_executed_s(&w->sm, hv_exec_now_ns()), w->plan.expected_makespan_s,
+           w->plan.planned_makespan_s);
+    if (o.summary)
+        write_summary(&o, w, wall_s, cpu_s, peak_rss_kb());
+    hv_exec_telemetry_close(&w->tm);
+    hv_can_close(&w->bus);
+    hv_exec_journal_close(&w->journal);
+    free(w);
+    return rc;
+}

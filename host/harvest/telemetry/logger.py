@@ -1,0 +1,84 @@
+"""Record every LCM message on a URL into an LCM log file (the standard event-log format,
+readable by lcm-logplayer and by `python -m harvest telemetry gantt`).
+
+The log is flushed per message by the LCM writer; a run's end is seen in the executor's
+own state (phase row_done or safe), after which the logger waits `--grace` seconds for the
+last messages and stops. SIGINT/SIGTERM stop it cleanly too.
+"""
+import os
+import signal
+import sys
+import time
+
+import lcm
+
+from . import lcm_types
+
+
+class Logger:
+    def __init__(self, url, path, overwrite=False, stop_on_end=True, types=None):
+        self.lc = lcm.LCM(url)
+        self.log = lcm.EventLog(path, "w", overwrite=overwrite)
+        self.types = types
+        self.stop_on_end = stop_on_end
+        self.count = 0
+        self.channels = {}
+        self.end_seen_at = None
+        self.final_phase = None
+        self.sub = self.lc.subscribe(".*", self._on_message)
+
+    def _on_message(self, channel, data):
+        utime = int(time.time() * 1e6)
+        self.log.write_event(utime, channel, data)
+        self.count += 1
+        self.channels[channel] = self.channels.get(channel, 0) + 1
+        if self.stop_on_end and channel == "HARVEST_EXEC_STATE" and self.types:
+            st = self.types["exec_state_t"].decode(data)
+            if st.phase in ("row_done", "safe"):
+                self.final_phase = st.phase
+                if self.end_seen_at is None:
+                    self.end_seen_at = time.monotonic()
+
+    def run(self, duration=None, grace=1.0, stop_flag=None):
+        t0 = time.monotonic()
+        while True:
+            self.lc.handle_timeout(100)
+            now = time.monotonic()
+            if stop_flag and stop_flag():
+                break
+            if duration is not None and now - t0 >= duration:
+                break
+            if self.end_seen_at is not None and now - self.end_seen_at >= grace:
+                break
+
+    def close(self):
+        self.lc.unsubscribe(self.sub)
+        self.log.close()
+
+
+def run(args):
+    types = lcm_types.load(args.lcm_python) if args.until_done else None
+    if os.path.exists(args.out) and not args.overwrite:
+        print(f"telemetry log: {args.out}: exists (use --overwrite)", file=sys.stderr)
+        return 2
+    stop = {"now": False}
+
+    def on_signal(signum, frame):
+        stop["now"] = True
+
+    signal.signal(signal.SIGINT, on_signal)
+    signal.signal(signal.SIGTERM, on_signal)
+    lg = Logger(args.url, args.out, overwrite=args.overwrite, stop_on_end=args.until_done,
+                types=types)
+    if args.ready_file:
+        # tell a caller (demo, tests) that we listen, so no early message is lost
+        with open(args.ready_file, "w") as f:
+            f.write(str(os.getpid()))
+    try:
+        lg.run(duration=args.duration, grace=args.grace, stop_flag=lambda: stop["now"])
+    finally:
+        lg.close()
+    per = ", ".join(f"{k} {v}" for k, v in sorted(lg.channels.items()))
+    print(f"telemetry log: {args.out}: {lg.count} messages ({per or 'none'})"
+          + (f"; executor ended in {lg.final_phase}" if lg.final_phase else ""))
+    return 0

@@ -1,0 +1,168 @@
+"""Helpers of the executor's hardware-in-the-loop tests: the simulator (python -m harvest
+sim) and harvest-exec on one CAN bus, their records, and checks of the harvest journal.
+
+The udp bus is python-can's udp_multicast on loopback; callers run inside a private
+network namespace (harvest.canbus.netns) so nothing leaves the machine.
+"""
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+import zlib
+
+SOURCE = os.environ.get("HV_SOURCE_DIR", os.path.dirname(os.path.dirname(os.path.dirname(
+    os.path.abspath(__file__)))))
+BUILD = os.environ.get("HV_BUILD_DIR", os.path.join(SOURCE, "build"))
+EXEC = os.path.join(BUILD, "executor", "harvest-exec")
+MAKE_PLAN = os.path.join(BUILD, "tests", "executor", "make-test-plan")
+CONFIG = os.path.join(SOURCE, "config", "harvest.cfg")
+GROUP = "239.74.163.2"
+# The test machines are shared (load averages of 10 on 2 cores happen): a simulator or an
+# executor descheduled for more than the DBC's 500 ms would look like a lost node. The
+# tests are not about that margin, so both sides get 2 s (the fault tests still lose
+# heartbeats on purpose, and are detected within it).
+HEARTBEAT_TIMEOUT_S = 2.0
+
+
+def missing_pieces():
+    """Reasons the tests cannot run (empty when everything is there)."""
+    out = []
+    for path, what in ((EXEC, "harvest-exec"), (MAKE_PLAN, "make-test-plan")):
+        if not os.access(path, os.X_OK):
+            out.append(f"{what} not built at {path}")
+    try:
+        import harvest.sim.cli  # noqa: F401
+    except ImportError as e:
+        out.append(f"the simulator (harvest.sim) cannot be imported: {e}")
+    return out
+
+
+def make_plan(path, stops, per_arm, seed=1):
+    subprocess.run([MAKE_PLAN, CONFIG, str(path), str(stops), str(per_arm), str(seed)],
+                   check=True)
+    with open(path) as f:
+        return json.load(f)
+
+
+def plan_order(plan):
+    """Fruit ids of each side ("L", "R") in the order the plan picks them."""
+    out = {"L": [], "R": []}
+    for st in plan["stops"]:
+        out["L"] += [k["id"] for k in st["left"]]
+        out["R"] += [k["id"] for k in st["right"]]
+    return out
+
+
+def env():
+    e = dict(os.environ)
+    e["PYTHONPATH"] = os.path.join(SOURCE, "host") + os.pathsep + e.get("PYTHONPATH", "")
+    return e
+
+
+class Sim:
+    """The simulator as a subprocess with a JSONL record."""
+
+    def __init__(self, workdir, time_scale, faults=(), extra=()):
+        self.record = os.path.join(workdir, "sim.jsonl")
+        self.log = open(os.path.join(workdir, "sim.log"), "w")
+        argv = [sys.executable, "-m", "harvest", "sim", "--interface", "udp_multicast",
+                "--channel", GROUP, "--time-scale", str(time_scale), "--record", self.record]
+        argv += ["--exec-timeout", str(HEARTBEAT_TIMEOUT_S)]
+        for f in faults:
+            argv += ["--fault", f]
+        argv += list(extra)
+        self.proc = subprocess.Popen(argv, stdout=self.log, stderr=subprocess.STDOUT, env=env(),
+                                     cwd=SOURCE)
+
+    def stop(self):
+        if self.proc.poll() is None:
+            self.proc.send_signal(signal.SIGINT)
+            try:
+                self.proc.wait(timeout=15)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait()
+        self.log.close()
+
+    def events(self, name=None):
+        out = []
+        with open(self.record) as f:
+            for line in f:
+                line = line.strip()
+                if line:
+                    e = json.loads(line)
+                    if name is None or e["event"] == name:
+                        out.append(e)
+        return out
+
+
+def exec_argv(plan, journal, summary, time_scale, extra=()):
+    return [EXEC, "--plan", str(plan), "--config", CONFIG, "--journal", str(journal),
+            "--summary", str(summary), "--transport", "udp", "--channel", GROUP,
+            "--time-scale", str(time_scale), "--heartbeat-timeout", str(HEARTBEAT_TIMEOUT_S)
+            ] + list(extra)
+
+
+def run_exec(plan, journal, summary, time_scale, extra=(), timeout=240):
+    proc = subprocess.run(exec_argv(plan, journal, summary, time_scale, extra),
+                          capture_output=True, text=True, timeout=timeout)
+    with open(summary) as f:
+        return proc, json.load(f)
+
+
+def start_exec(plan, journal, summary, time_scale, extra=()):
+    return subprocess.Popen(exec_argv(plan, journal, summary, time_scale, extra),
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+
+def read_journal(path):
+    """Parse and verify a journal: (header, records). Every complete line must carry a
+    valid CRC-32; raises AssertionError naming the line otherwise."""
+    recs = []
+    with open(path, "rb") as f:
+        data = f.read()
+    lines = data.split(b"\n")
+    assert lines[-1] == b"", f"{path}: last record is torn"
+    for n, raw in enumerate(lines[:-1], 1):
+        text, sep, crc = raw.rpartition(b" *")
+        assert sep, f"{path}: line {n}: no checksum"
+        assert zlib.crc32(text) == int(crc, 16), f"{path}: line {n}: checksum mismatch"
+        recs.append(text.decode().split())
+    assert recs and recs[0][0] == "HVJ", f"{path}: no header"
+    return recs[0], recs[1:]
+
+
+def outcomes(records):
+    """{(side, id): (outcome, reason, attempt)}; asserts a single outcome per fruit."""
+    out = {}
+    for r in records:
+        if r[0] == "F":
+            key = (r[1], r[2])
+            assert key not in out, f"fruit {key} has two outcomes"
+            out[key] = (r[3], r[4], int(r[5].split("=")[1]))
+    return out
+
+
+def outcome_order(records):
+    order = {"L": [], "R": []}
+    for r in records:
+        if r[0] == "F":
+            order[r[1]].append(r[2])
+    return order
+
+
+def sim_picks(sim):
+    """Cuts the simulated arms completed: (node, rounded joint positions, vehicle position)."""
+    return [(e["node"], tuple(round(q, 3) for q in e["positions"]),
+             round(e["vehicle_position"], 3)) for e in sim.events("pick")]
+
+
+def wait_for(pred, timeout, period=0.05):
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < timeout:
+        if pred():
+            return True
+        time.sleep(period)
+    return False

@@ -1,0 +1,257 @@
+/* The harvest journal: write, replay, torn and corrupt records, another plan's journal,
+ * and a run interrupted mid-row then resumed from its journal (state machine + journal). */
+#define _POSIX_C_SOURCE 200809L
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <cmocka.h>
+
+#include "exec_fixture.h"
+#include "hv/exec_journal.h"
+#include "hv/exec_status.h"
+
+static char dir[64];
+
+static int setup(void **state)
+{
+    (void)state;
+    snprintf(dir, sizeof dir, "/tmp/hv_journal_XXXXXX");
+    return mkdtemp(dir) ? 0 : -1;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    return system(cmd) == 0 ? 0 : -1;
+}
+
+static void path_of(char *out, size_t n, const char *name)
+{
+    snprintf(out, n, "%s/%s", dir, name);
+}
+
+static void append_raw(const char *path, const char *bytes)
+{
+    FILE *f = fopen(path, "ab");
+    assert_non_null(f);
+    fputs(bytes, f);
+    fclose(f);
+}
+
+static void test_write_replay(void **state)
+{
+    (void)state;
+    fx_t *fx = malloc(sizeof *fx);
+    fx_plan(fx, 2, 2);
+    char path[128], err[256];
+    path_of(path, sizeof path, "a.journal");
+    hv_exec_journal_t j;
+    hv_exec_progress_t prog;
+    assert_int_equal(hv_exec_journal_open(&j, path, &fx->plan, &prog, err, sizeof err), HV_OK);
+    assert_int_equal(j.records, 1); /* the header */
+    assert_int_equal(hv_exec_journal_stop(&j, 0, 1.0), HV_OK);
+    assert_int_equal(hv_exec_journal_cut(&j, 0, 1, 2.0), HV_OK);
+    assert_int_equal(hv_exec_journal_release(&j, 0, 1, 3.0), HV_OK);
+    assert_int_equal(hv_exec_journal_outcome(&j, 0, HV_OUT_PICKED, HV_RSN_OK, 1, 4.0), HV_OK);
+    assert_int_equal(hv_exec_journal_cut(&j, 2, 2, 5.0), HV_OK);
+    assert_int_equal(hv_exec_journal_outcome(&j, 3, HV_OUT_SKIPPED, HV_RSN_REJECTED, 3, 6.0),
+                     HV_OK);
+    assert_int_equal(hv_exec_journal_outcome(&j, 99, HV_OUT_PICKED, HV_RSN_OK, 1, 4.0),
+                     HV_ERR_ARG);
+    hv_exec_journal_close(&j);
+
+    assert_int_equal(hv_exec_journal_open(&j, path, &fx->plan, &prog, err, sizeof err), HV_OK);
+    assert_int_equal(j.records, 7);
+    assert_int_equal(prog.stop_reached[0], 1);
+    assert_int_equal(prog.stop_reached[1], 0);
+    assert_int_equal(prog.pick[0], HV_PROG_DONE);
+    assert_int_equal(prog.outcome[0], HV_OUT_PICKED);
+    assert_int_equal(prog.pick[1], HV_PROG_PENDING);
+    assert_int_equal(prog.pick[2], HV_PROG_CUT);
+    assert_int_equal(prog.pick[3], HV_PROG_DONE);
+    assert_int_equal(prog.outcome[3], HV_OUT_SKIPPED);
+    assert_int_equal(prog.reason[3], HV_RSN_REJECTED);
+    assert_int_equal(prog.row_done, 0);
+    assert_int_equal(hv_exec_journal_done(&j, 9.0), HV_OK);
+    hv_exec_journal_close(&j);
+    assert_int_equal(hv_exec_journal_open(&j, path, &fx->plan, &prog, err, sizeof err), HV_OK);
+    assert_int_equal(prog.row_done, 1);
+    hv_exec_journal_close(&j);
+    free(fx);
+}
+
+static void test_torn_and_corrupt(void **state)
+{
+    (void)state;
+    fx_t *fx = malloc(sizeof *fx);
+    fx_plan(fx, 1, 2);
+    char path[128], err[256];
+    path_of(path, sizeof path, "b.journal");
+    hv_exec_journal_t j;
+    hv_exec_progress_t prog;
+    assert_int_equal(hv_exec_journal_open(&j, path, &fx->plan, &prog, err, sizeof err), HV_OK);
+    assert_int_equal(hv_exec_journal_outcome(&j, 0, HV_OUT_PICKED, HV_RSN_OK, 1, 1.0), HV_OK);
+    hv_exec_journal_close(&j);
+    /* a crash in the middle of a write leaves a line without its newline */
+    append_raw(path, "F L L0_1 pick");
+    assert_int_equal(hv_exec_journal_open(&j, path, &fx->plan, &prog, err, sizeof err), HV_OK);
+    assert_int_equal(j.torn_bytes, strlen("F L L0_1 pick"));
+    assert_int_equal(prog.pick[1], HV_PROG_PENDING);
+    assert_int_equal(hv_exec_journal_outcome(&j, 1, HV_OUT_FAILED, HV_RSN_TIMEOUT, 3, 2.0), HV_OK);
+    hv_exec_journal_close(&j);
+    assert_int_equal(hv_exec_journal_open(&j, path, &fx->plan, &prog, err, sizeof err), HV_OK);
+    assert_int_equal(j.torn_bytes, 0);
+    assert_int_equal(prog.outcome[1], HV_OUT_FAILED);
+    assert_int_equal(prog.reason[1], HV_RSN_TIMEOUT);
+    hv_exec_journal_close(&j);
+
+    /* a complete line whose text does not match its checksum: refuse, name the line */
+    append_raw(path, "F R R0_0 picked ok a=1 t=3.000 *00000000\n");
+    assert_int_equal(hv_exec_journal_open(&j, path, &fx->plan, &prog, err, sizeof err),
+                     HV_ERR_EXEC_JOURNAL_FORMAT);
+    assert_non_null(strstr(err, "line 4"));
+    assert_non_null(strstr(err, path));
+    free(fx);
+}
+
+static void test_other_plan(void **state)
+{
+    (void)state;
+    fx_t *a = malloc(sizeof *a), *b = malloc(sizeof *b);
+    fx_plan(a, 1, 2);
+    fx_plan(b, 1, 2);
+    snprintf(b->plan.picks[1].id, sizeof b->plan.picks[1].id, "other");
+    assert_int_not_equal(hv_exec_plan_hash(&a->plan), hv_exec_plan_hash(&b->plan));
+    char path[128], err[256];
+    path_of(path, sizeof path, "c.journal");
+    hv_exec_journal_t j;
+    hv_exec_progress_t prog;
+    assert_int_equal(hv_exec_journal_open(&j, path, &a->plan, &prog, err, sizeof err), HV_OK);
+    hv_exec_journal_close(&j);
+    assert_int_equal(hv_exec_journal_open(&j, path, &b->plan, &prog, err, sizeof err),
+                     HV_ERR_EXEC_JOURNAL_PLAN);
+    assert_non_null(strstr(err, "another plan"));
+    /* not a journal at all */
+    path_of(path, sizeof path, "d.journal");
+    append_raw(path, "hello\n");
+    assert_int_equal(hv_exec_journal_open(&j, path, &a->plan, &prog, err, sizeof err),
+                     HV_ERR_EXEC_JOURNAL_FORMAT);
+    /* unwritable place */
+    assert_int_equal(hv_exec_journal_open(&j, "/nonexistent/dir/j", &a->plan, &prog, err,
+                                          sizeof err),
+                     HV_ERR_EXEC_JOURNAL_IO);
+    free(a);
+    free(b);
+}
+
+/* Carry out the journal actions of a fake run into a real journal. */
+static void write_journal(const fx_t *fx, hv_exec_journal_t *j, int upto)
+{
+    for (int i = 0; i < upto; i++) {
+        const hv_exec_action_t *a = &fx->log[i].a;
+        if (a->kind != HV_ACT_JOURNAL)
+            continue;
+        hv_status_t st = HV_OK;
+        switch (a->u.jr.kind) {
+        case HV_JR_STOP: st = hv_exec_journal_stop(j, a->u.jr.stop, 0.0); break;
+        case HV_JR_CUT: st = hv_exec_journal_cut(j, a->u.jr.pick, a->u.jr.attempt, 0.0); break;
+        case HV_JR_RELEASE:
+            st = hv_exec_journal_release(j, a->u.jr.pick, a->u.jr.attempt, 0.0);
+            break;
+        case HV_JR_OUTCOME:
+            st = hv_exec_journal_outcome(j, a->u.jr.pick, a->u.jr.outcome, a->u.jr.reason,
+                                         a->u.jr.attempt, 0.0);
+            break;
+        case HV_JR_DONE: st = hv_exec_journal_done(j, 0.0); break;
+        }
+        assert_int_equal(st, HV_OK);
+    }
+}
+
+/* Interrupt a run at many points (the log index where the "kill" happens), resume from the
+ * journal with the same nodes, and check: every fruit ends with exactly one outcome and
+ * no fruit is cut twice. */
+static void test_kill_and_resume(void **state)
+{
+    (void)state;
+    fx_t *full = malloc(sizeof *full);
+    fx_plan(full, 2, 2);
+    fx_start(full, NULL);
+    fx_run(full, 30.0);
+    assert_int_equal(full->sm.phase, HV_PH_ROW_DONE);
+    int total = full->nlog;
+    free(full);
+
+    for (int cut_at = 5; cut_at < total; cut_at += 7) {
+        fx_t *fx = malloc(sizeof *fx);
+        fx_plan(fx, 2, 2);
+        fx_start(fx, NULL);
+        fx_run(fx, 30.0);
+        char path[128], err[256];
+        snprintf(path, sizeof path, "%s/k%d.journal", dir, cut_at);
+        hv_exec_journal_t j;
+        hv_exec_progress_t prog;
+        assert_int_equal(hv_exec_journal_open(&j, path, &fx->plan, &prog, err, sizeof err), HV_OK);
+        write_journal(fx, &j, cut_at);
+        hv_exec_journal_close(&j);
+        /* what the fake nodes did up to the kill */
+        int cuts[2][HV_EXEC_MAX_PICKS];
+        memset(cuts, 0, sizeof cuts);
+        int held[2] = {0, 0}, cur[2] = {-1, -1};
+        for (int i = 0; i < cut_at; i++) {
+            const hv_exec_action_t *a = &fx->log[i].a;
+            if (a->kind == HV_ACT_FRUIT_EVENT && a->u.fe.kind == HV_FE_APPROACH)
+                cur[fx->plan.picks[a->u.fe.pick].side] = a->u.fe.pick;
+            if (a->kind == HV_ACT_EE) {
+                int side = a->node == HV_EXEC_LEFT ? 0 : 1;
+                if (a->u.ee.action == HV_EE_CUT) {
+                    cuts[side][cur[side]]++; /* the fake cuts every cut it is sent */
+                    held[side] = 1;
+                } else {
+                    held[side] = 0;
+                }
+            }
+        }
+        /* restart: a new executor with the journal, the nodes as the kill left them */
+        fx_t *re = malloc(sizeof *re);
+        fx_plan(re, 2, 2);
+        assert_int_equal(hv_exec_journal_open(&j, path, &re->plan, &prog, err, sizeof err), HV_OK);
+        fx_start(re, &prog);
+        re->node[HV_EXEC_LEFT].held = held[0];
+        re->node[HV_EXEC_RIGHT].held = held[1];
+        fx_run(re, 60.0);
+        assert_int_equal(re->sm.phase, HV_PH_ROW_DONE);
+        write_journal(re, &j, re->nlog);
+        hv_exec_journal_close(&j);
+        assert_int_equal(hv_exec_journal_open(&j, path, &re->plan, &prog, err, sizeof err), HV_OK);
+        hv_exec_journal_close(&j);
+        for (int p = 0; p < re->plan.n_picks; p++) {
+            int side = re->plan.picks[p].side;
+            assert_int_equal(prog.pick[p], HV_PROG_DONE);
+            assert_int_equal(prog.outcome[p], HV_OUT_PICKED);
+            assert_true(cuts[side][p] + re->cuts_done[side][p] == 1);
+        }
+        assert_int_equal(prog.row_done, 1);
+        free(fx);
+        free(re);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_write_replay),
+        cmocka_unit_test(test_torn_and_corrupt),
+        cmocka_unit_test(test_other_plan),
+        cmocka_unit_test(test_kill_and_resume),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}

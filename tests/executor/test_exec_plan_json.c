@@ -1,0 +1,138 @@
+/* The executor's plan reader: a well-formed plan, and each kind of bad input rejected with
+ * a message naming the file and the field. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "hv/exec_plan_json.h"
+#include "hv/exec_status.h"
+
+static const char *good =
+    "{\"format\": \"harvest-plan\", \"version\": 1, \"method\": \"milp\",\n"
+    " \"inputs\": {\"fruit_map\": \"f.csv\"},\n"
+    " \"params\": {\"stop_step_m\": 0.01, \"row_start_m\": 0.0, \"row_length_m\": 2.0},\n"
+    " \"solver\": {\"status\": \"optimal\", \"gap\": 0.0},\n"
+    " \"totals\": {\"makespan_s\": 61.5, \"pick_time_s\": 31.5, \"fruits_planned\": 3},\n"
+    " \"stops\": [\n"
+    "  {\"index\": 40, \"y_m\": 0.4, \"pass\": 0, \"left\": [\n"
+    "     {\"id\": \"a\\u0031\", \"x\": -0.4, \"y\": 0.45, \"z\": 0.5, \"yaw\": 0.1, \"cost_s\": 4.5, \"start_s\": 0},\n"
+    "     {\"id\": \"17\", \"x\": -0.41, \"y\": 0.35, \"z\": 0.6, \"yaw\": -0.2e0, \"cost_s\": 5, \"start_s\": 4.5}],\n"
+    "   \"right\": []},\n"
+    "  {\"index\": 120, \"y_m\": 1.2, \"left\": [], \"right\": [\n"
+    "     {\"id\": \"17\", \"x\": 0.4, \"y\": 1.1, \"z\": 0.55, \"yaw\": 0, \"cost_s\": 3.25, \"start_s\": 0}]}\n"
+    " ],\n"
+    " \"unreachable\": []}\n";
+
+static hv_exec_plan_t plan;
+
+static hv_status_t parse(const char *text, char *err, size_t n)
+{
+    return hv_exec_plan_parse_json("p.json", text, strlen(text), &plan, err, n);
+}
+
+static void test_good(void **state)
+{
+    (void)state;
+    char err[256] = "";
+    assert_int_equal(parse(good, err, sizeof err), HV_OK);
+    assert_int_equal(plan.n_stops, 2);
+    assert_int_equal(plan.n_picks, 3);
+    assert_int_equal(plan.stops[0].plan_index, 40);
+    assert_int_equal(plan.stops[0].first[0], 0);
+    assert_int_equal(plan.stops[0].count[0], 2);
+    assert_int_equal(plan.stops[0].count[1], 0);
+    assert_int_equal(plan.stops[1].first[1], 2);
+    assert_int_equal(plan.stops[1].count[1], 1);
+    assert_string_equal(plan.picks[0].id, "a1"); /* \u0031 decoded */
+    assert_float_equal(plan.picks[1].yaw_rad, -0.2, 1e-12);
+    assert_int_equal(plan.picks[2].side, HV_SIDE_RIGHT);
+    assert_int_equal(plan.picks[2].stop, 1);
+    assert_float_equal(plan.planned_makespan_s, 61.5, 1e-12);
+    /* the same id on both sides is two fruits */
+    assert_int_equal(hv_exec_plan_find(&plan, HV_SIDE_LEFT, "17"), 1);
+    assert_int_equal(hv_exec_plan_find(&plan, HV_SIDE_RIGHT, "17"), 2);
+    assert_int_equal(hv_exec_plan_find(&plan, HV_SIDE_RIGHT, "a1"), -1);
+}
+
+/* Replace the first occurrence of `from` in the good plan by `to`, parse, expect `code`
+ * and a message containing `field`. */
+static void expect(const char *from, const char *to, hv_status_t code, const char *field)
+{
+    char text[4096];
+    const char *at = strstr(good, from);
+    assert_non_null(at);
+    size_t pre = (size_t)(at - good);
+    snprintf(text, sizeof text, "%.*s%s%s", (int)pre, good, to, at + strlen(from));
+    char err[256] = "";
+    assert_int_equal(parse(text, err, sizeof err), code);
+    if (!strstr(err, field) || strncmp(err, "p.json: ", 8) != 0) {
+        print_error("message '%s' does not name '%s'\n", err, field);
+        fail();
+    }
+}
+
+static void test_bad(void **state)
+{
+    (void)state;
+    expect("\"harvest-plan\"", "\"other\"", HV_ERR_EXEC_PLAN_FIELD, "format");
+    expect("\"version\": 1", "\"version\": 2", HV_ERR_EXEC_PLAN_RANGE, "version");
+    expect("\"row_length_m\": 2.0", "\"row_length\": 2.0", HV_ERR_EXEC_PLAN_FIELD,
+           "params.row_length_m");
+    expect("\"cost_s\": 5,", "\"cost_s\": \"5\",", HV_ERR_EXEC_PLAN_FIELD,
+           "stops[0].left[1].cost_s");
+    expect("\"cost_s\": 3.25", "\"cost_s\": -1", HV_ERR_EXEC_PLAN_RANGE,
+           "stops[1].right[0].cost_s");
+    expect("\"id\": \"17\", \"x\": -0.41", "\"id\": \"a1\", \"x\": -0.41",
+           HV_ERR_EXEC_PLAN_RANGE, "stops[0].left[1].id");
+    expect("\"id\": \"17\", \"x\": 0.4", "\"id\": \"\", \"x\": 0.4", HV_ERR_EXEC_PLAN_FIELD,
+           "stops[1].right[0].id");
+    expect("\"right\": []}", "\"right\": {}}", HV_ERR_EXEC_PLAN_FIELD, "stops[0].right");
+    expect("\"index\": 120", "\"index\": 1.5", HV_ERR_EXEC_PLAN_RANGE, "stops[1].index");
+    expect("\"fruits_planned\": 3", "\"fruits_planned\": 4", HV_ERR_EXEC_PLAN_RANGE,
+           "totals.fruits_planned");
+    expect("\"y_m\": 1.2,", "\"y_m\": 1.2,,", HV_ERR_EXEC_PLAN_SYNTAX, "line 11");
+    expect("\"z\": 0.5,", "\"z\": 05,", HV_ERR_EXEC_PLAN_SYNTAX, "(json)");
+    expect("\"unreachable\": []}", "\"unreachable\": []} x", HV_ERR_EXEC_PLAN_SYNTAX,
+           "trailing");
+    expect("\"f.csv\"", "\"f\x01\"", HV_ERR_EXEC_PLAN_SYNTAX, "control character");
+    expect("\"stops\": [", "\"stops\": 7, \"x\": [", HV_ERR_EXEC_PLAN_FIELD, "stops");
+}
+
+static void test_capacity_and_io(void **state)
+{
+    (void)state;
+    /* more stops than the static table holds */
+    size_t cap = 256 + (HV_EXEC_MAX_STOPS + 1) * 96;
+    char *text = malloc(cap);
+    size_t n = (size_t)snprintf(text, cap,
+        "{\"format\": \"harvest-plan\", \"version\": 1, \"params\": {\"row_start_m\": 0, "
+        "\"row_length_m\": 2}, \"totals\": {\"makespan_s\": 1, \"pick_time_s\": 1, "
+        "\"fruits_planned\": 0}, \"stops\": [");
+    for (unsigned i = 0; i <= HV_EXEC_MAX_STOPS; i++)
+        n += (size_t)snprintf(text + n, cap - n, "%s{\"index\": %u, \"y_m\": 0, \"left\": [], "
+                              "\"right\": []}", i ? "," : "", i);
+    snprintf(text + n, cap - n, "]}");
+    char err[256];
+    assert_int_equal(parse(text, err, sizeof err), HV_ERR_EXEC_PLAN_CAPACITY);
+    assert_non_null(strstr(err, "stops"));
+    free(text);
+    assert_int_equal(hv_exec_plan_load_json("/nonexistent/plan.json", &plan, err, sizeof err),
+                     HV_ERR_IO);
+    assert_non_null(strstr(err, "/nonexistent/plan.json"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_good),
+        cmocka_unit_test(test_bad),
+        cmocka_unit_test(test_capacity_and_io),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

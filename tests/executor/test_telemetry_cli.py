@@ -1,0 +1,125 @@
+"""The telemetry viewer and its CLI without an executor: a log written here with the
+generated LCM types (the same lcm-gen output the C side uses) is read back into the
+planned and actual timelines, summarised and plotted; bad input gets a clear error."""
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+from harvest.telemetry import lcm_types
+
+try:
+    T = lcm_types.load()
+except lcm_types.LcmTypesMissing as e:
+    pytest.skip(f"SKIPPED: {e}", allow_module_level=True)
+
+import lcm  # noqa: E402
+
+from harvest.telemetry import gantt, timeline  # noqa: E402
+
+SOURCE = os.environ.get("HV_SOURCE_DIR", os.getcwd())
+
+
+def env():
+    e = dict(os.environ)
+    e["PYTHONPATH"] = os.path.join(SOURCE, "host")
+    return e
+
+
+def _pick(fid, side, stop, cycle):
+    p = T["plan_pick_t"]()
+    p.fruit_id, p.side, p.stop, p.cycle_s, p.reachable = fid, side, stop, cycle, True
+    return p
+
+
+def _write_log(path):
+    plan = T["plan_t"]()
+    plan.plan_path = "p.json"
+    plan.expected_makespan_s = 5.0 + 10.0 + 4.0 + 3.0 + 2.0
+    plan.final_drive_s = 2.0
+    plan.n_stops = 2
+    for drive, exp in ((5.0, 10.0), (4.0, 3.0)):
+        s = T["plan_stop_t"]()
+        s.drive_s, s.expected_s = drive, exp
+        plan.stops.append(s)
+    plan.picks = [_pick("a", 0, 0, 6.0), _pick("b", 0, 0, 4.0), _pick("c", 1, 0, 7.0),
+                  _pick("d", 1, 1, 3.0)]
+    plan.n_picks = len(plan.picks)
+    log = lcm.EventLog(str(path), "w", overwrite=True)
+    t = 1_000_000
+    log.write_event(t, "HARVEST_PLAN", plan.encode())
+
+    def state(phase, stop, t_s, executed):
+        m = T["exec_state_t"]()
+        m.phase, m.safe_reason, m.stop, m.t_s, m.executed_s = phase, "none", stop, t_s, executed
+        m.arm_phase = ["idle", "idle"]
+        m.expected_makespan_s = plan.expected_makespan_s
+        return m.encode()
+
+    def fruit(fid, side, stop, event, t_s, outcome="", reason="", attempt=1):
+        m = T["fruit_event_t"]()
+        m.fruit_id, m.side, m.stop, m.event, m.t_s = fid, side, stop, event, t_s
+        m.outcome, m.reason, m.attempt = outcome, reason, attempt
+        return m.encode()
+
+    for ch, data in (
+        ("HARVEST_EXEC_STATE", state("harvest", 0, 5.1, 5.1)),
+        ("HARVEST_FRUIT", fruit("a", 0, 0, "approach", 5.1)),
+        ("HARVEST_FRUIT", fruit("c", 1, 0, "approach", 5.1)),
+        ("HARVEST_FRUIT", fruit("a", 0, 0, "outcome", 11.2, "picked", "ok")),
+        ("HARVEST_FRUIT", fruit("b", 0, 0, "approach", 11.2)),
+        ("HARVEST_FRUIT", fruit("c", 1, 0, "fault", 8.0, reason="joint_fault")),
+        ("HARVEST_FRUIT", fruit("c", 1, 0, "approach", 9.0, attempt=2)),
+        ("HARVEST_FRUIT", fruit("b", 0, 0, "outcome", 15.3, "picked", "ok")),
+        ("HARVEST_FRUIT", fruit("c", 1, 0, "outcome", 16.0, "failed", "joint_fault", 3)),
+        ("HARVEST_EXEC_STATE", state("harvest", 1, 20.5, 20.5)),
+        ("HARVEST_FRUIT", fruit("d", 1, 1, "outcome", 20.5, "skipped", "ik_unreachable", 0)),
+        ("HARVEST_EXEC_STATE", state("row_done", 2, 25.0, 25.0)),
+    ):
+        t += 1000
+        log.write_event(t, ch, data)
+    log.close()
+
+
+def test_timeline_and_summary(tmp_path):
+    _write_log(tmp_path / "t.lcmlog")
+    tl = timeline.read(str(tmp_path / "t.lcmlog"))
+    # planned: drive 5, left a [5,11] b [11,15], right c [5,12]; stop 1 from 15, drive 4
+    assert tl.planned_stops == [(0, 5.0, 15.0), (1, 19.0, 22.0)]
+    assert (0, 0, "a", 5.0, 11.0) in tl.planned and (0, 0, "b", 11.0, 15.0) in tl.planned
+    assert (1, 1, "d", 19.0, 22.0) in tl.planned
+    assert tl.planned_total == pytest.approx(24.0)
+    a = tl.actual[(1, "c")]
+    assert (a["start"], a["end"], a["outcome"], a["attempts"]) == (5.1, 16.0, "failed", 2)
+    assert tl.actual_stops == {0: 5.1, 1: 20.5}
+    s = timeline.summary(tl)
+    assert (s["picked"], s["failed"], s["skipped"], s["faults"]) == (2, 1, 1, 1)
+    assert s["final_phase"] == "row_done" and s["stops_reached"] == 2
+    assert s["executed_vs_expected"] == pytest.approx(25.0 / 24.0 - 1.0)
+    out = gantt.plot(tl, str(tmp_path / "g.svg"))
+    assert "<svg" in open(out).read(400)
+
+
+def test_cli(tmp_path):
+    _write_log(tmp_path / "t.lcmlog")
+    r = subprocess.run([sys.executable, "-m", "harvest", "telemetry", "summary",
+                        str(tmp_path / "t.lcmlog")], capture_output=True, text=True, env=env())
+    assert r.returncode == 0, r.stderr
+    assert json.loads(r.stdout)["picked"] == 2
+    r = subprocess.run([sys.executable, "-m", "harvest", "telemetry", "gantt",
+                        str(tmp_path / "t.lcmlog"), "--out", str(tmp_path / "g.pdf")],
+                       capture_output=True, text=True, env=env())
+    assert r.returncode == 2 and "g.pdf" in r.stderr
+    r = subprocess.run([sys.executable, "-m", "harvest", "telemetry", "summary",
+                        str(tmp_path / "missing.lcmlog")], capture_output=True, text=True,
+                       env=env())
+    assert r.returncode == 1 and "telemetry:" in r.stderr
+    r = subprocess.run([sys.executable, "-m", "harvest", "telemetry", "--lcm-python",
+                        str(tmp_path), "summary", str(tmp_path / "t.lcmlog")],
+                       capture_output=True, text=True, env=env())
+    assert r.returncode == 1 and "generated LCM types missing" in r.stderr
+    r = subprocess.run([sys.executable, "-m", "harvest", "telemetry", "--help"],
+                       capture_output=True, text=True, env=env())
+    assert r.returncode == 0 and "gantt" in r.stdout
