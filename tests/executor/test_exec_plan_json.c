@@ -15,16 +15,23 @@
 
 static const char *good =
     "{\"format\": \"harvest-plan\", \"version\": 1, \"method\": \"milp\",\n"
-    " \"inputs\": {\"fruit_map\": \"f.csv\"},\n"
-    " \"params\": {\"stop_step_m\": 0.01, \"row_start_m\": 0.0, \"row_length_m\": 2.0},\n"
-    " \"solver\": {\"status\": \"optimal\", \"gap\": 0.0},\n"
-    " \"totals\": {\"makespan_s\": 61.5, \"pick_time_s\": 31.5, \"fruits_planned\": 3},\n"
+    " \"inputs\": {\"fruit_map\": \"f.csv\", \"cost_table_left\": \"l.bin\",\n"
+    "            \"cost_table_right\": \"r.bin\", \"config\": \"h.cfg\"},\n"
+    " \"params\": {\"stop_step_m\": 0.01, \"row_start_m\": 0.0, \"row_length_m\": 2.0,\n"
+    "            \"stop_penalty_s\": 5, \"vehicle_speed_mps\": 0.1, \"travel_time_s\": 20},\n"
+    " \"solver\": {\"status\": \"optimal\", \"gap\": 0.0, \"nodes\": 1, \"runtime_s\": 0.1,\n"
+    "            \"time_limit_s\": 60},\n"
+    " \"totals\": {\"makespan_s\": 61.5, \"pick_time_s\": 31.5, \"stop_time_s\": 10,\n"
+    "            \"travel_time_s\": 20, \"stops\": 2, \"fruits_planned\": 3,\n"
+    "            \"fruits_unreachable\": 0, \"throughput_fruit_per_s\": 0.0487804878},\n"
     " \"stops\": [\n"
-    "  {\"index\": 40, \"y_m\": 0.4, \"pass\": 0, \"left\": [\n"
+    "  {\"index\": 40, \"y_m\": 0.4, \"pass\": 0, \"C_left_s\": 9.5, \"C_right_s\": 0,\n"
+    "   \"C_s\": 9.5, \"idle_left_s\": 0, \"idle_right_s\": 9.5, \"left\": [\n"
     "     {\"id\": \"a\\u0031\", \"x\": -0.4, \"y\": 0.45, \"z\": 0.5, \"yaw\": 0.1, \"cost_s\": 4.5, \"start_s\": 0},\n"
     "     {\"id\": \"17\", \"x\": -0.41, \"y\": 0.35, \"z\": 0.6, \"yaw\": -0.2e0, \"cost_s\": 5, \"start_s\": 4.5}],\n"
     "   \"right\": []},\n"
-    "  {\"index\": 120, \"y_m\": 1.2, \"left\": [], \"right\": [\n"
+    "  {\"index\": 120, \"y_m\": 1.2, \"pass\": 0, \"C_left_s\": 0, \"C_right_s\": 3.25,\n"
+    "   \"C_s\": 3.25, \"idle_left_s\": 3.25, \"idle_right_s\": 0, \"left\": [], \"right\": [\n"
     "     {\"id\": \"17\", \"x\": 0.4, \"y\": 1.1, \"z\": 0.55, \"yaw\": 0, \"cost_s\": 3.25, \"start_s\": 0}]}\n"
     " ],\n"
     " \"unreachable\": []}\n";
@@ -81,43 +88,45 @@ static void test_bad(void **state)
 {
     (void)state;
     expect("\"harvest-plan\"", "\"other\"", HV_ERR_EXEC_PLAN_FIELD, "format");
-    expect("\"version\": 1", "\"version\": 2", HV_ERR_EXEC_PLAN_RANGE, "version");
+    expect("\"version\": 1", "\"version\": 2", HV_ERR_EXEC_PLAN_FIELD, "version");
     expect("\"row_length_m\": 2.0", "\"row_length\": 2.0", HV_ERR_EXEC_PLAN_FIELD,
-           "params.row_length_m");
+           "params.row_length");
     expect("\"cost_s\": 5,", "\"cost_s\": \"5\",", HV_ERR_EXEC_PLAN_FIELD,
            "stops[0].left[1].cost_s");
-    expect("\"cost_s\": 3.25", "\"cost_s\": -1", HV_ERR_EXEC_PLAN_RANGE,
+    expect("\"cost_s\": 3.25", "\"cost_s\": -1", HV_ERR_EXEC_PLAN_FIELD,
            "stops[1].right[0].cost_s");
     expect("\"id\": \"17\", \"x\": -0.41", "\"id\": \"a1\", \"x\": -0.41",
            HV_ERR_EXEC_PLAN_RANGE, "stops[0].left[1].id");
     expect("\"id\": \"17\", \"x\": 0.4", "\"id\": \"\", \"x\": 0.4", HV_ERR_EXEC_PLAN_FIELD,
            "stops[1].right[0].id");
     expect("\"right\": []}", "\"right\": {}}", HV_ERR_EXEC_PLAN_FIELD, "stops[0].right");
-    expect("\"index\": 120", "\"index\": 1.5", HV_ERR_EXEC_PLAN_RANGE, "stops[1].index");
+    expect("\"index\": 120", "\"index\": 1.5", HV_ERR_EXEC_PLAN_FIELD, "stops[1].index");
     expect("\"fruits_planned\": 3", "\"fruits_planned\": 4", HV_ERR_EXEC_PLAN_RANGE,
            "totals.fruits_planned");
-    expect("\"y_m\": 1.2,", "\"y_m\": 1.2,,", HV_ERR_EXEC_PLAN_SYNTAX, "line 11");
-    expect("\"z\": 0.5,", "\"z\": 05,", HV_ERR_EXEC_PLAN_SYNTAX, "(json)");
+    expect("\"y_m\": 1.2,", "\"y_m\": 1.2,,", HV_ERR_EXEC_PLAN_SYNTAX, "line 17");
+    expect("\"z\": 0.5,", "\"z\": 05,", HV_ERR_EXEC_PLAN_SYNTAX, "leading zero");
     expect("\"unreachable\": []}", "\"unreachable\": []} x", HV_ERR_EXEC_PLAN_SYNTAX,
            "trailing");
     expect("\"f.csv\"", "\"f\x01\"", HV_ERR_EXEC_PLAN_SYNTAX, "control character");
-    expect("\"stops\": [", "\"stops\": 7, \"x\": [", HV_ERR_EXEC_PLAN_FIELD, "stops");
+    expect("\"stops\": [", "\"stops\": 7, \"x\": [", HV_ERR_EXEC_PLAN_FIELD, "unknown field");
 }
 
 static void test_capacity_and_io(void **state)
 {
     (void)state;
-    /* more stops than the static table holds */
-    size_t cap = 256 + (HV_EXEC_MAX_STOPS + 1) * 96;
+    /* more stops than the static table holds: the good plan's header, then empty stops */
+    const char *stops_at = strstr(good, " \"stops\": [");
+    assert_non_null(stops_at);
+    size_t cap = 4096 + (HV_EXEC_MAX_STOPS + 1) * 200;
     char *text = malloc(cap);
-    size_t n = (size_t)snprintf(text, cap,
-        "{\"format\": \"harvest-plan\", \"version\": 1, \"params\": {\"row_start_m\": 0, "
-        "\"row_length_m\": 2}, \"totals\": {\"makespan_s\": 1, \"pick_time_s\": 1, "
-        "\"fruits_planned\": 0}, \"stops\": [");
+    size_t n = (size_t)snprintf(text, cap, "%.*s \"stops\": [", (int)(stops_at - good), good);
     for (unsigned i = 0; i <= HV_EXEC_MAX_STOPS; i++)
-        n += (size_t)snprintf(text + n, cap - n, "%s{\"index\": %u, \"y_m\": 0, \"left\": [], "
-                              "\"right\": []}", i ? "," : "", i);
-    snprintf(text + n, cap - n, "]}");
+        n += (size_t)snprintf(text + n, cap - n,
+                              "%s{\"index\": %u, \"y_m\": 0, \"pass\": 0, \"C_left_s\": 0, "
+                              "\"C_right_s\": 0, \"C_s\": 0, \"idle_left_s\": 0, "
+                              "\"idle_right_s\": 0, \"left\": [], \"right\": []}",
+                              i ? "," : "", i);
+    snprintf(text + n, cap - n, "], \"unreachable\": []}");
     char err[256];
     assert_int_equal(parse(text, err, sizeof err), HV_ERR_EXEC_PLAN_CAPACITY);
     assert_non_null(strstr(err, "stops"));

@@ -92,6 +92,21 @@ static double rd_num(rd_t *r, const json_value_t *obj, const char *path, const c
     return v ? v->number : 0.0;
 }
 
+/* A number >= 0 (times and costs). */
+static double rd_nonneg(rd_t *r, const json_value_t *obj, const char *path, const char *key)
+{
+    char full[224];
+    const json_value_t *v = rd_field(r, obj, path, key, JSON_NUMBER, full, sizeof full);
+    if (v == NULL) {
+        return 0.0;
+    }
+    if (!(v->number >= 0.0)) {
+        rd_fail(r, full, "expected a number >= 0");
+        return 0.0;
+    }
+    return v->number;
+}
+
 /* A non-negative integer no larger than `max`. */
 static double rd_count(rd_t *r, const json_value_t *obj, const char *path, const char *key,
                        double max)
@@ -168,12 +183,17 @@ static hv_plan_pick_t *rd_picks(rd_t *r, const json_value_t *stop, const char *p
         }
         rd_only(r, o, p, allowed);
         rd_str(r, o, p, "id", picks[k].id, sizeof picks[k].id);
+        if (!r->failed && picks[k].id[0] == '\0') {
+            char f[240];
+            fmt_path(f, sizeof f, "%s.id", p);
+            rd_fail(r, f, "empty fruit id");
+        }
         picks[k].x_m = rd_num(r, o, p, "x");
         picks[k].y_m = rd_num(r, o, p, "y");
         picks[k].z_m = rd_num(r, o, p, "z");
         picks[k].yaw_rad = rd_num(r, o, p, "yaw");
-        picks[k].cost_s = rd_num(r, o, p, "cost_s");
-        picks[k].start_s = rd_num(r, o, p, "start_s");
+        picks[k].cost_s = rd_nonneg(r, o, p, "cost_s");
+        picks[k].start_s = rd_nonneg(r, o, p, "start_s");
     }
     *n_out = arr->n;
     return picks;
