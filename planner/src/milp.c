@@ -247,14 +247,15 @@ static int link_cuts_add_violated(const hv_instance_t *inst, const hv_milp_model
     return added;
 }
 
-/* A longer local search from `out` (polish_work / n kicks); keeps it when better. */
+/* A longer local search from `out` (polish_work * 100 / n^2 kicks); keeps it if better. */
 static void polish(const hv_instance_t *inst, const hv_milp_options_t *opt,
                    hv_assignment_t *out, double *best_t)
 {
     hv_ls_options_t lo;
     hv_ls_options_default(&lo);
+    /* a descent costs ~n^2 (exchanges), so the kick count scales with 1/n^2 */
     size_t n = inst->n_fruits ? inst->n_fruits : 1;
-    size_t kicks = (size_t)opt->polish_work / n;
+    size_t kicks = (size_t)opt->polish_work * 100u / (n * n);
     lo.kicks = (unsigned)(kicks < 50 ? 50 : (kicks > 3000 ? 3000 : kicks));
     lo.seed = 0x5bd1e9955bd1e995ull;
     hv_assignment_t pa;

@@ -27,7 +27,7 @@ typedef struct hv_milp_options {
     const char *export_lp_path; /* when not NULL: write the model in CPLEX LP format */
 
     /* Model and search choices; planner/SOLVER.md gives each one's measured effect.
-     * hv_milp_options_default() sets the fastest exact combination measured. */
+     * hv_milp_options_default() sets the combination SOLVER.md keeps. */
     int link_disaggregated;  /* 0: sum_f a_fp <= n_p b_p per stop; 1: a_fp <= b_p per pair;
                                 2: the per-stop rows plus a_fp <= b_p added where violated
                                 (LP rounds at the root, cuts in the tree) */
@@ -45,8 +45,10 @@ typedef struct hv_milp_options {
     int count_branching;     /* 1: integer stop-count columns (all stops, and per block of
                                 block_stops stops when > 0), branched on first */
     int block_stops;
-    int polish_work;         /* > 0: when the root gap exceeds 0.2 %, run the local search
-                                from the incumbent with polish_work / n_fruits kicks first */
+    int polish_work;         /* > 0: when the root gap is > 0.2 % and phase 1 of the tree
+                                (20 % of the limit) does not prove optimality, run
+                                the local search from the best plan with
+                                polish_work * 100 / n_fruits^2 kicks (1500 at 100 fruits) */
     int pattern_cuts;        /* tree depth down to which stop-pattern cuts are separated
                                 (milp_cuts.h); -1: none */
 } hv_milp_options_t;
@@ -57,7 +59,7 @@ typedef struct hv_milp_result {
     hv_solve_status_t status;
     double objective_s; /* T of the returned assignment, incl. tau * stops and T_travel */
     double bound_s;     /* best proven lower bound on T */
-    double gap;         /* (objective - bound) / objective, 0 when optimal */
+    double gap;         /* (objective - bound) / objective; <= rel_gap when OPTIMAL */
     long nodes;         /* branch-and-bound nodes (summed over sub-solves if any) */
     double runtime_s;
     double incumbent_s;   /* T of the starting incumbent (given or heuristic), INFINITY if none */
@@ -67,7 +69,7 @@ typedef struct hv_milp_result {
     long cuts;            /* stop-pattern cuts added */
 } hv_milp_result_t;
 
-/* Defaults: 60 s limit, gap 1e-6, quiet, no export, every improvement of SOLVER.md on. */
+/* Defaults: 60 s limit, gap 1e-6, quiet, no export, the choices SOLVER.md keeps. */
 void hv_milp_options_default(hv_milp_options_t *opt);
 
 /* Solve. `incumbent` (may be NULL) is a feasible assignment handed to the solver as its
