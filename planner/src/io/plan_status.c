@@ -1,4 +1,5 @@
 /* Names of the planner's status codes (plan_status.h). */
+#include "hv/milp_status.h"
 #include "hv/plan_status.h"
 
 const char *hv_plan_status_name(int status)
@@ -29,6 +30,9 @@ const char *hv_plan_status_name(int status)
     case HV_ERR_PLAN_CHECK_REACHABLE: return "HV_ERR_PLAN_CHECK_REACHABLE";
     case HV_ERR_PLAN_CHECK_PARAMS: return "HV_ERR_PLAN_CHECK_PARAMS";
     case HV_ERR_PLAN_USAGE: return "HV_ERR_PLAN_USAGE";
+    case HV_ERR_MILP_GLPK: return "HV_ERR_MILP_GLPK";
+    case HV_ERR_MILP_EXPORT: return "HV_ERR_MILP_EXPORT";
+    case HV_ERR_MILP_INCUMBENT: return "HV_ERR_MILP_INCUMBENT";
     default: return hv_status_name(status);
     }
 }
