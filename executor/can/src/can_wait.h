@@ -2,8 +2,13 @@
 #ifndef HV_CAN_WAIT_H
 #define HV_CAN_WAIT_H
 
+#include <errno.h>
+#include <poll.h>
 #include <stdint.h>
 #include <time.h>
+
+#include "hv/can_bus.h"
+#include "hv/can_status.h"
 
 /* Monotonic now in ms. */
 static inline int64_t hv_can_now_ms(void)
@@ -34,6 +39,26 @@ static inline int hv_can_left_ms(int64_t deadline)
         return -1;
     int64_t left = deadline - hv_can_now_ms();
     return left <= 0 ? 0 : (left > 1000000 ? 1000000 : (int)left);
+}
+
+/* After a send failed with errno `e` (EINTR already retried by the caller): wait until the
+ * socket may take the frame, within `deadline`. HV_OK: try again; else the code to return. */
+static inline hv_status_t hv_can_send_backoff(hv_can_bus_t *bus, int e, int64_t deadline)
+{
+    bus->last_errno = e;
+    if (e != EAGAIN && e != EWOULDBLOCK && e != ENOBUFS)
+        return (hv_status_t)HV_CAN_ERR_SEND;
+    int left = hv_can_left_ms(deadline);
+    if (left == 0)
+        return (hv_status_t)HV_CAN_ERR_TX_FULL;
+    /* ENOBUFS is the device queue, which poll() does not report: retry after 1 ms */
+    struct pollfd p = {bus->tx_fd, POLLOUT, 0};
+    int wait = (e == ENOBUFS && (left < 0 || left > 1)) ? 1 : left;
+    if (poll(&p, 1, wait) < 0 && errno != EINTR) {
+        bus->last_errno = errno;
+        return (hv_status_t)HV_CAN_ERR_SEND;
+    }
+    return HV_OK;
 }
 
 #endif /* HV_CAN_WAIT_H */

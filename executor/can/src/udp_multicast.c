@@ -51,18 +51,9 @@ static hv_status_t udp_send(hv_can_bus_t *bus, const hv_can_frame_t *frame, int 
         int e = n < 0 ? errno : EIO;
         if (e == EINTR)
             continue;
-        bus->last_errno = e;
-        if (e != EAGAIN && e != EWOULDBLOCK && e != ENOBUFS)
-            return (hv_status_t)HV_CAN_ERR_SEND;
-        int left = hv_can_left_ms(deadline);
-        if (left == 0)
-            return (hv_status_t)HV_CAN_ERR_TX_FULL;
-        struct pollfd p = {bus->tx_fd, POLLOUT, 0};
-        int wait = (e == ENOBUFS && (left < 0 || left > 1)) ? 1 : left;
-        if (poll(&p, 1, wait) < 0 && errno != EINTR) {
-            bus->last_errno = errno;
-            return (hv_status_t)HV_CAN_ERR_SEND;
-        }
+        st = hv_can_send_backoff(bus, e, deadline);
+        if (st != HV_OK)
+            return st;
     }
 }
 
