@@ -61,4 +61,20 @@ static inline hv_status_t hv_can_send_backoff(hv_can_bus_t *bus, int e, int64_t 
     return HV_OK;
 }
 
+/* Nothing to read: wait for input on the receive socket until `deadline`. HV_OK: read
+ * again; else the code to return (TIMEOUT, INTERRUPTED or RECV). */
+static inline hv_status_t hv_can_wait_readable(hv_can_bus_t *bus, int64_t deadline)
+{
+    int left = hv_can_left_ms(deadline);
+    if (left == 0)
+        return (hv_status_t)HV_CAN_ERR_TIMEOUT;
+    struct pollfd p = {bus->rx_fd, POLLIN, 0};
+    int r = poll(&p, 1, left);
+    if (r < 0) {
+        bus->last_errno = errno;
+        return errno == EINTR ? (hv_status_t)HV_CAN_ERR_INTERRUPTED : (hv_status_t)HV_CAN_ERR_RECV;
+    }
+    return r == 0 ? (hv_status_t)HV_CAN_ERR_TIMEOUT : HV_OK;
+}
+
 #endif /* HV_CAN_WAIT_H */

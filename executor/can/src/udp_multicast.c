@@ -108,18 +108,9 @@ static hv_status_t udp_recv(hv_can_bus_t *bus, hv_can_frame_t *frame, int timeou
             continue; /* dropped one; the queue may hold more */
         if (st != (hv_status_t)HV_CAN_ERR_TIMEOUT)
             return st;
-        int left = hv_can_left_ms(deadline);
-        if (left == 0)
-            return (hv_status_t)HV_CAN_ERR_TIMEOUT;
-        struct pollfd p = {bus->rx_fd, POLLIN, 0};
-        int r = poll(&p, 1, left);
-        if (r < 0) {
-            bus->last_errno = errno;
-            return errno == EINTR ? (hv_status_t)HV_CAN_ERR_INTERRUPTED
-                                  : (hv_status_t)HV_CAN_ERR_RECV;
-        }
-        if (r == 0)
-            return (hv_status_t)HV_CAN_ERR_TIMEOUT;
+        st = hv_can_wait_readable(bus, deadline);
+        if (st != HV_OK)
+            return st;
     }
 }
 
