@@ -39,7 +39,7 @@ static void usage(FILE *f)
             "                       glpk_cuts_phase2,\n"
             "                       pcost_branching, pattern_cuts (depth, -1 off),\n"
             "                       count_branching, block_stops, backtracking,\n"
-            "                       polish_work\n"
+            "                       polish_work, algorithm (0 compact, 1 price)\n"
             "  --no-baselines       skip FOV and Serial\n"
             "  -v                   solver progress on stderr\n"
             "  --help               this text\n",
@@ -73,6 +73,7 @@ static int set_option(hv_milp_options_t *o, const char *kv)
         {"block_stops", &o->block_stops},
         {"backtracking", &o->backtracking},
         {"polish_work", &o->polish_work},
+        {"algorithm", &o->algorithm},
     };
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; ++i) {
         if (strlen(keys[i].k) == n && strncmp(kv, keys[i].k, n) == 0) {
@@ -99,6 +100,7 @@ static void plain_options(hv_milp_options_t *o, double limit_s)
     o->pattern_cuts = -1;
     o->polish_work = 0;
     o->count_branching = 0;
+    o->algorithm = HV_MILP_ALG_COMPACT;
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -149,7 +151,7 @@ int main(int argc, char **argv)
             usage(stdout);
             return 0;
         } else if (strcmp(a, "-v") == 0) {
-            mo.verbose = 1;
+            mo.verbose = mo.verbose + 1;
         } else if (strcmp(a, "--no-baselines") == 0) {
             baselines = 0;
         } else if (v == NULL) {

@@ -15,6 +15,7 @@
 #include "hv/milp_cuts.h"
 #include "hv/milp_local_search.h"
 #include "hv/milp_model.h"
+#include "hv/milp_price.h"
 #include "hv/milp_status.h"
 #include "hv/plan_eval.h"
 #include "hv/plan_status.h"
@@ -35,6 +36,7 @@ void hv_milp_options_default(hv_milp_options_t *opt)
     opt->glpk_cuts = 0;
     opt->pcost_branching = 0;
     opt->pattern_cuts = 0;
+    opt->algorithm = HV_MILP_ALG_PRICE;
     opt->count_branching = 0;
     opt->block_stops = 10;
     opt->polish_work = 150000;
@@ -336,6 +338,11 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
         set_trivial(inst, out, res);
         return HV_OK;
     }
+    int price = opt->algorithm == HV_MILP_ALG_PRICE;
+    if (price && opt->export_lp_path == NULL) {
+        res->incumbent_taken = inc != NULL;
+        return hv_price_solve(inst, opt, inc, inc_t, t_deadline, out, res);
+    }
     hv_milp_model_opts_t mo;
     memset(&mo, 0, sizeof mo);
     mo.link_disaggregated = opt->link_disaggregated == 1;
@@ -343,7 +350,7 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
     mo.block_stops = opt->count_branching ? opt->block_stops : 0;
     hv_status_t st = HV_OK;
 
-    if (opt->side_bounds) {
+    if (opt->side_bounds && !price) {
         /* each side alone (easy: no max coupling): its optimum bounds the whole plan */
         for (int sd = 0; sd < 2 && st == HV_OK; ++sd) {
             unsigned char *keep = calloc(inst->n_fruits + 1, 1);
@@ -396,6 +403,11 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
     if (opt->export_lp_path != NULL && glp_write_lp(m.lp, NULL, opt->export_lp_path) != 0) {
         hv_milp_model_free(&m);
         return (hv_status_t)HV_ERR_MILP_EXPORT;
+    }
+    if (price) { /* the paper's model was wanted for the file only */
+        hv_milp_model_free(&m);
+        res->incumbent_taken = inc != NULL;
+        return hv_price_solve(inst, opt, inc, inc_t, t_deadline, out, res);
     }
     double *x = malloc(((size_t)m.n_cols + 1) * sizeof *x);
     if (x == NULL) {

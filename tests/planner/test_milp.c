@@ -137,6 +137,7 @@ static void expect_optimal(const hv_instance_t *in, const hv_milp_options_t *opt
 static void plain(hv_milp_options_t *o)
 {
     hv_milp_options_default(o);
+    o->algorithm = HV_MILP_ALG_COMPACT;
     o->heuristic_incumbent = 0;
     o->ms_granularity = 0;
     o->decompose = 0;
@@ -155,11 +156,16 @@ static void test_matches_brute_force(void **state)
         uint32_t bs[8];
         double best = brute_force(&in, bs);
         hv_milp_options_t o;
-        hv_milp_options_default(&o);
+        hv_milp_options_default(&o); /* branch-and-price */
+        expect_optimal(&in, &o, best);
+        o.heuristic_incumbent = 0; /* no starting plan: only artificial columns cover */
+        o.decompose = 0;
+        o.ms_granularity = 0;
         expect_optimal(&in, &o, best);
         plain(&o);
         expect_optimal(&in, &o, best);
         hv_milp_options_default(&o);
+        o.algorithm = HV_MILP_ALG_COMPACT;
         o.branch_stops_first = 1;
         o.side_bounds = 1;
         o.pcost_branching = 1;
@@ -170,10 +176,48 @@ static void test_matches_brute_force(void **state)
         o.backtracking = 1;
         expect_optimal(&in, &o, best);
         hv_milp_options_default(&o);
+        o.algorithm = HV_MILP_ALG_COMPACT;
         o.link_disaggregated = 2; /* lazy linking rows and cuts */
         expect_optimal(&in, &o, best);
         hv_instance_free(&in);
     }
+}
+
+/* Branch-and-price against GLPK's branch-and-cut on the paper's model, on instances too big
+ * for enumeration where the pricing root is fractional, so the branching (stop count and
+ * fruit intervals) and the count rows are exercised; both must prove the same optimum. */
+static void test_price_matches_compact(void **state)
+{
+    (void)state;
+    int branched = 0;
+    for (uint64_t seed = 100; seed < 130; ++seed) {
+        hv_instance_t in;
+        make_instance(&in, 12 + seed % 9, 18 + seed % 7, 8, 0, seed);
+        hv_assignment_t out;
+        assert_int_equal(hv_assignment_alloc(&out, in.n_fruits), HV_OK);
+        hv_milp_options_t o;
+        hv_milp_options_default(&o);
+        o.decompose = 0;
+        o.time_limit_s = 120;
+        hv_milp_result_t rp, rc;
+        assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &rp), HV_OK);
+        assert_int_equal(rp.status, HV_SOLVE_OPTIMAL);
+        double t;
+        assert_int_equal(hv_assignment_makespan(&in, &out, &t), HV_OK);
+        assert_true(fabs(t - rp.objective_s) < 1e-6);
+        branched += rp.nodes > 1;
+        o.algorithm = HV_MILP_ALG_COMPACT;
+        assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &rc), HV_OK);
+        assert_int_equal(rc.status, HV_SOLVE_OPTIMAL);
+        if (fabs(rp.objective_s - rc.objective_s) > 1e-6) {
+            fail_msg("seed %llu: price %.3f s, compact %.3f s", (unsigned long long)seed,
+                     rp.objective_s, rc.objective_s);
+        }
+        assert_true(rp.root_bound_s <= rp.objective_s + 1e-6);
+        hv_assignment_free(&out);
+        hv_instance_free(&in);
+    }
+    assert_true(branched >= 3); /* precondition: the search really branched */
 }
 
 static void test_heuristic_and_local_search(void **state)
@@ -238,6 +282,13 @@ static void test_incumbent_callback(void **state)
     assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &r2), HV_OK);
     assert_int_equal(r2.incumbent_taken, 0);
     assert_true(fabs(r2.objective_s - res.objective_s) < 1e-6);
+    /* and the same optimum from GLPK's branch-and-cut on the paper's model */
+    hv_milp_result_t r3;
+    o.algorithm = HV_MILP_ALG_COMPACT;
+    assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &r3), HV_OK);
+    assert_int_equal(r3.status, HV_SOLVE_OPTIMAL);
+    assert_true(fabs(r3.objective_s - res.objective_s) < 1e-6);
+    assert_true(res.columns > 0 && r3.columns == 0);
     hv_assignment_free(&inc);
     hv_assignment_free(&out);
     hv_instance_free(&in);
@@ -441,6 +492,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_matches_brute_force),
+        cmocka_unit_test(test_price_matches_compact),
         cmocka_unit_test(test_heuristic_and_local_search),
         cmocka_unit_test(test_incumbent_callback),
         cmocka_unit_test(test_time_limit_is_honest),

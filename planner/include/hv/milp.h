@@ -49,9 +49,15 @@ typedef struct hv_milp_options {
                                 (20 % of the limit) does not prove optimality, run
                                 the local search from the best plan with
                                 polish_work * 100 / n_fruits^2 kicks (1500 at 100 fruits) */
+    int algorithm;           /* HV_MILP_ALG_*: how the model is solved (both exact) */
     int pattern_cuts;        /* tree depth down to which stop-pattern cuts are separated
                                 (milp_cuts.h); -1: none */
 } hv_milp_options_t;
+
+enum {
+    HV_MILP_ALG_COMPACT = 0, /* GLPK's branch-and-cut on the paper's model (milp_model.h) */
+    HV_MILP_ALG_PRICE = 1    /* branch-and-price over stop patterns (milp_price.h) */
+};
 
 enum { HV_MILP_CUT_GMI = 1, HV_MILP_CUT_MIR = 2, HV_MILP_CUT_COVER = 4, HV_MILP_CUT_CLIQUE = 8 };
 
@@ -66,7 +72,8 @@ typedef struct hv_milp_result {
     int incumbent_taken;  /* 1 when GLPK accepted that incumbent through its callback */
     double root_bound_s;  /* LP relaxation bound at the root (with the added rows) */
     int components;       /* independent row segments solved (1 without decomposition) */
-    long cuts;            /* stop-pattern cuts added */
+    long cuts;            /* stop-pattern cuts added (compact) */
+    long columns;         /* stop-pattern columns generated (branch-and-price) */
 } hv_milp_result_t;
 
 /* Defaults: 60 s limit, gap 1e-6, quiet, no export, the choices SOLVER.md keeps. */

@@ -1,0 +1,1434 @@
+/* Branch-and-price for the stop-and-harvest MILP (milp_price.h): the master LP on GLPK's
+ * simplex, exact per-stop pricing (milp_pricing.h), branching on a fruit's stop interval,
+ * best-bound node order, Lagrangian bounds. Internally times are in ms. */
+#ifndef _POSIX_C_SOURCE
+#define _POSIX_C_SOURCE 200809L /* clock_gettime */
+#endif
+
+#include <float.h>
+#include <glpk.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "hv/milp_price.h"
+#include "hv/milp_pricing.h"
+#include "hv/milp_local_search.h"
+#include "hv/milp_model.h"
+#include "hv/milp_status.h"
+#include "hv/plan_eval.h"
+#include "hv/plan_status.h"
+
+#define BIG_MS 1e6         /* cost of an artificial column: keeps every node's master feasible */
+#define RC_EPS_MS 1e-6     /* a column enters when its reduced cost is below -RC_EPS_MS */
+#define LAMBDA_EPS 1e-6    /* a master value this close to 0 or 1 counts as integral */
+#define SMOOTHING 0.8      /* Wentges dual smoothing weight of the centre (SOLVER.md) */
+#define CAND_WINDOW 5      /* a stop's column enters when its reduced cost is the least
+                              within +-CAND_WINDOW stops */
+#define CENTRE_MIN_PAIRS 9000 /* from this many pairs the root starts from the paper's LP
+                                 duals (SOLVER.md: alpha 4 needs it, alpha <= 2.5 does not) */
+#define FULL_EVERY 4       /* a pricing round over all stops at least every 4 rounds */
+
+typedef struct pattern {
+    uint32_t stop;
+    uint32_t first, n; /* fruits bp->pf[first .. first + n), ascending */
+    double cost_ms;
+    int col; /* master column */
+} pattern_t;
+
+/* A branch-and-bound node: the parent's restrictions plus one more. */
+typedef enum node_kind {
+    KIND_ROOT,
+    KIND_FRUIT,    /* fruit `fruit` at a stop in [lo, hi] */
+    KIND_COUNT_LE, /* at most `rhs` stops used in [lo, hi] */
+    KIND_COUNT_GE  /* at least `rhs` stops used in [lo, hi] */
+} node_kind_t;
+
+typedef struct node {
+    int32_t parent;
+    node_kind_t kind;
+    uint32_t fruit, lo, hi;
+    int32_t rhs;
+    uint32_t depth;
+    double lb_ms;
+    int32_t basis; /* the parent's final master basis (index into bp_t.bases), -1 none */
+} node_t;
+
+/* A master basis: the status of rows 1..n_rows then columns 1..n_cols. */
+typedef struct basis {
+    int n_rows, n_cols;
+    unsigned char *stat;
+} basis_t;
+
+/* A master row counting the patterns at stops [lo, hi], one per interval ever branched on
+ * (rows never move, so a stored basis stays meaningful); free unless the current node's
+ * path restricts that count to [min, max]. */
+typedef struct count_row {
+    uint32_t lo, hi;
+    int row;
+    int art; /* artificial column: keeps an "at least" row feasible at every node */
+    double min, max; /* -INFINITY / INFINITY: no restriction on that side */
+} count_row_t;
+
+/* A stop's best pattern in the current pricing round. */
+typedef struct cand {
+    double rc, cost;
+    uint32_t first, n; /* fruits cf[first .. first + n) */
+} cand_t;
+
+typedef struct bp {
+    const hv_instance_t *inst;
+    const hv_milp_options_t *opt;
+    size_t nf, ns;
+    double tau_ms, travel_ms;
+    int whole_ms; /* every cost is whole ms: a better plan is better by >= 1 ms */
+
+    size_t *stop_begin; /* CSR: pairs of stop p are stop_pair[stop_begin[p] .. ) (pair index) */
+    size_t *stop_pair;
+    int *row_of_fruit;  /* master row of fruit f, 0 when unreachable */
+    int *row_of_stop;   /* master row of stop p, 0 when no fruit reaches it */
+    int n_art;
+    count_row_t *crow;
+    size_t n_crow, crow_cap;
+    double *sigma_stop; /* per stop: the sum of the active count rows' duals */
+
+    glp_prob *lp;
+    pattern_t *pat;
+    size_t n_pat, pat_cap;
+    uint32_t *pf;
+    size_t pf_len, pf_cap;
+    unsigned char *pat_open;   /* the column is open in the master */
+    size_t open_cap;
+    int32_t *hslot; /* open-addressing hash of patterns, -1 = empty */
+    size_t hcap;
+
+    node_t *nodes;
+    size_t n_nodes, nodes_cap;
+    basis_t *bases;
+    size_t n_bases, bases_cap, bases_bytes;
+    int32_t *heap;
+    size_t heap_len, heap_cap;
+    uint32_t *lo, *hi; /* the current node's stop interval per fruit */
+
+    hv_pricer_t pricer;
+    hv_price_item_t *itl, *itr;
+    uint32_t *sel;
+    double *pi_lp, *mu_lp, *sg_lp; /* the master's duals: fruit, stop and count rows */
+    double *pi_c, *sg_c;          /* the duals of the best bound at this node (centre) */
+    double *pi_sep, *sg_sep;      /* the duals priced at */
+    size_t sg_cap, sgc_cap, sgs_cap;
+    double *sigma_lp;
+    double center_lag, smooth;
+    int root_centre; /* center_lag / pi_c were set before the root: keep them */
+    cand_t *cand; /* per stop */
+    uint32_t *cf;
+    size_t cf_len, cf_cap;
+    long cand_window;
+    unsigned char *hot; /* per stop: its value was negative when last priced */
+    int partial_rounds, full_every;
+    size_t *warm_pair; /* per stop (slots at stop_begin[p]): its last best pattern's pairs */
+    size_t *warm_n;    /* their number, SIZE_MAX when none yet */
+    size_t *pair_at;   /* per fruit: its pair at the stop being priced */
+    double tail_ms;
+    int *ind;
+    double *val;
+    size_t iv_cap; /* entries of ind and val */
+
+    uint32_t *best; /* incumbent assignment */
+    double ub_ms;
+    double t_deadline;
+    double t_start, t_print;
+    long cg_iters;
+    double t_heur; /* time spent in the rounding heuristic (s) */
+    double t_lp, t_price; /* time in the master LP and in pricing (s) */
+    long lp_restarts;     /* master bases rebuilt after a singular warm start */
+    long heur_runs, heur_wins;
+    int inexact; /* a numerically doubtful node was closed: do not claim optimality */
+} bp_t;
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int grow(void **p, size_t *cap, size_t need, size_t elem)
+{
+    if (need <= *cap) {
+        return 1;
+    }
+    size_t c = *cap ? *cap : 64;
+    while (c < need) {
+        c *= 2;
+    }
+    void *q = realloc(*p, c * elem);
+    if (q == NULL) {
+        return 0;
+    }
+    *p = q;
+    *cap = c;
+    return 1;
+}
+
+static int prunable(const bp_t *b, double lb_ms)
+{
+    if (!isfinite(b->ub_ms)) {
+        return 0;
+    }
+    if (b->whole_ms && lb_ms > b->ub_ms - 1.0 + 1e-6) {
+        return 1;
+    }
+    return lb_ms >= b->ub_ms - b->opt->rel_gap * b->ub_ms - 1e-9;
+}
+
+/* ---- the pattern pool ------------------------------------------------------------------- */
+
+static uint64_t pattern_hash(uint32_t stop, const uint32_t *f, uint32_t n)
+{
+    uint64_t h = 1469598103934665603ull ^ stop;
+    for (uint32_t k = 0; k < n; ++k) {
+        h = (h ^ f[k]) * 1099511628211ull;
+        h ^= h >> 29;
+    }
+    return h;
+}
+
+static int pattern_equal(const bp_t *b, int32_t k, uint32_t stop, const uint32_t *f, uint32_t n)
+{
+    const pattern_t *p = &b->pat[k];
+    return p->stop == stop && p->n == n && memcmp(b->pf + p->first, f, n * sizeof *f) == 0;
+}
+
+static int hash_insert(bp_t *b, int32_t k);
+
+static int iv_reserve(bp_t *b, size_t n)
+{
+    size_t ci = b->iv_cap, cv = b->iv_cap;
+    if (!grow((void **)&b->ind, &ci, n + 1, sizeof *b->ind) ||
+        !grow((void **)&b->val, &cv, n + 1, sizeof *b->val)) {
+        return 0;
+    }
+    b->iv_cap = ci < cv ? ci : cv;
+    return 1;
+}
+
+static int hash_rebuild(bp_t *b, size_t cap)
+{
+    free(b->hslot);
+    b->hslot = malloc(cap * sizeof *b->hslot);
+    if (b->hslot == NULL) {
+        return 0;
+    }
+    b->hcap = cap;
+    for (size_t s = 0; s < cap; ++s) {
+        b->hslot[s] = -1;
+    }
+    for (size_t k = 0; k < b->n_pat; ++k) {
+        hash_insert(b, (int32_t)k);
+    }
+    return 1;
+}
+
+static int hash_insert(bp_t *b, int32_t k)
+{
+    const pattern_t *p = &b->pat[k];
+    size_t s = (size_t)(pattern_hash(p->stop, b->pf + p->first, p->n) & (b->hcap - 1));
+    while (b->hslot[s] >= 0) {
+        s = (s + 1) & (b->hcap - 1);
+    }
+    b->hslot[s] = k;
+    return 1;
+}
+
+/* The index of the pattern (stop, f[0..n)) in the pool, -1 when new. */
+static int32_t pattern_find(const bp_t *b, uint32_t stop, const uint32_t *f, uint32_t n)
+{
+    size_t s = (size_t)(pattern_hash(stop, f, n) & (b->hcap - 1));
+    for (; b->hslot[s] >= 0; s = (s + 1) & (b->hcap - 1)) {
+        if (pattern_equal(b, b->hslot[s], stop, f, n)) {
+            return b->hslot[s];
+        }
+    }
+    return -1;
+}
+
+static void col_open(bp_t *b, size_t j, unsigned char open)
+{
+    if (open != b->pat_open[j]) {
+        b->pat_open[j] = open;
+        glp_set_col_bnds(b->lp, b->pat[j].col, open ? GLP_LO : GLP_FX, 0.0, 0.0);
+    }
+}
+
+static int cmp_u32(const void *a, const void *c)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)c;
+    return x < y ? -1 : x > y;
+}
+
+/* Add the pattern (stop, fruits f[0..n), sorted here) as a master column unless known.
+ * Returns 1 added, 0 known, -1 out of memory. */
+static int pattern_add(bp_t *b, uint32_t stop, uint32_t *f, uint32_t n, double cost_ms)
+{
+    qsort(f, n, sizeof *f, cmp_u32);
+    int32_t known = pattern_find(b, stop, f, n);
+    if (known >= 0) {
+        return 0;
+    }
+    if (!grow((void **)&b->pat, &b->pat_cap, b->n_pat + 1, sizeof *b->pat) ||
+        !grow((void **)&b->pf, &b->pf_cap, b->pf_len + n, sizeof *b->pf)) {
+        return -1;
+    }
+    if (!grow((void **)&b->pat_open, &b->open_cap, b->n_pat + 1, 1)) {
+        return -1;
+    }
+    b->pat[b->n_pat] = (pattern_t){stop, (uint32_t)b->pf_len, n, cost_ms, 0};
+    memcpy(b->pf + b->pf_len, f, n * sizeof *f);
+    b->pf_len += n;
+    b->pat_open[b->n_pat] = 1;
+    int32_t k = (int32_t)b->n_pat++;
+    if (2 * b->n_pat > b->hcap) {
+        if (!hash_rebuild(b, 2 * b->hcap)) {
+            return -1;
+        }
+    } else {
+        hash_insert(b, k);
+    }
+    if (!iv_reserve(b, n + 2 + b->n_crow)) {
+        return -1;
+    }
+    int j = glp_add_cols(b->lp, 1);
+    b->pat[k].col = j;
+    int len = 0;
+    for (uint32_t q = 0; q < n; ++q) {
+        b->ind[++len] = b->row_of_fruit[f[q]];
+        b->val[len] = 1.0;
+    }
+    b->ind[++len] = b->row_of_stop[stop];
+    b->val[len] = 1.0;
+    for (size_t r = 0; r < b->n_crow; ++r) {
+        if (b->crow[r].lo <= stop && stop <= b->crow[r].hi) {
+            b->ind[++len] = b->crow[r].row;
+            b->val[len] = 1.0;
+        }
+    }
+    glp_set_mat_col(b->lp, j, len, b->ind, b->val);
+    glp_set_col_bnds(b->lp, j, GLP_LO, 0.0, 0.0);
+    glp_set_obj_coef(b->lp, j, cost_ms);
+    return 1;
+}
+
+/* Cost of the pair (fruit f, stop p) in ms, or -1 when not reachable. */
+static double pair_ms(const bp_t *b, uint32_t f, uint32_t p)
+{
+    const hv_instance_t *in = b->inst;
+    size_t lo = in->fruit_begin[f], hi = in->fruit_begin[f + 1];
+    while (lo < hi) { /* pairs of a fruit are sorted by stop */
+        size_t mid = lo + (hi - lo) / 2;
+        if (in->pairs[mid].stop < p) {
+            lo = mid + 1;
+        } else {
+            hi = mid;
+        }
+    }
+    if (lo < in->fruit_begin[f + 1] && in->pairs[lo].stop == p) {
+        return 1000.0 * in->pairs[lo].cost_s;
+    }
+    return -1.0;
+}
+
+/* The patterns of an assignment as columns (a plan's stops are good columns to start with). */
+static int add_assignment_columns(bp_t *b, const uint32_t *stop_of)
+{
+    for (size_t p = 0; p < b->ns; ++p) {
+        uint32_t n = 0;
+        double wl = 0.0, wr = 0.0;
+        for (size_t f = 0; f < b->nf; ++f) {
+            if (stop_of[f] == p) {
+                double c = pair_ms(b, (uint32_t)f, (uint32_t)p);
+                if (c < 0) {
+                    return -1;
+                }
+                *(b->inst->fruits[f].side == HV_SIDE_LEFT ? &wl : &wr) += c;
+                b->sel[n++] = (uint32_t)f;
+            }
+        }
+        if (n > 0 && pattern_add(b, (uint32_t)p, b->sel, n, b->tau_ms + fmax(wl, wr)) < 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* Each fruit alone at its cheapest stop as a starting column: the first duals then stay
+ * near pick costs instead of the artificials' big cost (SOLVER.md). */
+static int add_start_columns(bp_t *b)
+{
+    const hv_instance_t *in = b->inst;
+    for (size_t f = 0; f < b->nf; ++f) {
+        size_t bk = SIZE_MAX;
+        for (size_t k = in->fruit_begin[f]; k < in->fruit_begin[f + 1]; ++k) {
+            if (bk == SIZE_MAX || in->pairs[k].cost_s < in->pairs[bk].cost_s) {
+                bk = k;
+            }
+        }
+        if (bk != SIZE_MAX) {
+            b->sel[0] = (uint32_t)f;
+            if (pattern_add(b, in->pairs[bk].stop, b->sel, 1,
+                            b->tau_ms + 1000.0 * in->pairs[bk].cost_s) < 0) {
+                return -1;
+            }
+        }
+    }
+    return 0;
+}
+
+/* ---- set-up ----------------------------------------------------------------------------- */
+
+static void bp_free(bp_t *b)
+{
+    if (b->lp != NULL) {
+        glp_delete_prob(b->lp);
+    }
+    free(b->stop_begin);
+    free(b->stop_pair);
+    free(b->row_of_fruit);
+    free(b->row_of_stop);
+    free(b->pat);
+    free(b->pf);
+    free(b->pat_open);
+    free(b->hslot);
+    free(b->nodes);
+    for (size_t i = 0; i < b->n_bases; ++i) {
+        free(b->bases[i].stat);
+    }
+    free(b->bases);
+    free(b->heap);
+    free(b->lo);
+    free(b->hi);
+    hv_pricer_free(&b->pricer);
+    free(b->itl);
+    free(b->itr);
+    free(b->sel);
+    free(b->pi_lp);
+    free(b->mu_lp);
+    free(b->sg_lp);
+    free(b->pi_c);
+    free(b->sg_c);
+    free(b->pi_sep);
+    free(b->sg_sep);
+    free(b->sigma_lp);
+    free(b->cand);
+    free(b->hot);
+    free(b->warm_pair);
+    free(b->warm_n);
+    free(b->pair_at);
+    free(b->cf);
+    free(b->ind);
+    free(b->val);
+    free(b->crow);
+    free(b->sigma_stop);
+    free(b->best);
+}
+
+static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_options_t *opt)
+{
+    memset(b, 0, sizeof *b);
+    b->inst = inst;
+    b->opt = opt;
+    b->nf = inst->n_fruits;
+    b->ns = inst->n_stops;
+    b->tau_ms = 1000.0 * inst->stop_penalty_s;
+    b->travel_ms = 1000.0 * inst->travel_time_s;
+    b->ub_ms = INFINITY;
+    hv_pricer_init(&b->pricer);
+    size_t nf = b->nf, ns = b->ns;
+    b->stop_begin = calloc(ns + 1, sizeof *b->stop_begin);
+    b->stop_pair = malloc((inst->n_pairs + 1) * sizeof *b->stop_pair);
+    b->row_of_fruit = calloc(nf + 1, sizeof *b->row_of_fruit);
+    b->row_of_stop = calloc(ns + 1, sizeof *b->row_of_stop);
+    b->lo = malloc((nf + 1) * sizeof *b->lo);
+    b->hi = malloc((nf + 1) * sizeof *b->hi);
+    b->itl = malloc((nf + 1) * sizeof *b->itl);
+    b->itr = malloc((nf + 1) * sizeof *b->itr);
+    b->sel = malloc((nf + 1) * sizeof *b->sel);
+    b->pi_lp = calloc(nf + 1, sizeof *b->pi_lp);
+    b->pi_c = calloc(nf + 1, sizeof *b->pi_c);
+    b->pi_sep = calloc(nf + 1, sizeof *b->pi_sep);
+    b->mu_lp = calloc(ns + 1, sizeof *b->mu_lp);
+    b->sigma_lp = calloc(ns + 1, sizeof *b->sigma_lp);
+    b->cand = calloc(ns + 1, sizeof *b->cand);
+    b->hot = malloc(ns + 1);
+    b->full_every = FULL_EVERY;
+    b->warm_pair = malloc((inst->n_pairs + 1) * sizeof *b->warm_pair);
+    b->warm_n = malloc((ns + 1) * sizeof *b->warm_n);
+    b->pair_at = malloc((nf + 1) * sizeof *b->pair_at);
+    b->cand_window = CAND_WINDOW;
+    b->smooth = SMOOTHING;
+    b->iv_cap = nf + 3;
+    b->ind = malloc(b->iv_cap * sizeof *b->ind);
+    b->val = malloc(b->iv_cap * sizeof *b->val);
+    b->sigma_stop = calloc(ns + 1, sizeof *b->sigma_stop);
+    b->best = malloc((nf + 1) * sizeof *b->best);
+    if (b->stop_begin == NULL || b->stop_pair == NULL || b->row_of_fruit == NULL ||
+        b->row_of_stop == NULL || b->lo == NULL || b->hi == NULL || b->itl == NULL ||
+        b->itr == NULL || b->sel == NULL || b->pi_lp == NULL || b->pi_c == NULL ||
+        b->pi_sep == NULL || b->mu_lp == NULL || b->sigma_lp == NULL || b->cand == NULL ||
+
+        b->warm_pair == NULL || b->warm_n == NULL || b->pair_at == NULL || b->hot == NULL ||
+        b->ind == NULL || b->val == NULL || b->best == NULL || b->sigma_stop == NULL || !hash_rebuild(b, 1024)) {
+        return HV_ERR_PLAN_NOMEM;
+    }
+    b->whole_ms = fabs(b->tau_ms - round(b->tau_ms)) < 1e-6 && opt->ms_granularity;
+    for (size_t k = 0; k < inst->n_pairs; ++k) {
+        b->stop_begin[inst->pairs[k].stop + 1]++;
+        double ms = 1000.0 * inst->pairs[k].cost_s;
+        b->whole_ms &= fabs(ms - round(ms)) < 1e-6;
+    }
+    for (size_t p = 0; p < ns; ++p) {
+        b->stop_begin[p + 1] += b->stop_begin[p];
+        b->warm_n[p] = SIZE_MAX;
+        b->hot[p] = 1;
+    }
+    size_t *fill = malloc((ns + 1) * sizeof *fill);
+    if (fill == NULL) {
+        return HV_ERR_PLAN_NOMEM;
+    }
+    memcpy(fill, b->stop_begin, (ns + 1) * sizeof *fill);
+    for (size_t k = 0; k < inst->n_pairs; ++k) {
+        b->stop_pair[fill[inst->pairs[k].stop]++] = k;
+    }
+    free(fill);
+
+    /* master: a row per reachable fruit (= 1), a row per usable stop (<= 1), and an
+     * artificial column per fruit row */
+    b->lp = glp_create_prob();
+    glp_set_obj_dir(b->lp, GLP_MIN);
+    int rows = 0;
+    for (size_t f = 0; f < nf; ++f) {
+        if (inst->fruit_begin[f] < inst->fruit_begin[f + 1]) {
+            b->row_of_fruit[f] = ++rows;
+        }
+    }
+    b->n_art = rows;
+    for (size_t p = 0; p < ns; ++p) {
+        if (b->stop_begin[p] < b->stop_begin[p + 1]) {
+            b->row_of_stop[p] = ++rows;
+        }
+    }
+    glp_add_rows(b->lp, rows);
+    for (int i = 1; i <= b->n_art; ++i) {
+        glp_set_row_bnds(b->lp, i, GLP_FX, 1.0, 1.0);
+    }
+    for (int i = b->n_art + 1; i <= rows; ++i) {
+        glp_set_row_bnds(b->lp, i, GLP_UP, 0.0, 1.0);
+    }
+    glp_add_cols(b->lp, b->n_art);
+    for (int j = 1; j <= b->n_art; ++j) {
+        int ind[2] = {0, j};
+        double val[2] = {0.0, 1.0};
+        glp_set_mat_col(b->lp, j, 1, ind, val);
+        glp_set_col_bnds(b->lp, j, GLP_LO, 0.0, 0.0);
+        glp_set_obj_coef(b->lp, j, BIG_MS);
+    }
+    return HV_OK;
+}
+
+/* ---- nodes -------------------------------------------------------------------------------- */
+
+static int node_new(bp_t *b, int32_t parent, node_kind_t kind, uint32_t fruit, uint32_t lo,
+                    uint32_t hi, int32_t rhs, double lb)
+{
+    if (!grow((void **)&b->nodes, &b->nodes_cap, b->n_nodes + 1, sizeof *b->nodes)) {
+        return -1;
+    }
+    uint32_t depth = parent < 0 ? 0 : b->nodes[parent].depth + 1;
+    b->nodes[b->n_nodes] = (node_t){parent, kind, fruit, lo, hi, rhs, depth, lb, -1};
+    return (int)b->n_nodes++;
+}
+
+/* Heap order: lower bound first, then deeper first (reaches plans sooner). */
+static int heap_less(const bp_t *b, int32_t x, int32_t y)
+{
+    const node_t *u = &b->nodes[x], *v = &b->nodes[y];
+    return u->lb_ms < v->lb_ms || (u->lb_ms == v->lb_ms && u->depth > v->depth);
+}
+
+static int heap_push(bp_t *b, int32_t k)
+{
+    if (!grow((void **)&b->heap, &b->heap_cap, b->heap_len + 1, sizeof *b->heap)) {
+        return 0;
+    }
+    size_t i = b->heap_len++;
+    while (i > 0 && heap_less(b, k, b->heap[(i - 1) / 2])) {
+        b->heap[i] = b->heap[(i - 1) / 2];
+        i = (i - 1) / 2;
+    }
+    b->heap[i] = k;
+    return 1;
+}
+
+static int32_t heap_pop(bp_t *b)
+{
+    int32_t top = b->heap[0], last = b->heap[--b->heap_len];
+    size_t i = 0;
+    for (;;) {
+        size_t c = 2 * i + 1;
+        if (c >= b->heap_len) {
+            break;
+        }
+        if (c + 1 < b->heap_len && heap_less(b, b->heap[c + 1], b->heap[c])) {
+            ++c;
+        }
+        if (!heap_less(b, b->heap[c], last)) {
+            break;
+        }
+        b->heap[i] = b->heap[c];
+        i = c;
+    }
+    if (b->heap_len > 0) {
+        b->heap[i] = last;
+    }
+    return top;
+}
+
+/* Keep the master's current basis; returns its index, -1 when not kept (memory). */
+static int32_t basis_save(bp_t *b)
+{
+    int nr = glp_get_num_rows(b->lp), nc = glp_get_num_cols(b->lp);
+    size_t bytes = (size_t)nr + (size_t)nc;
+    if (b->bases_bytes + bytes > ((size_t)256 << 20) ||
+        !grow((void **)&b->bases, &b->bases_cap, b->n_bases + 1, sizeof *b->bases)) {
+        return -1;
+    }
+    unsigned char *st = malloc(bytes);
+    if (st == NULL) {
+        return -1;
+    }
+    for (int i = 1; i <= nr; ++i) {
+        st[i - 1] = (unsigned char)glp_get_row_stat(b->lp, i);
+    }
+    for (int j = 1; j <= nc; ++j) {
+        st[nr + j - 1] = (unsigned char)glp_get_col_stat(b->lp, j);
+    }
+    b->bases[b->n_bases] = (basis_t){nr, nc, st};
+    b->bases_bytes += bytes;
+    return (int32_t)b->n_bases++;
+}
+
+/* Restore a kept basis: rows made since are basic, columns made since non-basic, so it
+ * stays a valid basis of the grown master. */
+static void basis_restore(bp_t *b, int32_t k)
+{
+    const basis_t *s = &b->bases[k];
+    int nr = glp_get_num_rows(b->lp), nc = glp_get_num_cols(b->lp);
+    for (int i = 1; i <= nr; ++i) {
+        glp_set_row_stat(b->lp, i, i <= s->n_rows ? s->stat[i - 1] : GLP_BS);
+    }
+    for (int j = 1; j <= nc; ++j) {
+        glp_set_col_stat(b->lp, j, j <= s->n_cols ? s->stat[s->n_rows + j - 1] : GLP_NL);
+    }
+}
+
+/* The count row of the interval [lo, hi], made on first use. NULL when out of memory. */
+static count_row_t *crow_get(bp_t *b, uint32_t lo, uint32_t hi)
+{
+    for (size_t r = 0; r < b->n_crow; ++r) {
+        if (b->crow[r].lo == lo && b->crow[r].hi == hi) {
+            return &b->crow[r];
+        }
+    }
+    if (!iv_reserve(b, b->n_pat) ||
+        !grow((void **)&b->crow, &b->crow_cap, b->n_crow + 1, sizeof *b->crow)) {
+        return NULL;
+    }
+    count_row_t *c = &b->crow[b->n_crow++];
+    *c = (count_row_t){lo, hi, glp_add_rows(b->lp, 1), glp_add_cols(b->lp, 1), -INFINITY,
+                       INFINITY};
+    int len = 0;
+    for (size_t j = 0; j < b->n_pat; ++j) {
+        if (lo <= b->pat[j].stop && b->pat[j].stop <= hi) {
+            b->ind[++len] = b->pat[j].col;
+            b->val[len] = 1.0;
+        }
+    }
+    glp_set_mat_row(b->lp, c->row, len, b->ind, b->val);
+    glp_set_row_bnds(b->lp, c->row, GLP_FR, 0.0, 0.0);
+    glp_set_row_stat(b->lp, c->row, GLP_BS); /* keeps the current basis valid */
+    int ind[2] = {0, c->row};
+    double val[2] = {0.0, 1.0};
+    glp_set_mat_col(b->lp, c->art, 1, ind, val);
+    glp_set_col_bnds(b->lp, c->art, GLP_LO, 0.0, 0.0);
+    glp_set_obj_coef(b->lp, c->art, BIG_MS);
+    return c;
+}
+
+/* The node's restrictions: its fruits' stop intervals with the master columns that respect
+ * them opened, and its count rows. */
+static hv_status_t node_apply(bp_t *b, int32_t k, int *infeasible)
+{
+    *infeasible = 0;
+    for (size_t f = 0; f < b->nf; ++f) {
+        b->lo[f] = 0;
+        b->hi[f] = (uint32_t)(b->ns - 1);
+    }
+    for (size_t r = 0; r < b->n_crow; ++r) {
+        b->crow[r].min = -INFINITY;
+        b->crow[r].max = INFINITY;
+    }
+    /* deeper restrictions of a fruit lie inside shallower ones: intersect along the path */
+    for (int32_t q = k; q >= 0; q = b->nodes[q].parent) {
+        const node_t *n = &b->nodes[q];
+        if (n->kind == KIND_FRUIT) {
+            if (n->lo > b->lo[n->fruit]) {
+                b->lo[n->fruit] = n->lo;
+            }
+            if (n->hi < b->hi[n->fruit]) {
+                b->hi[n->fruit] = n->hi;
+            }
+        } else if (n->kind != KIND_ROOT) {
+            count_row_t *c = crow_get(b, n->lo, n->hi);
+            if (c == NULL) {
+                return HV_ERR_PLAN_NOMEM;
+            }
+            if (n->kind == KIND_COUNT_LE) {
+                c->max = fmin(c->max, (double)n->rhs);
+            } else {
+                c->min = fmax(c->min, (double)n->rhs);
+            }
+        }
+    }
+    for (size_t r = 0; r < b->n_crow; ++r) {
+        const count_row_t *c = &b->crow[r];
+        int lo_set = isfinite(c->min), hi_set = isfinite(c->max);
+        if (c->min > c->max) {
+            *infeasible = 1; /* "at least" above "at most" on one interval */
+            continue;
+        }
+        int type = lo_set && hi_set ? (c->min == c->max ? GLP_FX : GLP_DB)
+                   : lo_set         ? GLP_LO
+                   : hi_set         ? GLP_UP
+                                    : GLP_FR;
+        glp_set_row_bnds(b->lp, c->row, type, lo_set ? c->min : 0.0, hi_set ? c->max : 0.0);
+    }
+    for (size_t j = 0; j < b->n_pat; ++j) {
+        const pattern_t *p = &b->pat[j];
+        unsigned char ok = 1;
+        for (uint32_t q = 0; q < p->n && ok; ++q) {
+            uint32_t f = b->pf[p->first + q];
+            ok = b->lo[f] <= p->stop && p->stop <= b->hi[f];
+        }
+        col_open(b, j, ok);
+    }
+    if (b->nodes[k].basis >= 0) {
+        basis_restore(b, b->nodes[k].basis);
+    }
+    return HV_OK;
+}
+
+/* ---- column generation at one node -------------------------------------------------------- */
+
+/* The master's duals: pi per fruit (pi_lp), mu per stop row (mu_lp), and per count row
+ * (sg_lp) clamped to the sign valid for the restriction in force (a dual of the wrong sign
+ * would make the Lagrangian bound invalid). */
+static int duals_read(bp_t *b)
+{
+    if (!grow((void **)&b->sg_lp, &b->sg_cap, b->n_crow + 1, sizeof *b->sg_lp)) {
+        return 0;
+    }
+    for (size_t f = 0; f < b->nf; ++f) {
+        b->pi_lp[f] = b->row_of_fruit[f] ? glp_get_row_dual(b->lp, b->row_of_fruit[f]) : 0.0;
+    }
+    for (size_t p = 0; p < b->ns; ++p) {
+        b->mu_lp[p] = b->row_of_stop[p] ? glp_get_row_dual(b->lp, b->row_of_stop[p]) : 0.0;
+    }
+    for (size_t r = 0; r < b->n_crow; ++r) {
+        const count_row_t *c = &b->crow[r];
+        double d = glp_get_row_dual(b->lp, c->row);
+        b->sg_lp[r] = d < 0.0 && isfinite(c->max) ? d : (d > 0.0 && isfinite(c->min) ? d : 0.0);
+    }
+    return 1;
+}
+
+/* sigma(p) of count-row duals sg into out[p]: the sum over the rows counting stop p. */
+static void sigma_per_stop(const bp_t *b, const double *sg, double *out)
+{
+    for (size_t p = 0; p < b->ns; ++p) {
+        out[p] = 0.0;
+    }
+    for (size_t r = 0; r < b->n_crow; ++r) {
+        for (uint32_t p = b->crow[r].lo; sg[r] != 0.0 && p <= b->crow[r].hi; ++p) {
+            out[p] += sg[r];
+        }
+    }
+}
+
+/* Price every stop at the duals (pi, sg): the Lagrangian bound
+ *     T_travel + sum_f pi_f + sum_r sg_r rhs_r + sum_p min(0, v_p)
+ * with v_p the least tau + max(W_L, W_R) - pi(S) - sigma(p) over the patterns the node
+ * allows at p; valid for any pi and any sg of the right signs. Each stop's best pattern is
+ * added to the master when its reduced cost at the master's own duals (pi_lp, mu_lp,
+ * sg_lp) is negative. */
+static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, int full,
+                            double *lag_ms, int *added)
+{
+    const hv_instance_t *in = b->inst;
+    double sum = b->travel_ms;
+    for (size_t f = 0; f < b->nf; ++f) {
+        sum += pi[f];
+    }
+    for (size_t r = 0; r < b->n_crow; ++r) {
+        if (sg[r] != 0.0) {
+            sum += sg[r] * (sg[r] < 0.0 ? b->crow[r].max : b->crow[r].min);
+        }
+    }
+    sigma_per_stop(b, sg, b->sigma_stop);
+    sigma_per_stop(b, b->sg_lp, b->sigma_lp);
+    *added = 0;
+    b->cf_len = 0;
+    for (size_t p = 0; p < b->ns; ++p) {
+        b->cand[p].rc = 0.0;
+    }
+    for (size_t p = 0; p < b->ns; ++p) {
+        if (b->row_of_stop[p] == 0 || (!full && !b->hot[p])) {
+            continue;
+        }
+        size_t nl = 0, nr = 0;
+        for (size_t q = b->stop_begin[p]; q < b->stop_begin[p + 1]; ++q) {
+            const hv_pair_t *pa = &in->pairs[b->stop_pair[q]];
+            uint32_t f = pa->fruit;
+            b->pair_at[f] = b->stop_pair[q];
+            if (pi[f] <= 1e-9 || b->lo[f] > p || b->hi[f] < p) {
+                continue;
+            }
+            hv_price_item_t it = {f, 1000.0 * pa->cost_s, pi[f]};
+            if (in->fruits[f].side == HV_SIDE_LEFT) {
+                b->itl[nl++] = it;
+            } else {
+                b->itr[nr++] = it;
+            }
+        }
+        /* last round's best pattern here, at today's duals: a threshold for the pricing */
+        double offset = b->tau_ms - b->sigma_stop[p], v0 = INFINITY, t0 = 0.0;
+        size_t *warm = b->warm_pair + b->stop_begin[p];
+        if (b->warm_n[p] != SIZE_MAX) {
+            double wl = 0.0, wr = 0.0, prof = 0.0;
+            int ok = 1;
+            for (size_t q = 0; q < b->warm_n[p] && ok; ++q) {
+                const hv_pair_t *pa = &in->pairs[warm[q]];
+                ok = b->lo[pa->fruit] <= p && p <= b->hi[pa->fruit];
+                *(in->fruits[pa->fruit].side == HV_SIDE_LEFT ? &wl : &wr) += 1000.0 * pa->cost_s;
+                prof += pi[pa->fruit];
+            }
+            if (ok) {
+                t0 = fmax(wl, wr);
+                v0 = offset + t0 - prof;
+            }
+        }
+        double v, time;
+        size_t n_sel;
+        hv_status_t st = hv_pricer_best(&b->pricer, b->itl, nl, b->itr, nr, offset, fmin(0.0, v0),
+                                        &v, b->sel, &n_sel, &time);
+        if (st != HV_OK) {
+            return st;
+        }
+        if (time >= 0.0) {
+            b->warm_n[p] = n_sel;
+            for (size_t q = 0; q < n_sel; ++q) {
+                warm[q] = b->pair_at[b->sel[q]];
+            }
+        } else if (v0 < 0.0) {
+            v = v0; /* nothing beats the warm pattern: it is the best */
+            time = t0;
+            n_sel = b->warm_n[p];
+            for (size_t q = 0; q < n_sel; ++q) {
+                b->sel[q] = in->pairs[warm[q]].fruit;
+            }
+        }
+        sum += v; /* v <= 0 by construction */
+        b->hot[p] = v < 0.0;
+        if (time < 0.0) {
+            continue;
+        }
+        double cost = b->tau_ms + time, rc = cost - b->mu_lp[p] - b->sigma_lp[p];
+        for (size_t q = 0; q < n_sel; ++q) {
+            rc -= b->pi_lp[b->sel[q]];
+        }
+        if (rc < -RC_EPS_MS) {
+            if (!grow((void **)&b->cf, &b->cf_cap, b->cf_len + n_sel + 1, sizeof *b->cf)) {
+                return HV_ERR_PLAN_NOMEM;
+            }
+            b->cand[p] = (cand_t){rc, cost, (uint32_t)b->cf_len, (uint32_t)n_sel};
+            memcpy(b->cf + b->cf_len, b->sel, n_sel * sizeof *b->sel);
+            b->cf_len += n_sel;
+        }
+    }
+    /* neighbouring stops price near-identical patterns: add a stop's pattern only where
+     * its reduced cost is the least within +-cand_window stops */
+    long w = b->cand_window;
+    for (size_t p = 0; p < b->ns; ++p) {
+        double rc = b->cand[p].rc;
+        int best = rc < -RC_EPS_MS;
+        for (long d = -w; best && d <= w; ++d) {
+            long q = (long)p + d;
+            if (d != 0 && q >= 0 && q < (long)b->ns &&
+                (b->cand[q].rc < rc || (b->cand[q].rc == rc && d < 0))) {
+                best = 0;
+            }
+        }
+        if (best) {
+            const cand_t *c = &b->cand[p];
+            memcpy(b->sel, b->cf + c->first, c->n * sizeof *b->sel);
+            int r = pattern_add(b, (uint32_t)p, b->sel, c->n, c->cost);
+            if (r < 0) {
+                return HV_ERR_PLAN_NOMEM;
+            }
+            *added += r;
+        }
+    }
+    *lag_ms = full ? sum : -INFINITY; /* a bound needs every stop */
+    return HV_OK;
+}
+
+/* One pricing round with Wentges smoothing: price at alpha * (the duals of the best bound
+ * so far at this node) + (1 - alpha) * (the master's duals), which damps the master's
+ * oscillating duals; when that finds no column (mis-pricing) price at the master's duals.
+ * `lag_ms` is the best bound of the round. */
+static hv_status_t price_round(bp_t *b, int fresh_node, double *lag_ms, int *added)
+{
+    size_t ncr = b->n_crow;
+    if (!duals_read(b) || !grow((void **)&b->sg_c, &b->sgc_cap, ncr + 1, sizeof *b->sg_c) ||
+        !grow((void **)&b->sg_sep, &b->sgs_cap, ncr + 1, sizeof *b->sg_sep)) {
+        return HV_ERR_PLAN_NOMEM;
+    }
+    if (fresh_node && !b->root_centre) {
+        b->center_lag = -INFINITY;
+    }
+    b->root_centre = 0;
+    double alpha = isfinite(b->center_lag) ? b->smooth : 0.0;
+    /* partial rounds price only the stops that had a negative value when last priced;
+     * every few rounds, and before calling the master optimal, all of them */
+    int full = fresh_node || ++b->partial_rounds >= b->full_every;
+    *lag_ms = -INFINITY;
+    for (;;) {
+        for (size_t f = 0; f < b->nf; ++f) {
+            b->pi_sep[f] = alpha * b->pi_c[f] + (1.0 - alpha) * b->pi_lp[f];
+        }
+        for (size_t r = 0; r < ncr; ++r) {
+            b->sg_sep[r] = alpha * b->sg_c[r] + (1.0 - alpha) * b->sg_lp[r];
+        }
+        double lag;
+        hv_status_t st = price_at(b, b->pi_sep, b->sg_sep, full, &lag, added);
+        if (st != HV_OK) {
+            return st;
+        }
+        if (full) {
+            b->partial_rounds = 0;
+        }
+        *lag_ms = fmax(*lag_ms, lag);
+        if (lag > b->center_lag) {
+            b->center_lag = lag;
+            memcpy(b->pi_c, b->pi_sep, b->nf * sizeof *b->pi_c);
+            memcpy(b->sg_c, b->sg_sep, ncr * sizeof *b->sg_c);
+        }
+        if (*added > 0) {
+            return HV_OK;
+        }
+        if (alpha > 0.0) {
+            alpha = 0.0; /* mis-pricing: the smoothed duals found nothing */
+        } else if (!full) {
+            full = 1;
+        } else {
+            return HV_OK;
+        }
+    }
+}
+
+/* first: after a node switch only bounds changed, so the last basis stays dual feasible
+ * and the dual simplex repairs it; after new columns the primal simplex continues. */
+static hv_status_t lp_solve(bp_t *b, int first)
+{
+    glp_smcp sp;
+    glp_init_smcp(&sp);
+    sp.msg_lev = GLP_MSG_OFF;
+    sp.meth = first ? GLP_DUALP : GLP_PRIMAL;
+    double left_ms = (b->t_deadline - now_s()) * 1000.0;
+    sp.tm_lim = (int)fmax(1.0, fmin(left_ms, 2e9));
+    double t0 = now_s();
+    int r = glp_simplex(b->lp, &sp);
+    if (r == GLP_EBADB || r == GLP_ESING || r == GLP_ECOND) {
+        b->lp_restarts++;
+        glp_adv_basis(b->lp, 0); /* a basis made singular by rewritten rows: start afresh */
+        r = glp_simplex(b->lp, &sp);
+    }
+    b->t_lp += now_s() - t0;
+    if (b->opt->verbose >= 4) {
+        fprintf(stderr, "lp: %s %d it %.1f ms cols %d rows %d\n", first ? "dual" : "primal",
+                glp_get_it_cnt(b->lp), 1000.0 * (now_s() - t0), glp_get_num_cols(b->lp),
+                glp_get_num_rows(b->lp));
+    }
+    if (r == GLP_ETMLIM) {
+        return HV_OK; /* the caller sees the deadline */
+    }
+    if (r == 0 && glp_get_status(b->lp) != GLP_OPT) {
+        r = -glp_get_status(b->lp); /* artificials make every master feasible */
+    }
+    if (r != 0) {
+        if (b->opt->verbose >= 1) {
+            fprintf(stderr, "price: master LP failed: glp_simplex %d, status %d\n", r,
+                    glp_get_status(b->lp));
+        }
+        return (hv_status_t)HV_ERR_MILP_GLPK;
+    }
+    return HV_OK;
+}
+
+/* A master solution in which every column is 0 or 1 as an assignment, into b->best when it
+ * is better. Returns 1 when the master point was integral. */
+static int take_integral(bp_t *b, const double *x)
+{
+    for (int j = 1; j <= b->n_art; ++j) {
+        if (x[j] > LAMBDA_EPS) {
+            return 0;
+        }
+    }
+    for (size_t r = 0; r < b->n_crow; ++r) {
+        if (x[b->crow[r].art] > LAMBDA_EPS) {
+            return 0;
+        }
+    }
+    for (size_t k = 0; k < b->n_pat; ++k) {
+        double v = x[b->pat[k].col];
+        if (v > LAMBDA_EPS && v < 1.0 - LAMBDA_EPS) {
+            return 0;
+        }
+    }
+    hv_assignment_t a;
+    if (hv_assignment_alloc(&a, b->nf) != HV_OK) {
+        return 0;
+    }
+    for (size_t k = 0; k < b->n_pat; ++k) {
+        if (x[b->pat[k].col] > 0.5) {
+            for (uint32_t q = 0; q < b->pat[k].n; ++q) {
+                a.fruit_stop[b->pf[b->pat[k].first + q]] = b->pat[k].stop;
+            }
+        }
+    }
+    double t;
+    if (hv_assignment_makespan(b->inst, &a, &t) == HV_OK && 1000.0 * t < b->ub_ms) {
+        b->ub_ms = 1000.0 * t;
+        memcpy(b->best, a.fruit_stop, b->nf * sizeof *b->best);
+    }
+    hv_assignment_free(&a);
+    return 1;
+}
+
+/* Where to branch: KIND_FRUIT: fruit's stop <= stop, or > stop; KIND_COUNT_LE: at most
+ * rhs stops in [lo, hi], or at least rhs + 1. */
+typedef struct split {
+    node_kind_t kind;
+    uint32_t fruit, stop;
+    uint32_t lo, hi;
+    int32_t rhs;
+    double score;
+} split_t;
+
+typedef struct mass {
+    uint32_t fruit, stop;
+    double x;
+} mass_t;
+
+static int by_fruit_stop(const void *a, const void *c)
+{
+    const mass_t *u = a, *v = c;
+    if (u->fruit != v->fruit) {
+        return u->fruit < v->fruit ? -1 : 1;
+    }
+    return u->stop < v->stop ? -1 : (u->stop > v->stop);
+}
+
+/* The fruit whose stop is split most evenly by the master point: branch there at the stop
+ * that halves its mass. score 0 when no fruit is split. */
+static hv_status_t choose_split(bp_t *b, const double *x, split_t *best)
+{
+    size_t n = 0, cap = 0;
+    mass_t *m = NULL;
+    for (size_t k = 0; k < b->n_pat; ++k) {
+        double v = x[b->pat[k].col];
+        if (v <= LAMBDA_EPS) {
+            continue;
+        }
+        if (!grow((void **)&m, &cap, n + b->pat[k].n, sizeof *m)) {
+            free(m);
+            return HV_ERR_PLAN_NOMEM;
+        }
+        for (uint32_t q = 0; q < b->pat[k].n; ++q) {
+            m[n++] = (mass_t){b->pf[b->pat[k].first + q], b->pat[k].stop, v};
+        }
+    }
+    qsort(m, n, sizeof *m, by_fruit_stop);
+    best->score = 0.0;
+    for (size_t i = 0; i < n;) {
+        size_t e = i;
+        double tot = 0.0;
+        while (e < n && m[e].fruit == m[i].fruit) {
+            tot += m[e++].x;
+        }
+        double cum = 0.0;
+        for (size_t k = i + 1; k < e && k < n; ++k) {
+            cum += m[k - 1].x;
+            if (m[k].stop == m[k - 1].stop) {
+                continue;
+            }
+            double s = fmin(cum, tot - cum) / tot;
+            /* prefer balanced splits, then splits between distant stops */
+            double score = s + 1e-4 * (double)(m[e - 1].stop - m[i].stop);
+            if (s > LAMBDA_EPS && score > best->score) {
+                *best = (split_t){KIND_FRUIT, m[i].fruit, m[k - 1].stop, 0, 0, 0, score};
+            }
+        }
+        i = e;
+    }
+    free(m);
+    return HV_OK;
+}
+
+/* Round a fractional master point to a plan (each fruit at the stop holding most of its
+ * mass), improve it by local search and keep it when it beats the incumbent. */
+static hv_status_t round_and_improve(bp_t *b, const double *x)
+{
+    double t0 = now_s();
+    hv_assignment_t a;
+    double *mass = calloc(b->nf + 1, sizeof *mass);
+    if (mass == NULL || hv_assignment_alloc(&a, b->nf) != HV_OK) {
+        free(mass);
+        return HV_ERR_PLAN_NOMEM;
+    }
+    for (size_t k = 0; k < b->n_pat; ++k) {
+        double v = x[b->pat[k].col];
+        for (uint32_t q = 0; v > LAMBDA_EPS && q < b->pat[k].n; ++q) {
+            uint32_t f = b->pf[b->pat[k].first + q];
+            if (v > mass[f]) {
+                mass[f] = v;
+                a.fruit_stop[f] = b->pat[k].stop;
+            }
+        }
+    }
+    int complete = 1;
+    for (size_t f = 0; f < b->nf; ++f) {
+        if (b->row_of_fruit[f] != 0 && a.fruit_stop[f] == HV_NO_STOP) {
+            complete = 0; /* covered by an artificial only */
+        }
+    }
+    hv_status_t st = HV_OK;
+    if (complete) {
+        hv_ls_options_t lo;
+        hv_ls_options_default(&lo);
+        lo.kicks = 20;
+        lo.seed = 0x9e3779b97f4a7c15ull * (uint64_t)(b->heur_runs + 1);
+        double t;
+        st = hv_local_search(b->inst, &lo, &a, &t);
+        b->heur_runs++;
+        if (st == HV_OK && 1000.0 * t < b->ub_ms - 1e-6) {
+            b->ub_ms = 1000.0 * t;
+            b->heur_wins++;
+            memcpy(b->best, a.fruit_stop, b->nf * sizeof *b->best);
+            if (add_assignment_columns(b, b->best) < 0) {
+                st = HV_ERR_PLAN_NOMEM;
+            }
+        }
+    }
+    hv_assignment_free(&a);
+    free(mass);
+    b->t_heur += now_s() - t0;
+    return st;
+}
+
+/* Branching on the number of stops: the LP likes two stops at 0.8 with a third between
+ * them at 0.2; "at most k stops" / "at least k + 1" separates those. score = how far the
+ * master's stop count is from an integer, 0 when it is one. */
+static void choose_count(const bp_t *b, const double *x, split_t *best)
+{
+    double tot = 0.0;
+    for (size_t k = 0; k < b->n_pat; ++k) {
+        tot += x[b->pat[k].col];
+    }
+    double ft = tot - floor(tot), sc = fmin(ft, 1.0 - ft);
+    *best = (split_t){KIND_COUNT_LE, 0, 0, 0, (uint32_t)(b->ns - 1), (int32_t)floor(tot),
+                      sc > LAMBDA_EPS ? sc : 0.0};
+}
+
+typedef enum node_end { NODE_PRUNED, NODE_INTEGRAL, NODE_BRANCH, NODE_TIMEOUT } node_end_t;
+
+static void progress(bp_t *b, double lb_ms, int force)
+{
+    double t = now_s();
+    if (b->opt->verbose < 1 || (!force && t - b->t_print < 1.0)) {
+        return;
+    }
+    b->t_print = t;
+    double g = isfinite(b->ub_ms) ? (b->ub_ms - lb_ms) / b->ub_ms : INFINITY;
+    fprintf(stderr,
+            "price: %6.2f s  nodes %zu open %zu  columns %zu  T %.3f s  bound %.3f s  gap %.2e\n",
+            t - b->t_start, b->n_nodes, b->heap_len, b->n_pat, b->ub_ms / 1000.0,
+            lb_ms / 1000.0, g);
+}
+
+/* Column generation at node k until the master is optimal, the node is pruned, or time is
+ * up. On NODE_BRANCH `sp` says where. */
+static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp)
+{
+    int infeasible;
+    hv_status_t st0 = node_apply(b, k, &infeasible);
+    if (st0 != HV_OK || infeasible) {
+        *end = NODE_PRUNED;
+        return st0;
+    }
+    for (int round = 0;; ++round) {
+        if (now_s() >= b->t_deadline) {
+            *end = NODE_TIMEOUT;
+            return HV_OK;
+        }
+        hv_status_t st = lp_solve(b, round == 0);
+        if (st != HV_OK) {
+            return st;
+        }
+        if (now_s() >= b->t_deadline) {
+            *end = NODE_TIMEOUT;
+            return HV_OK;
+        }
+        double lag;
+        int added;
+        double tp = now_s();
+        st = price_round(b, round == 0, &lag, &added);
+        b->t_price += now_s() - tp;
+        if (st != HV_OK) {
+            return st;
+        }
+        b->cg_iters++;
+        if (lag > b->nodes[k].lb_ms) {
+            b->nodes[k].lb_ms = lag;
+        }
+        if (prunable(b, b->nodes[k].lb_ms)) {
+            *end = NODE_PRUNED;
+            return HV_OK;
+        }
+        progress(b, b->heap_len ? fmin(b->nodes[k].lb_ms, b->nodes[b->heap[0]].lb_ms)
+                                : b->nodes[k].lb_ms, 0);
+        if (added > 0) {
+            continue;
+        }
+        int ncol = glp_get_num_cols(b->lp);
+        double *x = malloc(((size_t)ncol + 1) * sizeof *x);
+        if (x == NULL) {
+            return HV_ERR_PLAN_NOMEM;
+        }
+        for (int j = 1; j <= ncol; ++j) {
+            x[j] = glp_get_col_prim(b->lp, j);
+        }
+        if (take_integral(b, x)) {
+            free(x); /* the node's LP optimum is a plan: the node is solved */
+            *end = NODE_INTEGRAL;
+            return HV_OK;
+        }
+        if (b->opt->verbose >= 3) {
+            double *bs = calloc(b->ns, sizeof *bs);
+            double tot = 0.0;
+            for (size_t q = 0; bs != NULL && q < b->n_pat; ++q) {
+                bs[b->pat[q].stop] += x[b->pat[q].col];
+                tot += x[b->pat[q].col];
+            }
+            fprintf(stderr, "node %d depth %u lb %.3f stops %.3f:", k, b->nodes[k].depth,
+                    b->nodes[k].lb_ms / 1000.0, tot);
+            for (size_t p = 0; bs != NULL && p < b->ns; ++p) {
+                if (bs[p] > 1e-6) {
+                    fprintf(stderr, " %zu:%.2f", p, bs[p]);
+                }
+            }
+            fprintf(stderr, "\n");
+            free(bs);
+        }
+        /* the rounding pays near the root; deeper, every 8th node is enough */
+        if (b->nodes[k].depth <= 2 || b->n_nodes % 8 == 0) {
+            st = round_and_improve(b, x);
+        }
+        split_t fs = {KIND_FRUIT, 0, 0, 0, 0, 0, 0.0};
+        choose_count(b, x, sp);
+        if (st == HV_OK && sp->score < 0.05) {
+            st = choose_split(b, x, &fs);
+            if (fs.score > 0.0) {
+                *sp = fs;
+            }
+        }
+        free(x);
+        if (st != HV_OK) {
+            return st;
+        }
+        if (sp->score <= 0.0) {
+            /* every fruit sits at one stop, so the point is integral up to round-off:
+             * close the node, but do not claim a proof on it */
+            b->inexact = 1;
+            *end = NODE_PRUNED;
+            return HV_OK;
+        }
+        *end = NODE_BRANCH;
+        return HV_OK;
+    }
+}
+
+/* A stabilisation centre for the root from the paper's model: its LP relaxation's duals of
+ * the assignment rows are duals for the master too, and the Lagrangian bound at them is at
+ * least that LP's bound. Best effort: on any failure the root starts without a centre. */
+static void compact_centre(bp_t *b, double limit_s)
+{
+    double t0 = now_s();
+    hv_milp_model_opts_t mo;
+    memset(&mo, 0, sizeof mo);
+    mo.link_disaggregated = 0; /* the small LP: its duals are a centre, not the bound */
+    hv_milp_model_t m;
+    if (hv_milp_model_build(b->inst, &mo, 0, &m) != HV_OK) {
+        return;
+    }
+    glp_smcp sp;
+    glp_init_smcp(&sp);
+    sp.msg_lev = GLP_MSG_OFF;
+    sp.meth = GLP_DUALP;
+    sp.tm_lim = (int)fmax(1.0, 1000.0 * fmin(limit_s, b->t_deadline - now_s()));
+    glp_scale_prob(m.lp, GLP_SF_AUTO);
+    if (glp_simplex(m.lp, &sp) == 0 && glp_get_status(m.lp) == GLP_OPT) {
+        /* the model's first rows are the assignment rows, in fruit order */
+        for (size_t f = 0; f < b->nf; ++f) {
+            b->pi_c[f] = b->row_of_fruit[f]
+                             ? 1000.0 * glp_get_row_dual(m.lp, b->row_of_fruit[f])
+                             : 0.0;
+        }
+        double lag;
+        int added;
+        if (price_at(b, b->pi_c, b->sg_lp, 1, &lag, &added) == HV_OK) {
+            b->center_lag = lag;
+            b->root_centre = 1;
+        }
+    }
+    hv_milp_model_free(&m);
+    if (b->opt->verbose >= 1) {
+        fprintf(stderr, "price: centre from the paper's LP, bound %.3f s in %.2f s\n",
+                b->center_lag / 1000.0, now_s() - t0);
+    }
+}
+
+/* ---- the search --------------------------------------------------------------------------- */
+
+static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
+{
+    /* a centre set before the root is a proven bound already */
+    int32_t root = node_new(b, -1, KIND_ROOT, 0, 0, 0, 0,
+                            b->root_centre ? b->center_lag : -INFINITY);
+    if (root < 0 || !heap_push(b, root)) {
+        return HV_ERR_PLAN_NOMEM;
+    }
+    *root_lb = -INFINITY;
+    *nodes_done = 0;
+    while (b->heap_len > 0) {
+        int32_t k = heap_pop(b);
+        if (prunable(b, b->nodes[k].lb_ms)) {
+            continue;
+        }
+        node_end_t end;
+        split_t sp = {KIND_FRUIT, 0, 0, 0, 0, 0, 0.0};
+        hv_status_t st = node_process(b, k, &end, &sp);
+        if (st != HV_OK) {
+            return st;
+        }
+        ++*nodes_done;
+        if (k == root) {
+            *root_lb = b->nodes[k].lb_ms;
+        }
+        if (end == NODE_TIMEOUT) {
+            return heap_push(b, k) ? HV_OK : HV_ERR_PLAN_NOMEM; /* still open */
+        }
+        if (end != NODE_BRANCH) {
+            continue;
+        }
+        uint32_t f = sp.fruit;
+        double lb = b->nodes[k].lb_ms;
+        int32_t c1, c2;
+        if (sp.kind == KIND_FRUIT) {
+            c1 = node_new(b, k, KIND_FRUIT, f, b->lo[f], sp.stop, 0, lb);
+            c2 = node_new(b, k, KIND_FRUIT, f, sp.stop + 1, b->hi[f], 0, lb);
+        } else {
+            c1 = node_new(b, k, KIND_COUNT_LE, 0, sp.lo, sp.hi, sp.rhs, lb);
+            c2 = node_new(b, k, KIND_COUNT_GE, 0, sp.lo, sp.hi, sp.rhs + 1, lb);
+        }
+        if (c1 >= 0 && c2 >= 0) {
+            b->nodes[c1].basis = b->nodes[c2].basis = basis_save(b);
+        }
+        if (c1 < 0 || c2 < 0 || !heap_push(b, c1) || !heap_push(b, c2)) {
+            return HV_ERR_PLAN_NOMEM;
+        }
+    }
+    return HV_OK;
+}
+
+hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *opt,
+                           const hv_assignment_t *inc, double inc_t, double t_deadline_s,
+                           hv_assignment_t *out, hv_milp_result_t *res)
+{
+    bp_t b;
+    hv_status_t st = bp_init(&b, inst, opt);
+    b.t_deadline = t_deadline_s;
+    b.t_start = b.t_print = now_s();
+    if (st == HV_OK && inc != NULL) {
+        memcpy(b.best, inc->fruit_stop, b.nf * sizeof *b.best);
+        b.ub_ms = 1000.0 * inc_t;
+        if (add_assignment_columns(&b, inc->fruit_stop) < 0) {
+            st = HV_ERR_PLAN_NOMEM;
+        }
+    }
+    if (st == HV_OK && add_start_columns(&b) < 0) {
+        st = HV_ERR_PLAN_NOMEM;
+    }
+    double root_lb = -INFINITY;
+    long nodes = 0;
+    if (st == HV_OK && inst->n_pairs >= CENTRE_MIN_PAIRS) {
+        compact_centre(&b, 0.25 * (t_deadline_s - now_s()));
+    }
+    if (st == HV_OK) {
+        st = search(&b, &root_lb, &nodes);
+    }
+    if (st == HV_OK) {
+        double lb = b.ub_ms;
+        for (size_t i = 0; i < b.heap_len; ++i) {
+            lb = fmin(lb, b.nodes[b.heap[i]].lb_ms);
+        }
+        progress(&b, lb, 1);
+        if (opt->verbose >= 1) {
+            fprintf(stderr,
+                    "price: %ld LP rounds in %.2f s (%ld restarts), pricing %.2f s (%llu stops, "
+                    "%.1f points each), heuristic %ld runs (%ld better) in %.2f s\n",
+                    b.cg_iters, b.t_lp, b.lp_restarts, b.t_price, b.pricer.calls,
+                    (double)b.pricer.points / (double)(b.pricer.calls ? b.pricer.calls : 1),
+                    b.heur_runs, b.heur_wins, b.t_heur);
+        }
+        res->nodes = nodes;
+        res->columns = (long)b.n_pat;
+        res->root_bound_s = root_lb / 1000.0;
+        if (!isfinite(b.ub_ms)) {
+            res->status = b.heap_len == 0 ? HV_SOLVE_INFEASIBLE : HV_SOLVE_NO_SOLUTION;
+        } else {
+            memcpy(out->fruit_stop, b.best, b.nf * sizeof *b.best);
+            res->objective_s = b.ub_ms / 1000.0;
+            res->bound_s = fmin(lb, b.ub_ms) / 1000.0;
+            res->gap = (res->objective_s - res->bound_s) / fmax(res->objective_s, DBL_EPSILON);
+            res->status = b.heap_len == 0 && !b.inexact ? HV_SOLVE_OPTIMAL : HV_SOLVE_FEASIBLE;
+            if (res->status == HV_SOLVE_OPTIMAL) {
+                res->bound_s = res->objective_s; /* every open node was pruned */
+                res->gap = 0.0;
+            }
+        }
+    }
+    bp_free(&b);
+    return st;
+}

@@ -1,0 +1,341 @@
+/* Exact per-stop pricing: two Pareto knapsack frontiers merged on the stop time
+ * (milp_pricing.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "hv/milp_pricing.h"
+#include "hv/plan_status.h"
+
+void hv_pricer_init(hv_pricer_t *pr)
+{
+    memset(pr, 0, sizeof *pr);
+}
+
+void hv_pricer_free(hv_pricer_t *pr)
+{
+    free(pr->arena);
+    free(pr->cur);
+    free(pr->next);
+    free(pr->left_front);
+    free(pr->sorted);
+    free(pr->pw);
+    free(pr->parg);
+    free(pr->pidx);
+    memset(pr, 0, sizeof *pr);
+}
+
+static int grow(void **p, size_t *cap, size_t need, size_t elem)
+{
+    if (need <= *cap) {
+        return 1;
+    }
+    size_t c = *cap ? *cap : 256;
+    while (c < need) {
+        c *= 2;
+    }
+    void *q = realloc(*p, c * elem);
+    if (q == NULL) {
+        return 0;
+    }
+    *p = q;
+    *cap = c;
+    return 1;
+}
+
+static int push_pt(hv_pricer_t *pr, double w, double p, int32_t item, int32_t parent,
+                   int32_t *idx)
+{
+    if (!grow((void **)&pr->arena, &pr->arena_cap, pr->arena_len + 1, sizeof *pr->arena)) {
+        return 0;
+    }
+    pr->arena[pr->arena_len] = (hv_front_pt_t){w, p, item, parent};
+    pr->points++;
+    *idx = (int32_t)pr->arena_len++;
+    return 1;
+}
+
+/* Profit density, highest first: good sets are found early and pruning bites sooner.
+ * Insertion sort: a stop has a few dozen items at most. */
+static void sort_by_density(hv_price_item_t *it, size_t n)
+{
+    for (size_t i = 1; i < n; ++i) {
+        hv_price_item_t x = it[i];
+        double dx = x.profit / x.w_ms;
+        size_t j = i;
+        while (j > 0 && it[j - 1].profit / it[j - 1].w_ms < dx) {
+            it[j] = it[j - 1];
+            --j;
+        }
+        it[j] = x;
+    }
+}
+
+/* Bounds for pruning a frontier point: with max(W_A, W_B) >= l W_A + (1 - l) W_B for any
+ * l in [0, 1], a point (W, P) of arm A whose remaining items are k.. gives patterns with
+ *     v >= offset + l W - P + sum_{j >= k} min(0, l w_j - p_j) + other_l,
+ * other_l = sum over arm B of min(0, (1 - l) w - p); l = 0, 1/2 and 1 are checked. When arm
+ * B's frontier is known (the partner), g(W) = min over its points of max(W_B, W) - P_B is
+ * the best arm B can add to a stop time W, and v >= offset + g(W) - P - (profit left). */
+typedef struct front_bound {
+    double other0, other_half, other1;
+    const double *pw, *pp, *psuf; /* partner frontier: time, profit, suffix min of w - p */
+    const size_t *parg;           /* the partner point attaining psuf[i] */
+    const int32_t *pidx;          /* partner points' arena indices */
+    size_t pn;                    /* 0: no partner */
+} front_bound_t;
+
+/* g(w) (see above) and the partner point attaining it. */
+static double partner_best(const front_bound_t *fb, size_t gi, double w, size_t *arg)
+{
+    double g = INFINITY;
+    if (gi < fb->pn) {
+        g = fb->psuf[gi];
+        *arg = fb->parg[gi];
+    }
+    if (gi > 0 && w - fb->pp[gi - 1] < g) {
+        g = w - fb->pp[gi - 1];
+        *arg = gi - 1;
+    }
+    return g;
+}
+
+/* The frontier of one arm's items into pr->cur[0 .. *len), without the points that cannot
+ * lead to v < 0. */
+static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
+                       const front_bound_t *fb, double offset, size_t *len)
+{
+    double suf0 = 0.0, suf_half = 0.0, suf1 = 0.0; /* over the items not yet added */
+    for (size_t k = 0; k < n; ++k) {
+        suf0 -= items[k].profit;
+        suf_half += fmin(0.0, 0.5 * items[k].w_ms - items[k].profit);
+        suf1 += fmin(0.0, items[k].w_ms - items[k].profit);
+    }
+    int32_t e;
+    if (!push_pt(pr, 0.0, 0.0, -1, -1, &e) ||
+        !grow((void **)&pr->cur, &pr->cur_cap, 1, sizeof *pr->cur)) {
+        return 0;
+    }
+    /* with a partner every point is a whole pattern (with the partner's best point): the
+     * best one so far, thr, prunes harder than 0 (both in the caller's shifted terms) */
+    double thr = fb->pn > 0 ? pr->rec_v : 0.0;
+    size_t ncur = 0, gi = 0, arg = 0;
+    while (gi < fb->pn && fb->pw[gi] <= 0.0) {
+        ++gi;
+    }
+    double g0 = fb->pn > 0 ? partner_best(fb, gi, 0.0, &arg) : 0.0;
+    if (offset + suf0 + fb->other0 < thr && offset + suf_half + fb->other_half < thr &&
+        offset + suf1 + fb->other1 < thr && (fb->pn == 0 || offset + g0 + suf0 < thr)) {
+        pr->cur[ncur++] = (hv_front_ref_t){0.0, 0.0, e};
+        if (fb->pn > 0 && offset + g0 < thr) {
+            thr = offset + g0;
+            pr->rec_a = fb->pidx[arg];
+            pr->rec_b = e;
+        }
+    }
+    for (size_t k = 0; k < n && ncur > 0; ++k) {
+        suf0 += items[k].profit;
+        suf_half -= fmin(0.0, 0.5 * items[k].w_ms - items[k].profit);
+        suf1 -= fmin(0.0, items[k].w_ms - items[k].profit);
+        double c0 = offset + suf0 + fb->other0, c_half = offset + suf_half + fb->other_half,
+               c1 = offset + suf1 + fb->other1, cg = offset + suf0;
+        if (!grow((void **)&pr->next, &pr->next_cap, 2 * ncur, sizeof *pr->next)) {
+            return 0;
+        }
+        double wk = items[k].w_ms, pk = items[k].profit;
+        size_t i = 0, j = 0, nn = 0;
+        gi = 0; /* the first partner point with time > w */
+        double last_p = -INFINITY;
+        while (i < ncur || j < ncur) {
+            double wa = i < ncur ? pr->cur[i].w : INFINITY;
+            double pa = i < ncur ? pr->cur[i].p : -INFINITY;
+            double wb = j < ncur ? pr->cur[j].w + wk : INFINITY;
+            double pb = j < ncur ? pr->cur[j].p + pk : -INFINITY;
+            int take_a = wa < wb || (wa == wb && pa >= pb);
+            double w = take_a ? wa : wb, p = take_a ? pa : pb;
+            int32_t from = take_a ? pr->cur[i++].idx : pr->cur[j++].idx;
+            if (p <= last_p) {
+                continue; /* dominated: no more profit for at least as much time */
+            }
+            last_p = p;
+            if (c0 - p >= thr || c_half + 0.5 * w - p >= thr || c1 + w - p >= thr) {
+                continue;
+            }
+            double g = 0.0;
+            if (fb->pn > 0) { /* w only grows along the merge: walk the partner along */
+                while (gi < fb->pn && fb->pw[gi] <= w) {
+                    ++gi;
+                }
+                g = partner_best(fb, gi, w, &arg);
+                if (cg + g - p >= thr) {
+                    continue;
+                }
+            }
+            int32_t idx = from;
+            if (!take_a && !push_pt(pr, w, p, (int32_t)k, from, &idx)) {
+                return 0;
+            }
+            if (fb->pn > 0 && offset + g - p < thr) {
+                thr = offset + g - p;
+                pr->rec_a = fb->pidx[arg];
+                pr->rec_b = idx;
+            }
+            pr->next[nn++] = (hv_front_ref_t){w, p, idx};
+        }
+        hv_front_ref_t *t = pr->cur;
+        size_t tc = pr->cur_cap;
+        pr->cur = pr->next;
+        pr->cur_cap = pr->next_cap;
+        pr->next = t;
+        pr->next_cap = tc;
+        ncur = nn;
+    }
+    *len = ncur;
+    if (fb->pn > 0) {
+        pr->rec_v = thr;
+    }
+    return 1;
+}
+
+/* The crude bounds' sums of arm B (see front_bound_t). */
+static void other_sums(const hv_price_item_t *it, size_t n, front_bound_t *fb)
+{
+    memset(fb, 0, sizeof *fb);
+    for (size_t k = 0; k < n; ++k) {
+        fb->other0 += fmin(0.0, it[k].w_ms - it[k].profit);
+        fb->other_half += fmin(0.0, 0.5 * it[k].w_ms - it[k].profit);
+        fb->other1 -= it[k].profit;
+    }
+}
+
+static size_t collect(const hv_pricer_t *pr, int32_t pt, const hv_price_item_t *items,
+                      uint32_t *sel)
+{
+    size_t n = 0;
+    for (; pt >= 0 && pr->arena[pt].item >= 0; pt = pr->arena[pt].parent) {
+        sel[n++] = items[pr->arena[pt].item].fruit;
+    }
+    return n;
+}
+
+hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t nl,
+                           const hv_price_item_t *right, size_t nr, double offset_ms,
+                           double v_bound, double *v_out, uint32_t *sel, size_t *n_sel,
+                           double *time_ms)
+{
+    *v_out = v_bound;
+    /* pruning against v_bound instead of 0 is pruning against 0 with the offset raised */
+    double off_p = offset_ms - v_bound;
+    *n_sel = 0;
+    *time_ms = -1.0;
+    pr->calls++;
+    /* arm A, the one with fewer items, first: its small frontier then bounds arm B's */
+    const hv_price_item_t *ia = nl <= nr ? left : right, *ib = nl <= nr ? right : left;
+    size_t na = nl <= nr ? nl : nr, nb = nl <= nr ? nr : nl;
+    if (!grow((void **)&pr->sorted, &pr->sorted_cap, na + nb + 1, sizeof *pr->sorted)) {
+        return HV_ERR_PLAN_NOMEM;
+    }
+    hv_price_item_t *sa = pr->sorted, *sb = pr->sorted + na;
+    if (na) {
+        memcpy(sa, ia, na * sizeof *sa);
+    }
+    if (nb) {
+        memcpy(sb, ib, nb * sizeof *sb);
+    }
+    front_bound_t fa, fb;
+    other_sums(sb, nb, &fa);
+    other_sums(sa, na, &fb);
+    /* the empty point of arm A bounds every pattern: most stops end here */
+    if (off_p + fb.other1 + fa.other0 >= 0.0 || off_p + fb.other0 + fa.other1 >= 0.0 ||
+        off_p + fb.other_half + fa.other_half >= 0.0) {
+        return HV_OK;
+    }
+    sort_by_density(sa, na);
+    sort_by_density(sb, nb);
+    pr->arena_len = 0;
+    size_t n_a = 0, n_b = 0;
+    if (!build_front(pr, sa, na, &fa, off_p, &n_a)) {
+        return HV_ERR_PLAN_NOMEM;
+    }
+    if (n_a == 0) {
+        return HV_OK; /* no point of arm A can be part of a pattern with v < 0 */
+    }
+    if (!grow((void **)&pr->left_front, &pr->left_cap, n_a, sizeof *pr->left_front) ||
+        !grow((void **)&pr->pw, &pr->pw_cap, 3 * n_a, sizeof *pr->pw)) {
+        return HV_ERR_PLAN_NOMEM;
+    }
+    memcpy(pr->left_front, pr->cur, n_a * sizeof *pr->cur);
+    if (!grow((void **)&pr->parg, &pr->parg_cap, n_a, sizeof *pr->parg) ||
+        !grow((void **)&pr->pidx, &pr->pidx_cap, n_a, sizeof *pr->pidx)) {
+        return HV_ERR_PLAN_NOMEM;
+    }
+    double *pw = pr->pw, *pp = pr->pw + n_a, *psuf = pr->pw + 2 * n_a;
+    for (size_t i = 0; i < n_a; ++i) {
+        pw[i] = pr->left_front[i].w;
+        pp[i] = pr->left_front[i].p;
+        pr->pidx[i] = pr->left_front[i].idx;
+    }
+    for (size_t i = n_a; i-- > 0;) {
+        int later = i + 1 < n_a && psuf[i + 1] < pw[i] - pp[i];
+        psuf[i] = later ? psuf[i + 1] : pw[i] - pp[i];
+        pr->parg[i] = later ? pr->parg[i + 1] : i;
+    }
+    fb.pw = pw;
+    fb.pp = pp;
+    fb.psuf = psuf;
+    fb.parg = pr->parg;
+    fb.pidx = pr->pidx;
+    fb.pn = n_a;
+    pr->rec_v = 0.0;
+    pr->rec_a = pr->rec_b = -1;
+    if (!build_front(pr, sb, nb, &fb, off_p, &n_b)) {
+        return HV_ERR_PLAN_NOMEM;
+    }
+    const hv_front_ref_t *fa_pts = pr->left_front, *fb_pts = pr->cur;
+    /* walk both frontiers in time order: at each time M the most profitable point of each
+     * arm that fits within M */
+    size_t i = 0, j = 0;
+    long ia_pt = -1, ib_pt = -1;
+    double best = v_bound;
+    int32_t ba = -1, bb = -1;
+    while (i < n_a || j < n_b) {
+        double wa = i < n_a ? fa_pts[i].w : INFINITY;
+        double wb = j < n_b ? fb_pts[j].w : INFINITY;
+        double m;
+        if (wa <= wb) {
+            m = wa;
+            ia_pt = (long)i++;
+        } else {
+            m = wb;
+            ib_pt = (long)j++;
+        }
+        if (ia_pt < 0 || ib_pt < 0) {
+            continue;
+        }
+        double v = offset_ms + m - fa_pts[ia_pt].p - fb_pts[ib_pt].p;
+        if (v < best) {
+            best = v;
+            ba = fa_pts[ia_pt].idx;
+            bb = fb_pts[ib_pt].idx;
+        }
+    }
+    if (pr->rec_b >= 0) { /* the best pattern seen while building, maybe pruned since */
+        const hv_front_pt_t *a = &pr->arena[pr->rec_a], *c = &pr->arena[pr->rec_b];
+        double v = offset_ms + fmax(a->w, c->w) - a->p - c->p;
+        if (v < best) {
+            best = v;
+            ba = pr->rec_a;
+            bb = pr->rec_b;
+        }
+    }
+    if (ba < 0) {
+        return HV_OK;
+    }
+    size_t n = collect(pr, ba, sa, sel);
+    n += collect(pr, bb, sb, sel + n);
+    double w = fmax(pr->arena[ba].w, pr->arena[bb].w);
+    *time_ms = w;
+    *v_out = offset_ms + w - pr->arena[ba].p - pr->arena[bb].p;
+    *n_sel = n;
+    return HV_OK;
+}
