@@ -13,20 +13,25 @@ alphas="${2:-1,4}"
 seeds="${3:-3}"
 limit="${4:-10}"
 [ -x "$bench" ] || { echo "ablation.sh: $bench not built" >&2; exit 1; }
+# the default (branch-and-price), its incumbent off, then GLPK's branch-and-cut on the
+# paper's model (algorithm=0) and that with one of its choices switched
+c="--set algorithm=0"
 for variant in \
     "" \
-    "--set link_disaggregated=0" \
-    "--set link_disaggregated=2" \
     "--set heuristic_incumbent=0" \
-    "--set polish_work=0" \
-    "--set pattern_cuts=-1" \
-    "--set glpk_cuts=15" \
-    "--set glpk_cuts_phase2=0" \
-    "--set pcost_branching=1" \
-    "--set branch_stops_first=1" \
-    "--set side_bounds=1" \
-    "--set count_branching=1" \
-    "--set backtracking=2"; do
+    "$c" \
+    "$c --set link_disaggregated=0" \
+    "$c --set link_disaggregated=2" \
+    "$c --set heuristic_incumbent=0" \
+    "$c --set polish_work=0" \
+    "$c --set pattern_cuts=-1" \
+    "$c --set glpk_cuts=15" \
+    "$c --set glpk_cuts_phase2=0" \
+    "$c --set pcost_branching=1" \
+    "$c --set branch_stops_first=1" \
+    "$c --set side_bounds=1" \
+    "$c --set count_branching=1" \
+    "$c --set backtracking=2"; do
     echo "== variant: ${variant:-default}"
     # shellcheck disable=SC2086
     "$bench" --alphas "$alphas" --seeds "$seeds" --plain-seeds 0 --time-limit "$limit" \

@@ -212,9 +212,9 @@ int main(int argc, char **argv)
     if (bench_tables_build(&cfg, &tabs) != 0) {
         return 1;
     }
-    printf("# MILP options: disaggregated=%d heuristic=%d stops_first=%d side_bounds=%d "
-           "ms=%d decompose=%d cuts=%d pcost=%d limit=%.0fs\n",
-           mo.link_disaggregated, mo.heuristic_incumbent, mo.branch_stops_first, mo.side_bounds,
+    printf("# MILP options: algorithm=%s disaggregated=%d heuristic=%d stops_first=%d "
+           "side_bounds=%d ms=%d decompose=%d cuts=%d pcost=%d limit=%.0fs\n",
+           mo.algorithm == HV_MILP_ALG_PRICE ? "price" : "compact", mo.link_disaggregated, mo.heuristic_incumbent, mo.branch_stops_first, mo.side_bounds,
            mo.ms_granularity, mo.decompose, mo.glpk_cuts, mo.pcost_branching, mo.time_limit_s);
     printf("%-5s %-4s %4s %6s | %-9s %9s %9s %8s %7s %7s %5s | %9s %9s | %-9s %8s %7s | %9s %5s | %9s\n",
            "alpha", "seed", "nf", "pairs", "milp", "T_s", "bound_s", "gap", "time_s", "nodes",

@@ -39,6 +39,8 @@ static const char k_usage[] =
     "                   both makespans (the plan written is the horizon's)\n"
     "  --row-length M   row length, m (default: row.length of the config)\n"
     "  --export-lp FILE milp: write the model in CPLEX LP format\n"
+    "  --algorithm A    milp: price (branch-and-price over stop patterns, default) or\n"
+    "                   compact (GLPK's branch-and-cut on the paper's model); both exact\n"
     "  --quiet          no progress lines on stderr (errors are still printed)\n"
     "  --help           this text\n"
     "\n"
@@ -48,7 +50,7 @@ static const char k_usage[] =
     "4 the plan failed the independent check.\n";
 
 typedef struct args {
-    const char *config, *left, *right, *fruits, *method, *out, *export_lp;
+    const char *config, *left, *right, *fruits, *method, *out, *export_lp, *algorithm;
     double time_limit_s, gap, fov_width_m, horizon_m, commit_m, row_length_m;
     int quiet;
     int compare_single;
@@ -164,7 +166,7 @@ static int parse_args(int argc, char **argv, args_t *a)
         static const char *const valued[] = {
             "--config", "--left", "--right", "--fruits", "--method", "--out", "--export-lp",
             "--time-limit", "--gap", "--fov-width", "--horizon", "--commit", "--row-length",
-            NULL};
+            "--algorithm", NULL};
         int known = 0;
         for (const char *const *k = valued; *k != NULL; ++k) {
             known |= strcmp(*k, f) == 0;
@@ -183,6 +185,7 @@ static int parse_args(int argc, char **argv, args_t *a)
         else if (strcmp(f, "--method") == 0) a->method = v;
         else if (strcmp(f, "--out") == 0) a->out = v;
         else if (strcmp(f, "--export-lp") == 0) a->export_lp = v;
+        else if (strcmp(f, "--algorithm") == 0) a->algorithm = v;
         else if (strcmp(f, "--time-limit") == 0) {
             if (parse_pos(f, v, &a->time_limit_s)) return EXIT_USAGE;
         } else if (strcmp(f, "--gap") == 0) {
@@ -213,6 +216,13 @@ static int parse_args(int argc, char **argv, args_t *a)
     if (strcmp(a->method, "milp") != 0 && strcmp(a->method, "fov") != 0 &&
         strcmp(a->method, "serial") != 0) {
         return usage_error("--method must be milp, fov or serial, not", a->method);
+    }
+    if (a->algorithm != NULL && strcmp(a->algorithm, "price") != 0 &&
+        strcmp(a->algorithm, "compact") != 0) {
+        return usage_error("--algorithm must be price or compact, not", a->algorithm);
+    }
+    if (a->algorithm != NULL && strcmp(a->method, "milp") != 0) {
+        return usage_error("--algorithm applies to --method milp only", NULL);
     }
     if (a->horizon_m > 0 && strcmp(a->method, "milp") != 0) {
         return usage_error("--horizon applies to --method milp only", NULL);
@@ -380,6 +390,10 @@ static int run_plan(const args_t *a)
     mopt.rel_gap = a->gap;
     mopt.verbose = a->quiet ? 0 : 1;
     mopt.export_lp_path = a->export_lp;
+    if (a->algorithm != NULL) {
+        mopt.algorithm = strcmp(a->algorithm, "compact") == 0 ? HV_MILP_ALG_COMPACT
+                                                              : HV_MILP_ALG_PRICE;
+    }
 
     if (rc == 0) {
         double t0 = now_s();

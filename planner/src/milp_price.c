@@ -29,6 +29,7 @@
                               within +-CAND_WINDOW stops */
 #define CENTRE_MIN_PAIRS 9000 /* from this many pairs the root starts from the paper's LP
                                  duals (SOLVER.md: alpha 4 needs it, alpha <= 2.5 does not) */
+#define DIVE_EVERY 64     /* nodes between dives (search()) */
 #define FULL_EVERY 4       /* a pricing round over all stops at least every 4 rounds */
 
 typedef struct pattern {
@@ -1034,6 +1035,7 @@ typedef struct split {
     uint32_t lo, hi;
     int32_t rhs;
     double score;
+    int up; /* the second child (> stop, >= rhs + 1) holds more of the master's mass */
 } split_t;
 
 typedef struct mass {
@@ -1087,7 +1089,8 @@ static hv_status_t choose_split(bp_t *b, const double *x, split_t *best)
             /* prefer balanced splits, then splits between distant stops */
             double score = s + 1e-4 * (double)(m[e - 1].stop - m[i].stop);
             if (s > LAMBDA_EPS && score > best->score) {
-                *best = (split_t){KIND_FRUIT, m[i].fruit, m[k - 1].stop, 0, 0, 0, score};
+                *best = (split_t){KIND_FRUIT, m[i].fruit, m[k - 1].stop, 0, 0, 0, score,
+                                  cum < 0.5 * tot};
             }
         }
         i = e;
@@ -1158,7 +1161,7 @@ static void choose_count(const bp_t *b, const double *x, split_t *best)
     }
     double ft = tot - floor(tot), sc = fmin(ft, 1.0 - ft);
     *best = (split_t){KIND_COUNT_LE, 0, 0, 0, (uint32_t)(b->ns - 1), (int32_t)floor(tot),
-                      sc > LAMBDA_EPS ? sc : 0.0};
+                      sc > LAMBDA_EPS ? sc : 0.0, ft >= 0.5};
 }
 
 typedef enum node_end { NODE_PRUNED, NODE_INTEGRAL, NODE_BRANCH, NODE_TIMEOUT } node_end_t;
@@ -1255,7 +1258,7 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
         if (b->nodes[k].depth <= 2 || b->n_nodes % 8 == 0) {
             st = round_and_improve(b, x);
         }
-        split_t fs = {KIND_FRUIT, 0, 0, 0, 0, 0, 0.0};
+        split_t fs = {KIND_FRUIT, 0, 0, 0, 0, 0, 0.0, 0};
         choose_count(b, x, sp);
         if (st == HV_OK && sp->score < 0.05) {
             st = choose_split(b, x, &fs);
@@ -1331,13 +1334,22 @@ static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
     }
     *root_lb = -INFINITY;
     *nodes_done = 0;
-    while (b->heap_len > 0) {
-        int32_t k = heap_pop(b);
+    /* Best bound first, interrupted by dives: from the root and then every DIVE_EVERY
+     * nodes, follow the child holding more of the master's mass until the dive is pruned
+     * or ends in a plan. Dives find plans (the bound rarely closes before the incumbent is
+     * optimal); best bound first proves them. */
+    int32_t dive = -1;
+    int diving = 1;
+    long since_dive = 0;
+    while (dive >= 0 || b->heap_len > 0) {
+        int32_t k = dive >= 0 ? dive : heap_pop(b);
+        dive = -1;
         if (prunable(b, b->nodes[k].lb_ms)) {
+            diving = 0;
             continue;
         }
         node_end_t end;
-        split_t sp = {KIND_FRUIT, 0, 0, 0, 0, 0, 0.0};
+        split_t sp = {KIND_FRUIT, 0, 0, 0, 0, 0, 0.0, 0};
         hv_status_t st = node_process(b, k, &end, &sp);
         if (st != HV_OK) {
             return st;
@@ -1350,7 +1362,12 @@ static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
             return heap_push(b, k) ? HV_OK : HV_ERR_PLAN_NOMEM; /* still open */
         }
         if (end != NODE_BRANCH) {
+            diving = 0;
             continue;
+        }
+        if (!diving && ++since_dive >= DIVE_EVERY) {
+            diving = 1;
+            since_dive = 0;
         }
         uint32_t f = sp.fruit;
         double lb = b->nodes[k].lb_ms;
@@ -1365,7 +1382,13 @@ static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
         if (c1 >= 0 && c2 >= 0) {
             b->nodes[c1].basis = b->nodes[c2].basis = basis_save(b);
         }
-        if (c1 < 0 || c2 < 0 || !heap_push(b, c1) || !heap_push(b, c2)) {
+        if (c1 < 0 || c2 < 0) {
+            return HV_ERR_PLAN_NOMEM;
+        }
+        if (diving) {
+            dive = sp.up ? c2 : c1;
+        }
+        if ((dive != c1 && !heap_push(b, c1)) || (dive != c2 && !heap_push(b, c2))) {
             return HV_ERR_PLAN_NOMEM;
         }
     }
