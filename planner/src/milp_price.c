@@ -101,7 +101,12 @@ typedef struct bp {
     uint32_t *pf;
     size_t pf_len, pf_cap;
     unsigned char *pat_open;   /* the column is open in the master */
-    size_t open_cap;
+    size_t open_cap, dead_cap;
+    unsigned char *pat_dead;  /* uses a pair removed by reduced-cost fixing */
+    unsigned char *pair_dead; /* per pair: cannot be in a plan better than the incumbent */
+    double *root_pi;          /* the root's best duals and their Lagrangian bound */
+    double root_lag, fixed_ub;
+    long pairs_fixed;
     int32_t *hslot; /* open-addressing hash of patterns, -1 = empty */
     size_t hcap;
 
@@ -283,9 +288,11 @@ static int pattern_add(bp_t *b, uint32_t stop, uint32_t *f, uint32_t n, double c
         !grow((void **)&b->pf, &b->pf_cap, b->pf_len + n, sizeof *b->pf)) {
         return -1;
     }
-    if (!grow((void **)&b->pat_open, &b->open_cap, b->n_pat + 1, 1)) {
+    if (!grow((void **)&b->pat_open, &b->open_cap, b->n_pat + 1, 1) ||
+        !grow((void **)&b->pat_dead, &b->dead_cap, b->n_pat + 1, 1)) {
         return -1;
     }
+    b->pat_dead[b->n_pat] = 0;
     b->pat[b->n_pat] = (pattern_t){stop, (uint32_t)b->pf_len, n, cost_ms, 0};
     memcpy(b->pf + b->pf_len, f, n * sizeof *f);
     b->pf_len += n;
@@ -323,7 +330,8 @@ static int pattern_add(bp_t *b, uint32_t stop, uint32_t *f, uint32_t n, double c
 }
 
 /* Cost of the pair (fruit f, stop p) in ms, or -1 when not reachable. */
-static double pair_ms(const bp_t *b, uint32_t f, uint32_t p)
+/* The pair (fruit f, stop p), SIZE_MAX when f does not reach p. */
+static size_t pair_index(const bp_t *b, uint32_t f, uint32_t p)
 {
     const hv_instance_t *in = b->inst;
     size_t lo = in->fruit_begin[f], hi = in->fruit_begin[f + 1];
@@ -335,10 +343,14 @@ static double pair_ms(const bp_t *b, uint32_t f, uint32_t p)
             hi = mid;
         }
     }
-    if (lo < in->fruit_begin[f + 1] && in->pairs[lo].stop == p) {
-        return 1000.0 * in->pairs[lo].cost_s;
-    }
-    return -1.0;
+    return lo < in->fruit_begin[f + 1] && in->pairs[lo].stop == p ? lo : SIZE_MAX;
+}
+
+/* Cost of the pair (fruit f, stop p) in ms, or -1 when not reachable. */
+static double pair_ms(const bp_t *b, uint32_t f, uint32_t p)
+{
+    size_t k = pair_index(b, f, p);
+    return k == SIZE_MAX ? -1.0 : 1000.0 * b->inst->pairs[k].cost_s;
 }
 
 /* The patterns of an assignment as columns (a plan's stops are good columns to start with). */
@@ -401,6 +413,9 @@ static void bp_free(bp_t *b)
     free(b->pat);
     free(b->pf);
     free(b->pat_open);
+    free(b->pat_dead);
+    free(b->pair_dead);
+    free(b->root_pi);
     free(b->hslot);
     free(b->nodes);
     for (size_t i = 0; i < b->n_bases; ++i) {
@@ -462,6 +477,10 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
     b->mu_lp = calloc(ns + 1, sizeof *b->mu_lp);
     b->sigma_lp = calloc(ns + 1, sizeof *b->sigma_lp);
     b->cand = calloc(ns + 1, sizeof *b->cand);
+    b->pair_dead = calloc(inst->n_pairs + 1, 1);
+    b->root_pi = calloc(nf + 1, sizeof *b->root_pi);
+    b->root_lag = -INFINITY;
+    b->fixed_ub = INFINITY;
     b->hot = malloc(ns + 1);
     b->full_every = FULL_EVERY;
     b->warm_pair = malloc((inst->n_pairs + 1) * sizeof *b->warm_pair);
@@ -480,6 +499,7 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
         b->pi_sep == NULL || b->mu_lp == NULL || b->sigma_lp == NULL || b->cand == NULL ||
 
         b->warm_pair == NULL || b->warm_n == NULL || b->pair_at == NULL || b->hot == NULL ||
+        b->pair_dead == NULL || b->root_pi == NULL ||
         b->ind == NULL || b->val == NULL || b->best == NULL || b->sigma_stop == NULL || !hash_rebuild(b, 1024)) {
         return HV_ERR_PLAN_NOMEM;
     }
@@ -722,7 +742,7 @@ static hv_status_t node_apply(bp_t *b, int32_t k, int *infeasible)
             uint32_t f = b->pf[p->first + q];
             ok = b->lo[f] <= p->stop && p->stop <= b->hi[f];
         }
-        col_open(b, j, ok);
+        col_open(b, j, ok && !b->pat_dead[j]);
     }
     if (b->nodes[k].basis >= 0) {
         basis_restore(b, b->nodes[k].basis);
@@ -802,7 +822,7 @@ static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, int ful
             const hv_pair_t *pa = &in->pairs[b->stop_pair[q]];
             uint32_t f = pa->fruit;
             b->pair_at[f] = b->stop_pair[q];
-            if (pi[f] <= 1e-9 || b->lo[f] > p || b->hi[f] < p) {
+            if (pi[f] <= 1e-9 || b->lo[f] > p || b->hi[f] < p || b->pair_dead[b->stop_pair[q]]) {
                 continue;
             }
             hv_price_item_t it = {f, 1000.0 * pa->cost_s, pi[f]};
@@ -820,7 +840,7 @@ static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, int ful
             int ok = 1;
             for (size_t q = 0; q < b->warm_n[p] && ok; ++q) {
                 const hv_pair_t *pa = &in->pairs[warm[q]];
-                ok = b->lo[pa->fruit] <= p && p <= b->hi[pa->fruit];
+                ok = b->lo[pa->fruit] <= p && p <= b->hi[pa->fruit] && !b->pair_dead[warm[q]];
                 *(in->fruits[pa->fruit].side == HV_SIDE_LEFT ? &wl : &wr) += 1000.0 * pa->cost_s;
                 prof += pi[pa->fruit];
             }
@@ -1164,6 +1184,86 @@ static void choose_count(const bp_t *b, const double *x, split_t *best)
                       sc > LAMBDA_EPS ? sc : 0.0, ft >= 0.5};
 }
 
+/* Reduced-cost fixing of (fruit, stop) pairs from the root's duals pi (Lagrangian bound L):
+ * a plan with fruit f at stop p costs at least L - min(0, v_p) + v_p(f), v_p(f) the best
+ * pattern at p that contains f. Pairs for which that exceeds the incumbent less 1 ms (or
+ * the relative gap) leave the pricing and their columns the master, for the whole tree. */
+static hv_status_t fix_pairs(bp_t *b)
+{
+    const hv_instance_t *in = b->inst;
+    const double *pi = b->root_pi;
+    const double big = 1e7; /* forces an item into the pattern */
+    double slack = b->ub_ms - b->root_lag - (b->whole_ms ? 1.0 : b->opt->rel_gap * b->ub_ms);
+    for (size_t p = 0; p < b->ns; ++p) {
+        if (b->row_of_stop[p] == 0) {
+            continue;
+        }
+        size_t nl = 0, nr = 0;
+        for (size_t q = b->stop_begin[p]; q < b->stop_begin[p + 1]; ++q) {
+            const hv_pair_t *pa = &in->pairs[b->stop_pair[q]];
+            if (pi[pa->fruit] > 1e-9 && !b->pair_dead[b->stop_pair[q]]) {
+                hv_price_item_t it = {pa->fruit, 1000.0 * pa->cost_s, pi[pa->fruit]};
+                if (in->fruits[pa->fruit].side == HV_SIDE_LEFT) {
+                    b->itl[nl++] = it;
+                } else {
+                    b->itr[nr++] = it;
+                }
+            }
+        }
+        double vp, time;
+        size_t n_sel;
+        hv_status_t st = hv_pricer_best(&b->pricer, b->itl, nl, b->itr, nr, b->tau_ms, 0.0,
+                                        &vp, b->sel, &n_sel, &time);
+        if (st != HV_OK) {
+            return st;
+        }
+        for (size_t q = b->stop_begin[p]; q < b->stop_begin[p + 1]; ++q) {
+            size_t k = b->stop_pair[q];
+            uint32_t f = in->pairs[k].fruit;
+            if (b->pair_dead[k]) {
+                continue;
+            }
+            hv_price_item_t *it = NULL; /* f's item (fruits with pi <= 0 force nothing) */
+            for (size_t i = 0; i < nl && it == NULL; ++i) {
+                it = b->itl[i].fruit == f ? &b->itl[i] : NULL;
+            }
+            for (size_t i = 0; i < nr && it == NULL; ++i) {
+                it = b->itr[i].fruit == f ? &b->itr[i] : NULL;
+            }
+            double thr = slack + vp; /* keep the pair if v_p(f) <= thr */
+            double v;
+            if (it != NULL) {
+                it->profit += big;
+                st = hv_pricer_best(&b->pricer, b->itl, nl, b->itr, nr, b->tau_ms,
+                                    fmin(0.0, thr - big + 1e-6), &v, b->sel, &n_sel, &time);
+                it->profit -= big;
+                if (st != HV_OK) {
+                    return st;
+                }
+                if (time >= 0.0) {
+                    continue; /* a pattern with f at or below the threshold: keep */
+                }
+            } else {
+                continue; /* f's dual is not positive: no forced pricing, keep */
+            }
+            b->pair_dead[k] = 1;
+            b->pairs_fixed++;
+        }
+    }
+    for (size_t j = 0; j < b->n_pat; ++j) {
+        const pattern_t *pt = &b->pat[j];
+        for (uint32_t q = 0; q < pt->n && !b->pat_dead[j]; ++q) {
+            size_t k = pair_index(b, b->pf[pt->first + q], pt->stop);
+            b->pat_dead[j] = b->pair_dead[k];
+        }
+        if (b->pat_dead[j]) {
+            col_open(b, j, 0);
+        }
+    }
+    b->fixed_ub = b->ub_ms;
+    return HV_OK;
+}
+
 typedef enum node_end { NODE_PRUNED, NODE_INTEGRAL, NODE_BRANCH, NODE_TIMEOUT } node_end_t;
 
 static void progress(bp_t *b, double lb_ms, int force)
@@ -1184,6 +1284,12 @@ static void progress(bp_t *b, double lb_ms, int force)
  * up. On NODE_BRANCH `sp` says where. */
 static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp)
 {
+    if (isfinite(b->root_lag) && b->ub_ms < b->fixed_ub - 0.5) {
+        hv_status_t stf = fix_pairs(b); /* a better incumbent fixes more */
+        if (stf != HV_OK) {
+            return stf;
+        }
+    }
     int infeasible;
     hv_status_t st0 = node_apply(b, k, &infeasible);
     if (st0 != HV_OK || infeasible) {
@@ -1224,6 +1330,15 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
         if (added > 0) {
             continue;
         }
+        /* the master is optimal over all columns of this node */
+        if (b->nodes[k].parent < 0 && !isfinite(b->root_lag)) {
+            /* the root is solved: its best duals fix pairs for the whole tree */
+            memcpy(b->root_pi, b->pi_c, b->nf * sizeof *b->root_pi);
+            b->root_lag = b->center_lag;
+            if ((st = fix_pairs(b)) != HV_OK) {
+                return st;
+            }
+        }
         int ncol = glp_get_num_cols(b->lp);
         double *x = malloc(((size_t)ncol + 1) * sizeof *x);
         if (x == NULL) {
@@ -1255,16 +1370,17 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
             free(bs);
         }
         /* the rounding pays near the root; deeper, every 8th node is enough */
-        if (b->nodes[k].depth <= 2 || b->n_nodes % 8 == 0) {
-            st = round_and_improve(b, x);
-        }
+        /* x covers the columns up to now: choose the branch before the rounding adds any */
         split_t fs = {KIND_FRUIT, 0, 0, 0, 0, 0, 0.0, 0};
         choose_count(b, x, sp);
-        if (st == HV_OK && sp->score < 0.05) {
+        if (sp->score < 0.05) {
             st = choose_split(b, x, &fs);
             if (fs.score > 0.0) {
                 *sp = fs;
             }
+        }
+        if (st == HV_OK && (b->nodes[k].depth <= 2 || b->n_nodes % 8 == 0)) {
+            st = round_and_improve(b, x);
         }
         free(x);
         if (st != HV_OK) {
@@ -1430,10 +1546,11 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
         if (opt->verbose >= 1) {
             fprintf(stderr,
                     "price: %ld LP rounds in %.2f s (%ld restarts), pricing %.2f s (%llu stops, "
-                    "%.1f points each), heuristic %ld runs (%ld better) in %.2f s\n",
+                    "%.1f points each), heuristic %ld runs (%ld better) in %.2f s, %ld of %zu pairs "
+                    "fixed\n",
                     b.cg_iters, b.t_lp, b.lp_restarts, b.t_price, b.pricer.calls,
                     (double)b.pricer.points / (double)(b.pricer.calls ? b.pricer.calls : 1),
-                    b.heur_runs, b.heur_wins, b.t_heur);
+                    b.heur_runs, b.heur_wins, b.t_heur, b.pairs_fixed, inst->n_pairs);
         }
         res->nodes = nodes;
         res->columns = (long)b.n_pat;
