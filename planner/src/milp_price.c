@@ -1119,6 +1119,28 @@ static hv_status_t choose_split(bp_t *b, const double *x, split_t *best)
     return HV_OK;
 }
 
+/* Local search from plan `a` with `kicks` kicks; kept (with its patterns as columns) when
+ * it beats the incumbent. */
+static hv_status_t improve_plan(bp_t *b, hv_assignment_t *a, unsigned kicks)
+{
+    hv_ls_options_t lo;
+    hv_ls_options_default(&lo);
+    lo.kicks = kicks;
+    lo.seed = 0x9e3779b97f4a7c15ull * (uint64_t)(b->heur_runs + 1);
+    double t;
+    hv_status_t st = hv_local_search(b->inst, &lo, a, &t);
+    b->heur_runs++;
+    if (st == HV_OK && 1000.0 * t < b->ub_ms - 1e-6) {
+        b->ub_ms = 1000.0 * t;
+        b->heur_wins++;
+        memcpy(b->best, a->fruit_stop, b->nf * sizeof *b->best);
+        if (add_assignment_columns(b, b->best) < 0) {
+            st = HV_ERR_PLAN_NOMEM;
+        }
+    }
+    return st;
+}
+
 /* Round a fractional master point to a plan (each fruit at the stop holding most of its
  * mass), improve it by local search and keep it when it beats the incumbent. */
 static hv_status_t round_and_improve(bp_t *b, const double *x)
@@ -1146,26 +1168,30 @@ static hv_status_t round_and_improve(bp_t *b, const double *x)
             complete = 0; /* covered by an artificial only */
         }
     }
-    hv_status_t st = HV_OK;
-    if (complete) {
-        hv_ls_options_t lo;
-        hv_ls_options_default(&lo);
-        lo.kicks = 20;
-        lo.seed = 0x9e3779b97f4a7c15ull * (uint64_t)(b->heur_runs + 1);
-        double t;
-        st = hv_local_search(b->inst, &lo, &a, &t);
-        b->heur_runs++;
-        if (st == HV_OK && 1000.0 * t < b->ub_ms - 1e-6) {
-            b->ub_ms = 1000.0 * t;
-            b->heur_wins++;
-            memcpy(b->best, a.fruit_stop, b->nf * sizeof *b->best);
-            if (add_assignment_columns(b, b->best) < 0) {
-                st = HV_ERR_PLAN_NOMEM;
-            }
-        }
-    }
+    hv_status_t st = complete ? improve_plan(b, &a, 20) : HV_OK;
     hv_assignment_free(&a);
     free(mass);
+    b->t_heur += now_s() - t0;
+    return st;
+}
+
+/* Once the root is solved with a gap left: a long local search from the incumbent,
+ * polish_work * 100 / n^2 kicks (a descent costs ~n^2). */
+static hv_status_t polish_incumbent(bp_t *b)
+{
+    if (b->opt->polish_work <= 0 || !isfinite(b->ub_ms)) {
+        return HV_OK;
+    }
+    double t0 = now_s();
+    size_t n = b->nf ? b->nf : 1;
+    size_t kicks = (size_t)b->opt->polish_work * 100u / (n * n);
+    hv_assignment_t a;
+    if (hv_assignment_alloc(&a, b->nf) != HV_OK) {
+        return HV_ERR_PLAN_NOMEM;
+    }
+    memcpy(a.fruit_stop, b->best, b->nf * sizeof *b->best);
+    hv_status_t st = improve_plan(b, &a, (unsigned)(kicks < 50 ? 50 : (kicks > 3000 ? 3000 : kicks)));
+    hv_assignment_free(&a);
     b->t_heur += now_s() - t0;
     return st;
 }
@@ -1335,6 +1361,9 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
             /* the root is solved: its best duals fix pairs for the whole tree */
             memcpy(b->root_pi, b->pi_c, b->nf * sizeof *b->root_pi);
             b->root_lag = b->center_lag;
+            if (!prunable(b, b->root_lag) && (st = polish_incumbent(b)) != HV_OK) {
+                return st;
+            }
             if ((st = fix_pairs(b)) != HV_OK) {
                 return st;
             }

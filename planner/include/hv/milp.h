@@ -45,10 +45,11 @@ typedef struct hv_milp_options {
     int count_branching;     /* 1: integer stop-count columns (all stops, and per block of
                                 block_stops stops when > 0), branched on first */
     int block_stops;
-    int polish_work;         /* > 0: when the root gap is > 0.2 % and phase 1 of the tree
-                                (20 % of the limit) does not prove optimality, run
-                                the local search from the best plan with
-                                polish_work * 100 / n_fruits^2 kicks (1500 at 100 fruits) */
+    int polish_work;         /* > 0: run the local search from the best plan with
+                                polish_work * 100 / n_fruits^2 kicks (1500 at 100 fruits)
+                                when the root does not close the gap (price) or when the
+                                root gap is > 0.2 % and phase 1 of the tree (20 % of the
+                                limit) does not prove optimality (compact) */
     int algorithm;           /* HV_MILP_ALG_*: how the model is solved (both exact) */
     int pattern_cuts;        /* tree depth down to which stop-pattern cuts are separated
                                 (milp_cuts.h); -1: none */
