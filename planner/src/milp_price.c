@@ -29,6 +29,8 @@
                               within +-CAND_WINDOW stops */
 #define CENTRE_MIN_PAIRS 9000 /* from this many pairs the root starts from the paper's LP
                                  duals (SOLVER.md: alpha 4 needs it, alpha <= 2.5 does not) */
+#define POLISH_ROOT_GAP 2e-3 /* polish when the root leaves more than 0.2 % */
+#define POLISH_MAX_KICKS 1000 /* ~0.15 s at 60 fruits */
 #define DIVE_EVERY 64     /* nodes between dives (search()) */
 #define FULL_EVERY 4       /* a pricing round over all stops at least every 4 rounds */
 
@@ -1175,8 +1177,9 @@ static hv_status_t round_and_improve(bp_t *b, const double *x)
     return st;
 }
 
-/* Once the root is solved with a gap left: a long local search from the incumbent,
- * polish_work * 100 / n^2 kicks (a descent costs ~n^2). */
+/* When the root leaves more than POLISH_ROOT_GAP: a long local search from the incumbent,
+ * polish_work * 100 / n^2 kicks (a descent costs ~n^2), at most POLISH_MAX_KICKS. Before the
+ * pair fixing, which a better incumbent makes stronger. */
 static hv_status_t polish_incumbent(bp_t *b)
 {
     if (b->opt->polish_work <= 0 || !isfinite(b->ub_ms)) {
@@ -1190,7 +1193,7 @@ static hv_status_t polish_incumbent(bp_t *b)
         return HV_ERR_PLAN_NOMEM;
     }
     memcpy(a.fruit_stop, b->best, b->nf * sizeof *b->best);
-    hv_status_t st = improve_plan(b, &a, (unsigned)(kicks < 50 ? 50 : (kicks > 3000 ? 3000 : kicks)));
+    hv_status_t st = improve_plan(b, &a, (unsigned)(kicks < 50 ? 50 : (kicks > POLISH_MAX_KICKS ? POLISH_MAX_KICKS : kicks)));
     hv_assignment_free(&a);
     b->t_heur += now_s() - t0;
     return st;
@@ -1361,7 +1364,8 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
             /* the root is solved: its best duals fix pairs for the whole tree */
             memcpy(b->root_pi, b->pi_c, b->nf * sizeof *b->root_pi);
             b->root_lag = b->center_lag;
-            if (!prunable(b, b->root_lag) && (st = polish_incumbent(b)) != HV_OK) {
+            if (b->ub_ms - b->root_lag > POLISH_ROOT_GAP * b->ub_ms &&
+                (st = polish_incumbent(b)) != HV_OK) {
                 return st;
             }
             if ((st = fix_pairs(b)) != HV_OK) {
