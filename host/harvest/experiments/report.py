@@ -207,10 +207,12 @@ def claim_runtime(rows):
     else:
         text.append(
             f"**Verdict:** differs: {'the slowest plan takes ' + _fmt(mx) + ' s, ' if mx > PAPER_RUNTIME_S else ''}"
-            f"{len(not_proven)} plan(s) not proven optimal. Why: GLPK's branch and bound is much "
-            "weaker than Gurobi's on this model; the balanced case (alpha near 1) is the hard "
-            "one, because near-identical neighbouring stops make the tree huge and the LP bound "
-            "is weak where max(C^L, C^R) binds (DESIGN §10); our machine has 2 shared cores.")
+            f"{len(not_proven)} plan(s) not proven optimal. Why: our exact search (branch-and-"
+            "price on GLPK's simplex, planner/SOLVER.md) gets a tight root bound but closes its "
+            "last fraction of a percent slowly at alpha >= 1: near-identical neighbouring stops give "
+            "the LP many equivalent fractional optima, and GLPK's simplex makes a node cost 10-40 ms; "
+            "the largest instances (alpha 4) can spend most of the limit at the root; our "
+            "machine has 2 shared cores.")
     return "\n\n".join(text), {"max_s": mx, "not_proven": len(not_proven)}
 
 
