@@ -984,15 +984,10 @@ static hv_status_t lp_solve(bp_t *b, int first)
     int r = glp_simplex(b->lp, &sp);
     if (r == GLP_EBADB || r == GLP_ESING || r == GLP_ECOND) {
         b->lp_restarts++;
-        glp_adv_basis(b->lp, 0); /* a basis made singular by rewritten rows: start afresh */
+        glp_adv_basis(b->lp, 0); /* an unusable warm start (singular, invalid): start afresh */
         r = glp_simplex(b->lp, &sp);
     }
     b->t_lp += now_s() - t0;
-    if (b->opt->verbose >= 4) {
-        fprintf(stderr, "lp: %s %d it %.1f ms cols %d rows %d\n", first ? "dual" : "primal",
-                glp_get_it_cnt(b->lp), 1000.0 * (now_s() - t0), glp_get_num_cols(b->lp),
-                glp_get_num_rows(b->lp));
-    }
     if (r == GLP_ETMLIM) {
         return HV_OK; /* the caller sees the deadline */
     }
@@ -1384,23 +1379,6 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
             free(x); /* the node's LP optimum is a plan: the node is solved */
             *end = NODE_INTEGRAL;
             return HV_OK;
-        }
-        if (b->opt->verbose >= 3) {
-            double *bs = calloc(b->ns, sizeof *bs);
-            double tot = 0.0;
-            for (size_t q = 0; bs != NULL && q < b->n_pat; ++q) {
-                bs[b->pat[q].stop] += x[b->pat[q].col];
-                tot += x[b->pat[q].col];
-            }
-            fprintf(stderr, "node %d depth %u lb %.3f stops %.3f:", k, b->nodes[k].depth,
-                    b->nodes[k].lb_ms / 1000.0, tot);
-            for (size_t p = 0; bs != NULL && p < b->ns; ++p) {
-                if (bs[p] > 1e-6) {
-                    fprintf(stderr, " %zu:%.2f", p, bs[p]);
-                }
-            }
-            fprintf(stderr, "\n");
-            free(bs);
         }
         /* the rounding pays near the root; deeper, every 8th node is enough */
         /* x covers the columns up to now: choose the branch before the rounding adds any */

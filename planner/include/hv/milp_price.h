@@ -6,8 +6,9 @@
  * pattern per stop. Its LP bound is the compact model's after the per-stop max has been
  * convexified, which is where the compact model's bound is weak. Columns are priced per
  * stop exactly (two Pareto knapsack frontiers, one per arm, merged on the stop time);
- * branching restricts one fruit's stop to an interval, which the pricing obeys and which
- * splits the near-identical neighbouring stops apart. Nodes are taken best bound first.
+ * branching is on the number of stops (a master row) and then on one fruit's stop
+ * interval, which the pricing obeys. Nodes are taken best bound first with dives;
+ * (fruit, stop) pairs are fixed by reduced cost from the root's duals.
  *
  * Every bound used for pruning is the Lagrangian bound sum_i pi_i + sum_p min(0, v_p)
  * (v_p the exact pricing value at stop p), valid for any duals pi, so early stops of the
