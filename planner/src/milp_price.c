@@ -15,6 +15,7 @@
 
 #include "hv/milp_price.h"
 #include "hv/milp_pricing.h"
+#include "hv/grow_array.h"
 #include "hv/milp_local_search.h"
 #include "hv/milp_model.h"
 #include "hv/milp_status.h"
@@ -163,24 +164,6 @@ static double now_s(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-static int grow(void **p, size_t *cap, size_t need, size_t elem)
-{
-    if (need <= *cap) {
-        return 1;
-    }
-    size_t c = *cap ? *cap : 64;
-    while (c < need) {
-        c *= 2;
-    }
-    void *q = realloc(*p, c * elem);
-    if (q == NULL) {
-        return 0;
-    }
-    *p = q;
-    *cap = c;
-    return 1;
-}
-
 static int prunable(const bp_t *b, double lb_ms)
 {
     if (!isfinite(b->ub_ms)) {
@@ -215,8 +198,8 @@ static int hash_insert(bp_t *b, int32_t k);
 static int iv_reserve(bp_t *b, size_t n)
 {
     size_t ci = b->iv_cap, cv = b->iv_cap;
-    if (!grow((void **)&b->ind, &ci, n + 1, sizeof *b->ind) ||
-        !grow((void **)&b->val, &cv, n + 1, sizeof *b->val)) {
+    if (!hv_grow((void **)&b->ind, &ci, n + 1, sizeof *b->ind) ||
+        !hv_grow((void **)&b->val, &cv, n + 1, sizeof *b->val)) {
         return 0;
     }
     b->iv_cap = ci < cv ? ci : cv;
@@ -286,12 +269,12 @@ static int pattern_add(bp_t *b, uint32_t stop, uint32_t *f, uint32_t n, double c
     if (known >= 0) {
         return 0;
     }
-    if (!grow((void **)&b->pat, &b->pat_cap, b->n_pat + 1, sizeof *b->pat) ||
-        !grow((void **)&b->pf, &b->pf_cap, b->pf_len + n, sizeof *b->pf)) {
+    if (!hv_grow((void **)&b->pat, &b->pat_cap, b->n_pat + 1, sizeof *b->pat) ||
+        !hv_grow((void **)&b->pf, &b->pf_cap, b->pf_len + n, sizeof *b->pf)) {
         return -1;
     }
-    if (!grow((void **)&b->pat_open, &b->open_cap, b->n_pat + 1, 1) ||
-        !grow((void **)&b->pat_dead, &b->dead_cap, b->n_pat + 1, 1)) {
+    if (!hv_grow((void **)&b->pat_open, &b->open_cap, b->n_pat + 1, 1) ||
+        !hv_grow((void **)&b->pat_dead, &b->dead_cap, b->n_pat + 1, 1)) {
         return -1;
     }
     b->pat_dead[b->n_pat] = 0;
@@ -332,26 +315,9 @@ static int pattern_add(bp_t *b, uint32_t stop, uint32_t *f, uint32_t n, double c
 }
 
 /* Cost of the pair (fruit f, stop p) in ms, or -1 when not reachable. */
-/* The pair (fruit f, stop p), SIZE_MAX when f does not reach p. */
-static size_t pair_index(const bp_t *b, uint32_t f, uint32_t p)
-{
-    const hv_instance_t *in = b->inst;
-    size_t lo = in->fruit_begin[f], hi = in->fruit_begin[f + 1];
-    while (lo < hi) { /* pairs of a fruit are sorted by stop */
-        size_t mid = lo + (hi - lo) / 2;
-        if (in->pairs[mid].stop < p) {
-            lo = mid + 1;
-        } else {
-            hi = mid;
-        }
-    }
-    return lo < in->fruit_begin[f + 1] && in->pairs[lo].stop == p ? lo : SIZE_MAX;
-}
-
-/* Cost of the pair (fruit f, stop p) in ms, or -1 when not reachable. */
 static double pair_ms(const bp_t *b, uint32_t f, uint32_t p)
 {
-    size_t k = pair_index(b, f, p);
+    size_t k = hv_instance_pair_index(b->inst, f, p);
     return k == SIZE_MAX ? -1.0 : 1000.0 * b->inst->pairs[k].cost_s;
 }
 
@@ -565,7 +531,7 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
 static int node_new(bp_t *b, int32_t parent, node_kind_t kind, uint32_t fruit, uint32_t lo,
                     uint32_t hi, int32_t rhs, double lb)
 {
-    if (!grow((void **)&b->nodes, &b->nodes_cap, b->n_nodes + 1, sizeof *b->nodes)) {
+    if (!hv_grow((void **)&b->nodes, &b->nodes_cap, b->n_nodes + 1, sizeof *b->nodes)) {
         return -1;
     }
     uint32_t depth = parent < 0 ? 0 : b->nodes[parent].depth + 1;
@@ -582,7 +548,7 @@ static int heap_less(const bp_t *b, int32_t x, int32_t y)
 
 static int heap_push(bp_t *b, int32_t k)
 {
-    if (!grow((void **)&b->heap, &b->heap_cap, b->heap_len + 1, sizeof *b->heap)) {
+    if (!hv_grow((void **)&b->heap, &b->heap_cap, b->heap_len + 1, sizeof *b->heap)) {
         return 0;
     }
     size_t i = b->heap_len++;
@@ -624,7 +590,7 @@ static int32_t basis_save(bp_t *b)
     int nr = glp_get_num_rows(b->lp), nc = glp_get_num_cols(b->lp);
     size_t bytes = (size_t)nr + (size_t)nc;
     if (b->bases_bytes + bytes > ((size_t)256 << 20) ||
-        !grow((void **)&b->bases, &b->bases_cap, b->n_bases + 1, sizeof *b->bases)) {
+        !hv_grow((void **)&b->bases, &b->bases_cap, b->n_bases + 1, sizeof *b->bases)) {
         return -1;
     }
     unsigned char *st = malloc(bytes);
@@ -665,7 +631,7 @@ static count_row_t *crow_get(bp_t *b, uint32_t lo, uint32_t hi)
         }
     }
     if (!iv_reserve(b, b->n_pat) ||
-        !grow((void **)&b->crow, &b->crow_cap, b->n_crow + 1, sizeof *b->crow)) {
+        !hv_grow((void **)&b->crow, &b->crow_cap, b->n_crow + 1, sizeof *b->crow)) {
         return NULL;
     }
     count_row_t *c = &b->crow[b->n_crow++];
@@ -759,7 +725,7 @@ static hv_status_t node_apply(bp_t *b, int32_t k, int *infeasible)
  * would make the Lagrangian bound invalid). */
 static int duals_read(bp_t *b)
 {
-    if (!grow((void **)&b->sg_lp, &b->sg_cap, b->n_crow + 1, sizeof *b->sg_lp)) {
+    if (!hv_grow((void **)&b->sg_lp, &b->sg_cap, b->n_crow + 1, sizeof *b->sg_lp)) {
         return 0;
     }
     for (size_t f = 0; f < b->nf; ++f) {
@@ -785,6 +751,30 @@ static void sigma_per_stop(const bp_t *b, const double *sg, double *out)
     for (size_t r = 0; r < b->n_crow; ++r) {
         for (uint32_t p = b->crow[r].lo; sg[r] != 0.0 && p <= b->crow[r].hi; ++p) {
             out[p] += sg[r];
+        }
+    }
+}
+
+/* The pricing items of stop p at duals pi into itl / itr: its reachable fruits with a
+ * positive dual and a pair not fixed out, and when node_only those the current node allows
+ * there. Records each fruit's pair at p in pair_at. */
+static void stop_items(bp_t *b, size_t p, const double *pi, int node_only, size_t *nl,
+                       size_t *nr)
+{
+    const hv_instance_t *in = b->inst;
+    *nl = *nr = 0;
+    for (size_t q = b->stop_begin[p]; q < b->stop_begin[p + 1]; ++q) {
+        size_t k = b->stop_pair[q];
+        uint32_t f = in->pairs[k].fruit;
+        b->pair_at[f] = k;
+        if (pi[f] <= 1e-9 || b->pair_dead[k] || (node_only && (b->lo[f] > p || b->hi[f] < p))) {
+            continue;
+        }
+        hv_price_item_t it = {f, 1000.0 * in->pairs[k].cost_s, pi[f]};
+        if (in->fruits[f].side == HV_SIDE_LEFT) {
+            b->itl[(*nl)++] = it;
+        } else {
+            b->itr[(*nr)++] = it;
         }
     }
 }
@@ -819,21 +809,8 @@ static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, int ful
         if (b->row_of_stop[p] == 0 || (!full && !b->hot[p])) {
             continue;
         }
-        size_t nl = 0, nr = 0;
-        for (size_t q = b->stop_begin[p]; q < b->stop_begin[p + 1]; ++q) {
-            const hv_pair_t *pa = &in->pairs[b->stop_pair[q]];
-            uint32_t f = pa->fruit;
-            b->pair_at[f] = b->stop_pair[q];
-            if (pi[f] <= 1e-9 || b->lo[f] > p || b->hi[f] < p || b->pair_dead[b->stop_pair[q]]) {
-                continue;
-            }
-            hv_price_item_t it = {f, 1000.0 * pa->cost_s, pi[f]};
-            if (in->fruits[f].side == HV_SIDE_LEFT) {
-                b->itl[nl++] = it;
-            } else {
-                b->itr[nr++] = it;
-            }
-        }
+        size_t nl, nr;
+        stop_items(b, p, pi, 1, &nl, &nr);
         /* last round's best pattern here, at today's duals: a threshold for the pricing */
         double offset = b->tau_ms - b->sigma_stop[p], v0 = INFINITY, t0 = 0.0;
         size_t *warm = b->warm_pair + b->stop_begin[p];
@@ -881,7 +858,7 @@ static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, int ful
             rc -= b->pi_lp[b->sel[q]];
         }
         if (rc < -RC_EPS_MS) {
-            if (!grow((void **)&b->cf, &b->cf_cap, b->cf_len + n_sel + 1, sizeof *b->cf)) {
+            if (!hv_grow((void **)&b->cf, &b->cf_cap, b->cf_len + n_sel + 1, sizeof *b->cf)) {
                 return HV_ERR_PLAN_NOMEM;
             }
             b->cand[p] = (cand_t){rc, cost, (uint32_t)b->cf_len, (uint32_t)n_sel};
@@ -923,8 +900,8 @@ static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, int ful
 static hv_status_t price_round(bp_t *b, int fresh_node, double *lag_ms, int *added)
 {
     size_t ncr = b->n_crow;
-    if (!duals_read(b) || !grow((void **)&b->sg_c, &b->sgc_cap, ncr + 1, sizeof *b->sg_c) ||
-        !grow((void **)&b->sg_sep, &b->sgs_cap, ncr + 1, sizeof *b->sg_sep)) {
+    if (!duals_read(b) || !hv_grow((void **)&b->sg_c, &b->sgc_cap, ncr + 1, sizeof *b->sg_c) ||
+        !hv_grow((void **)&b->sg_sep, &b->sgs_cap, ncr + 1, sizeof *b->sg_sep)) {
         return HV_ERR_PLAN_NOMEM;
     }
     if (fresh_node && !b->root_centre) {
@@ -1080,7 +1057,7 @@ static hv_status_t choose_split(bp_t *b, const double *x, split_t *best)
         if (v <= LAMBDA_EPS) {
             continue;
         }
-        if (!grow((void **)&m, &cap, n + b->pat[k].n, sizeof *m)) {
+        if (!hv_grow((void **)&m, &cap, n + b->pat[k].n, sizeof *m)) {
             free(m);
             return HV_ERR_PLAN_NOMEM;
         }
@@ -1222,18 +1199,8 @@ static hv_status_t fix_pairs(bp_t *b)
         if (b->row_of_stop[p] == 0) {
             continue;
         }
-        size_t nl = 0, nr = 0;
-        for (size_t q = b->stop_begin[p]; q < b->stop_begin[p + 1]; ++q) {
-            const hv_pair_t *pa = &in->pairs[b->stop_pair[q]];
-            if (pi[pa->fruit] > 1e-9 && !b->pair_dead[b->stop_pair[q]]) {
-                hv_price_item_t it = {pa->fruit, 1000.0 * pa->cost_s, pi[pa->fruit]};
-                if (in->fruits[pa->fruit].side == HV_SIDE_LEFT) {
-                    b->itl[nl++] = it;
-                } else {
-                    b->itr[nr++] = it;
-                }
-            }
-        }
+        size_t nl, nr;
+        stop_items(b, p, pi, 0, &nl, &nr); /* fixing is global: every pair not yet fixed */
         double vp, time;
         size_t n_sel;
         hv_status_t st = hv_pricer_best(&b->pricer, b->itl, nl, b->itr, nr, b->tau_ms, 0.0,
@@ -1277,7 +1244,7 @@ static hv_status_t fix_pairs(bp_t *b)
     for (size_t j = 0; j < b->n_pat; ++j) {
         const pattern_t *pt = &b->pat[j];
         for (uint32_t q = 0; q < pt->n && !b->pat_dead[j]; ++q) {
-            size_t k = pair_index(b, b->pf[pt->first + q], pt->stop);
+            size_t k = hv_instance_pair_index(b->inst, b->pf[pt->first + q], pt->stop);
             b->pat_dead[j] = b->pair_dead[k];
         }
         if (b->pat_dead[j]) {

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hv/grow_array.h"
 #include "hv/milp_pricing.h"
 #include "hv/plan_status.h"
 
@@ -25,28 +26,10 @@ void hv_pricer_free(hv_pricer_t *pr)
     memset(pr, 0, sizeof *pr);
 }
 
-static int grow(void **p, size_t *cap, size_t need, size_t elem)
-{
-    if (need <= *cap) {
-        return 1;
-    }
-    size_t c = *cap ? *cap : 256;
-    while (c < need) {
-        c *= 2;
-    }
-    void *q = realloc(*p, c * elem);
-    if (q == NULL) {
-        return 0;
-    }
-    *p = q;
-    *cap = c;
-    return 1;
-}
-
 static int push_pt(hv_pricer_t *pr, double w, double p, int32_t item, int32_t parent,
                    int32_t *idx)
 {
-    if (!grow((void **)&pr->arena, &pr->arena_cap, pr->arena_len + 1, sizeof *pr->arena)) {
+    if (!hv_grow((void **)&pr->arena, &pr->arena_cap, pr->arena_len + 1, sizeof *pr->arena)) {
         return 0;
     }
     pr->arena[pr->arena_len] = (hv_front_pt_t){w, p, item, parent};
@@ -113,7 +96,7 @@ static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
     }
     int32_t e;
     if (!push_pt(pr, 0.0, 0.0, -1, -1, &e) ||
-        !grow((void **)&pr->cur, &pr->cur_cap, 1, sizeof *pr->cur)) {
+        !hv_grow((void **)&pr->cur, &pr->cur_cap, 1, sizeof *pr->cur)) {
         return 0;
     }
     /* with a partner every point is a whole pattern (with the partner's best point): the
@@ -139,7 +122,7 @@ static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
         suf1 -= fmin(0.0, items[k].w_ms - items[k].profit);
         double c0 = offset + suf0 + fb->other0, c_half = offset + suf_half + fb->other_half,
                c1 = offset + suf1 + fb->other1, cg = offset + suf0;
-        if (!grow((void **)&pr->next, &pr->next_cap, 2 * ncur, sizeof *pr->next)) {
+        if (!hv_grow((void **)&pr->next, &pr->next_cap, 2 * ncur, sizeof *pr->next)) {
             return 0;
         }
         double wk = items[k].w_ms, pk = items[k].profit;
@@ -232,7 +215,7 @@ hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t 
     /* arm A, the one with fewer items, first: its small frontier then bounds arm B's */
     const hv_price_item_t *ia = nl <= nr ? left : right, *ib = nl <= nr ? right : left;
     size_t na = nl <= nr ? nl : nr, nb = nl <= nr ? nr : nl;
-    if (!grow((void **)&pr->sorted, &pr->sorted_cap, na + nb + 1, sizeof *pr->sorted)) {
+    if (!hv_grow((void **)&pr->sorted, &pr->sorted_cap, na + nb + 1, sizeof *pr->sorted)) {
         return HV_ERR_PLAN_NOMEM;
     }
     hv_price_item_t *sa = pr->sorted, *sb = pr->sorted + na;
@@ -260,13 +243,13 @@ hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t 
     if (n_a == 0) {
         return HV_OK; /* no point of arm A can be part of a pattern with v < 0 */
     }
-    if (!grow((void **)&pr->left_front, &pr->left_cap, n_a, sizeof *pr->left_front) ||
-        !grow((void **)&pr->pw, &pr->pw_cap, 3 * n_a, sizeof *pr->pw)) {
+    if (!hv_grow((void **)&pr->left_front, &pr->left_cap, n_a, sizeof *pr->left_front) ||
+        !hv_grow((void **)&pr->pw, &pr->pw_cap, 3 * n_a, sizeof *pr->pw)) {
         return HV_ERR_PLAN_NOMEM;
     }
     memcpy(pr->left_front, pr->cur, n_a * sizeof *pr->cur);
-    if (!grow((void **)&pr->parg, &pr->parg_cap, n_a, sizeof *pr->parg) ||
-        !grow((void **)&pr->pidx, &pr->pidx_cap, n_a, sizeof *pr->pidx)) {
+    if (!hv_grow((void **)&pr->parg, &pr->parg_cap, n_a, sizeof *pr->parg) ||
+        !hv_grow((void **)&pr->pidx, &pr->pidx_cap, n_a, sizeof *pr->pidx)) {
         return HV_ERR_PLAN_NOMEM;
     }
     double *pw = pr->pw, *pp = pr->pw + n_a, *psuf = pr->pw + 2 * n_a;

@@ -1,16 +1,13 @@
 /* Makespan of an assignment (plan_eval.h). */
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "hv/plan_eval.h"
 #include "hv/plan_status.h"
 
-hv_status_t hv_instance_pair_cost(const hv_instance_t *inst, uint32_t fruit, uint32_t stop,
-                                  double *cost_s)
+size_t hv_instance_pair_index(const hv_instance_t *inst, uint32_t fruit, uint32_t stop)
 {
-    if (inst == NULL || cost_s == NULL || fruit >= inst->n_fruits) {
-        return HV_ERR_ARG;
-    }
     size_t lo = inst->fruit_begin[fruit], hi = inst->fruit_begin[fruit + 1];
     while (lo < hi) { /* pairs of one fruit are sorted by stop */
         size_t mid = lo + (hi - lo) / 2;
@@ -20,11 +17,21 @@ hv_status_t hv_instance_pair_cost(const hv_instance_t *inst, uint32_t fruit, uin
             hi = mid;
         }
     }
-    if (lo < inst->fruit_begin[fruit + 1] && inst->pairs[lo].stop == stop) {
-        *cost_s = inst->pairs[lo].cost_s;
-        return HV_OK;
+    return lo < inst->fruit_begin[fruit + 1] && inst->pairs[lo].stop == stop ? lo : SIZE_MAX;
+}
+
+hv_status_t hv_instance_pair_cost(const hv_instance_t *inst, uint32_t fruit, uint32_t stop,
+                                  double *cost_s)
+{
+    if (inst == NULL || cost_s == NULL || fruit >= inst->n_fruits) {
+        return HV_ERR_ARG;
     }
-    return HV_ERR_UNREACHABLE;
+    size_t k = hv_instance_pair_index(inst, fruit, stop);
+    if (k == SIZE_MAX) {
+        return HV_ERR_UNREACHABLE;
+    }
+    *cost_s = inst->pairs[k].cost_s;
+    return HV_OK;
 }
 
 hv_status_t hv_assignment_eval_ws(const hv_instance_t *inst, const hv_assignment_t *a,

@@ -24,6 +24,10 @@ typedef struct hv_eval {
     size_t fruits_planned;
 } hv_eval_t;
 
+/* Index into inst->pairs of the pair (fruit < n_fruits, stop), SIZE_MAX when the fruit
+ * does not reach the stop. O(log pairs of the fruit). */
+size_t hv_instance_pair_index(const hv_instance_t *inst, uint32_t fruit, uint32_t stop);
+
 /* Cost (s) of the pair (fruit, stop): HV_OK and *cost_s, or HV_ERR_UNREACHABLE.
  * O(log pairs of the fruit). */
 hv_status_t hv_instance_pair_cost(const hv_instance_t *inst, uint32_t fruit, uint32_t stop,
