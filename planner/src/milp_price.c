@@ -129,18 +129,16 @@ typedef struct bp {
     double *pi_sep, *sg_sep;      /* the duals priced at */
     size_t sg_cap, sgc_cap, sgs_cap;
     double *sigma_lp;
-    double center_lag, smooth;
+    double center_lag;
     int root_centre; /* center_lag / pi_c were set before the root: keep them */
     cand_t *cand; /* per stop */
     uint32_t *cf;
     size_t cf_len, cf_cap;
-    long cand_window;
     unsigned char *hot; /* per stop: its value was negative when last priced */
-    int partial_rounds, full_every;
+    int partial_rounds;
     size_t *warm_pair; /* per stop (slots at stop_begin[p]): its last best pattern's pairs */
     size_t *warm_n;    /* their number, SIZE_MAX when none yet */
     size_t *pair_at;   /* per fruit: its pair at the stop being priced */
-    double tail_ms;
     int *ind;
     double *val;
     size_t iv_cap; /* entries of ind and val */
@@ -450,12 +448,9 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
     b->root_lag = -INFINITY;
     b->fixed_ub = INFINITY;
     b->hot = malloc(ns + 1);
-    b->full_every = FULL_EVERY;
     b->warm_pair = malloc((inst->n_pairs + 1) * sizeof *b->warm_pair);
     b->warm_n = malloc((ns + 1) * sizeof *b->warm_n);
     b->pair_at = malloc((nf + 1) * sizeof *b->pair_at);
-    b->cand_window = CAND_WINDOW;
-    b->smooth = SMOOTHING;
     b->iv_cap = nf + 3;
     b->ind = malloc(b->iv_cap * sizeof *b->ind);
     b->val = malloc(b->iv_cap * sizeof *b->val);
@@ -867,8 +862,8 @@ static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, int ful
         }
     }
     /* neighbouring stops price near-identical patterns: add a stop's pattern only where
-     * its reduced cost is the least within +-cand_window stops */
-    long w = b->cand_window;
+     * its reduced cost is the least within +-CAND_WINDOW stops */
+    long w = CAND_WINDOW;
     for (size_t p = 0; p < b->ns; ++p) {
         double rc = b->cand[p].rc;
         int best = rc < -RC_EPS_MS;
@@ -908,10 +903,10 @@ static hv_status_t price_round(bp_t *b, int fresh_node, double *lag_ms, int *add
         b->center_lag = -INFINITY;
     }
     b->root_centre = 0;
-    double alpha = isfinite(b->center_lag) ? b->smooth : 0.0;
+    double alpha = isfinite(b->center_lag) ? SMOOTHING : 0.0;
     /* partial rounds price only the stops that had a negative value when last priced;
      * every few rounds, and before calling the master optimal, all of them */
-    int full = fresh_node || ++b->partial_rounds >= b->full_every;
+    int full = fresh_node || ++b->partial_rounds >= FULL_EVERY;
     *lag_ms = -INFINITY;
     for (;;) {
         for (size_t f = 0; f < b->nf; ++f) {
