@@ -30,6 +30,7 @@ static void usage(FILE *f)
             "  --config PATH        harvest config (default %s)\n"
             "  --alphas A,B,..      alphas (default 0.25,0.4,1,2.5,4)\n"
             "  --seeds N            seeds per alpha (default 10)\n"
+            "  --first-seed N       the first seed (default 1): --first-seed 4 --seeds 1 runs seed 4\n"
             "  --time-limit S       MILP limit per instance, s (default 10: DESIGN's max is 7 s)\n"
             "  --plain-seeds N      seeds per alpha also solved by the plain model (default 2)\n"
             "  --plain-limit S      its limit, s (default 10)\n"
@@ -39,7 +40,9 @@ static void usage(FILE *f)
             "                       glpk_cuts_phase2,\n"
             "                       pcost_branching, pattern_cuts (depth, -1 off),\n"
             "                       count_branching, block_stops, backtracking,\n"
-            "                       polish_work, algorithm (0 compact, 1 price)\n"
+            "                       polish_work, algorithm (0 compact, 1 price),\n"
+            "                       column_dive (0 off, 1 root gap > 0.2 %%, 2 always),\n"
+            "                       window_width (stops per re-planned window, 0 off)\n"
             "  --no-baselines       skip FOV and Serial\n"
             "  -v                   solver progress on stderr\n"
             "  --help               this text\n",
@@ -74,6 +77,8 @@ static int set_option(hv_milp_options_t *o, const char *kv)
         {"backtracking", &o->backtracking},
         {"polish_work", &o->polish_work},
         {"algorithm", &o->algorithm},
+        {"column_dive", &o->column_dive},
+        {"window_width", &o->window_width},
     };
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; ++i) {
         if (strlen(keys[i].k) == n && strncmp(kv, keys[i].k, n) == 0) {
@@ -138,7 +143,7 @@ int main(int argc, char **argv)
 {
     const char *cfg_path = HV_BENCH_DEFAULT_CONFIG;
     double alphas[MAX_ALPHAS] = {0.25, 0.4, 1.0, 2.5, 4.0};
-    size_t n_alpha = 5, n_seeds = 10, plain_seeds = 2;
+    size_t n_alpha = 5, n_seeds = 10, plain_seeds = 2, first_seed = 1;
     double plain_limit = 10.0;
     int baselines = 1;
     hv_milp_options_t mo;
@@ -180,6 +185,15 @@ int main(int argc, char **argv)
                 return 2;
             }
             *(a[2] == 's' ? &n_seeds : &plain_seeds) = (size_t)n;
+            ++i;
+        } else if (strcmp(a, "--first-seed") == 0) {
+            char *end;
+            long n = strtol(v, &end, 10);
+            if (*end != '\0' || n < 1) {
+                fprintf(stderr, "bench_milp: --first-seed: a whole number >= 1, not '%s'\n", v);
+                return 2;
+            }
+            first_seed = (size_t)n;
             ++i;
         } else if (strcmp(a, "--time-limit") == 0 || strcmp(a, "--plain-limit") == 0) {
             double s = strtod(v, NULL);
@@ -227,7 +241,7 @@ int main(int argc, char **argv)
         size_t n_right = (size_t)lround(alphas[ai] * 50.0);
         for (size_t seed = 0; seed < n_seeds; ++seed) {
             hv_instance_t inst;
-            if (bench_instance_make(&cfg, &tabs, 50, n_right, seed + 1, &inst) != 0) {
+            if (bench_instance_make(&cfg, &tabs, 50, n_right, first_seed + seed, &inst) != 0) {
                 return 1;
             }
             size_t nf = inst.n_fruits - hv_instance_unreachable_count(&inst);
@@ -239,7 +253,7 @@ int main(int argc, char **argv)
             memset(&ev, 0, sizeof ev);
             if (hv_milp_solve(&inst, &mo, NULL, &out, &res) != HV_OK) {
                 fprintf(stderr, "bench_milp: solver error on alpha %g seed %zu\n", alphas[ai],
-                        seed + 1);
+                        first_seed + seed);
                 failures++;
                 hv_instance_free(&inst);
                 continue;
@@ -257,7 +271,7 @@ int main(int argc, char **argv)
                     fmax(r->heur_excess_max, res.incumbent_s / res.objective_s - 1.0);
             }
             printf("%-5g %-4zu %4zu %6zu | %-9s %9.3f %9.3f %8.2e %7.2f %7ld %5zu | %9.3f %9.3f |",
-                   alphas[ai], seed + 1, nf, inst.n_pairs, status_word(res.status),
+                   alphas[ai], first_seed + seed, nf, inst.n_pairs, status_word(res.status),
                    res.objective_s, res.bound_s, res.gap, res.runtime_s, res.nodes, ev.stops,
                    res.root_bound_s, res.incumbent_s);
             if (seed < plain_seeds) {

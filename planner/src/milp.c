@@ -40,6 +40,8 @@ void hv_milp_options_default(hv_milp_options_t *opt)
     opt->count_branching = 0;
     opt->block_stops = 10;
     opt->polish_work = 150000;
+    opt->column_dive = 1;
+    opt->window_width = 4;
     opt->glpk_cuts_phase2 = HV_MILP_CUT_GMI | HV_MILP_CUT_MIR | HV_MILP_CUT_COVER |
                             HV_MILP_CUT_CLIQUE;
 }

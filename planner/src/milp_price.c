@@ -6,6 +6,7 @@
 #endif
 
 #include <float.h>
+#include <limits.h>
 #include <glpk.h>
 #include <math.h>
 #include <stdio.h>
@@ -19,6 +20,7 @@
 #include "hv/milp_local_search.h"
 #include "hv/milp_model.h"
 #include "hv/milp_status.h"
+#include "hv/milp_window.h"
 #include "hv/plan_eval.h"
 #include "hv/plan_status.h"
 
@@ -30,10 +32,14 @@
                               within +-CAND_WINDOW stops */
 #define CENTRE_MIN_PAIRS 9000 /* from this many pairs the root starts from the paper's LP
                                  duals (SOLVER.md: alpha 4 needs it, alpha <= 2.5 does not) */
-#define POLISH_ROOT_GAP 2e-3 /* polish when the root leaves more than 0.2 % */
+#define PRIMAL_ROOT_GAP 2e-3 /* polish, column dive and row windows when the root leaves
+                                more than 0.2 % (SOLVER.md) */
 #define POLISH_MAX_KICKS 1000 /* ~0.15 s at 60 fruits */
 #define DIVE_EVERY 64     /* nodes between dives (search()) */
-#define FULL_EVERY 4       /* a pricing round over all stops at least every 4 rounds */
+#define WINDOW_SHARE 0.25 /* of the time left after the root, at most, for row windows */
+#define WINDOW_LIMIT_S 0.5 /* per window */
+#define STALL_ITERS_PER_ROW 10 /* primal simplex iterations per master row before a call
+                                  counts as stalled (a normal round takes ~40 in all) */
 
 typedef struct pattern {
     uint32_t stop;
@@ -47,7 +53,8 @@ typedef enum node_kind {
     KIND_ROOT,
     KIND_FRUIT,    /* fruit `fruit` at a stop in [lo, hi] */
     KIND_COUNT_LE, /* at most `rhs` stops used in [lo, hi] */
-    KIND_COUNT_GE  /* at least `rhs` stops used in [lo, hi] */
+    KIND_COUNT_GE, /* at least `rhs` stops used in [lo, hi] */
+    KIND_PATTERN   /* pattern `rhs` (at stop lo = hi) used: only in column-fixing dives */
 } node_kind_t;
 
 typedef struct node {
@@ -60,10 +67,15 @@ typedef struct node {
     int32_t basis; /* the parent's final master basis (index into bp_t.bases), -1 none */
 } node_t;
 
-/* A master basis: the status of rows 1..n_rows then columns 1..n_cols. */
+/* What a parent leaves its children: its master basis (the status of rows 1..n_rows then
+ * columns 1..n_cols) and its stabilisation centre (the duals of its best Lagrangian bound,
+ * lag; at those duals a child's bound is at least lag, its patterns being fewer). */
 typedef struct basis {
     int n_rows, n_cols;
     unsigned char *stat;
+    double *pi, *sg; /* fruit duals (nf) and count-row duals (n_sg) */
+    size_t n_sg;
+    double lag;
 } basis_t;
 
 /* A master row counting the patterns at stops [lo, hi], one per interval ever branched on
@@ -93,6 +105,7 @@ typedef struct bp {
     size_t *stop_pair;
     int *row_of_fruit;  /* master row of fruit f, 0 when unreachable */
     int *row_of_stop;   /* master row of stop p, 0 when no fruit reaches it */
+    int32_t *fixed_pat; /* per stop: the pattern the current node fixes there, -1 none */
     int n_art;
     count_row_t *crow;
     size_t n_crow, crow_cap;
@@ -103,7 +116,7 @@ typedef struct bp {
     size_t n_pat, pat_cap;
     uint32_t *pf;
     size_t pf_len, pf_cap;
-    unsigned char *pat_open;   /* the column is open in the master */
+    unsigned char *pat_open;   /* the column is open in the master (2: fixed at 1) */
     size_t open_cap, dead_cap;
     unsigned char *pat_dead;  /* uses a pair removed by reduced-cost fixing */
     unsigned char *pair_dead; /* per pair: cannot be in a plan better than the incumbent */
@@ -117,6 +130,7 @@ typedef struct bp {
     size_t n_nodes, nodes_cap;
     basis_t *bases;
     size_t n_bases, bases_cap, bases_bytes;
+    int32_t cur_basis; /* what the current node's parent left it, -1 none */
     int32_t *heap;
     size_t heap_len, heap_cap;
     uint32_t *lo, *hi; /* the current node's stop interval per fruit */
@@ -134,8 +148,6 @@ typedef struct bp {
     cand_t *cand; /* per stop */
     uint32_t *cf;
     size_t cf_len, cf_cap;
-    unsigned char *hot; /* per stop: its value was negative when last priced */
-    int partial_rounds;
     size_t *warm_pair; /* per stop (slots at stop_begin[p]): its last best pattern's pairs */
     size_t *warm_n;    /* their number, SIZE_MAX when none yet */
     size_t *pair_at;   /* per fruit: its pair at the stop being priced */
@@ -149,8 +161,13 @@ typedef struct bp {
     double t_start, t_print;
     long cg_iters;
     double t_heur; /* time spent in the rounding heuristic (s) */
+    double t_dive; /* time spent in column-fixing dives (s) */
+    long dives;
+    double t_window; /* time spent re-planning row windows (s) */
+    long windows, windows_better;
     double t_lp, t_price; /* time in the master LP and in pricing (s) */
     long lp_restarts;     /* master bases rebuilt after a singular warm start */
+    long lp_stalls;       /* primal simplex calls stopped as stalled, finished by the dual */
     long heur_runs, heur_wins;
     int inexact; /* a numerically doubtful node was closed: do not claim optimality */
 } bp_t;
@@ -244,11 +261,13 @@ static int32_t pattern_find(const bp_t *b, uint32_t stop, const uint32_t *f, uin
     return -1;
 }
 
+/* open: 0 closed (fixed at 0), 1 open, 2 fixed at 1 */
 static void col_open(bp_t *b, size_t j, unsigned char open)
 {
     if (open != b->pat_open[j]) {
         b->pat_open[j] = open;
-        glp_set_col_bnds(b->lp, b->pat[j].col, open ? GLP_LO : GLP_FX, 0.0, 0.0);
+        double v = open == 2 ? 1.0 : 0.0;
+        glp_set_col_bnds(b->lp, b->pat[j].col, open == 1 ? GLP_LO : GLP_FX, v, v);
     }
 }
 
@@ -376,6 +395,7 @@ static void bp_free(bp_t *b)
     free(b->stop_pair);
     free(b->row_of_fruit);
     free(b->row_of_stop);
+    free(b->fixed_pat);
     free(b->pat);
     free(b->pf);
     free(b->pat_open);
@@ -386,6 +406,7 @@ static void bp_free(bp_t *b)
     free(b->nodes);
     for (size_t i = 0; i < b->n_bases; ++i) {
         free(b->bases[i].stat);
+        free(b->bases[i].pi);
     }
     free(b->bases);
     free(b->heap);
@@ -404,7 +425,6 @@ static void bp_free(bp_t *b)
     free(b->sg_sep);
     free(b->sigma_lp);
     free(b->cand);
-    free(b->hot);
     free(b->warm_pair);
     free(b->warm_n);
     free(b->pair_at);
@@ -432,6 +452,7 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
     b->stop_pair = malloc((inst->n_pairs + 1) * sizeof *b->stop_pair);
     b->row_of_fruit = calloc(nf + 1, sizeof *b->row_of_fruit);
     b->row_of_stop = calloc(ns + 1, sizeof *b->row_of_stop);
+    b->fixed_pat = malloc((ns + 1) * sizeof *b->fixed_pat);
     b->lo = malloc((nf + 1) * sizeof *b->lo);
     b->hi = malloc((nf + 1) * sizeof *b->hi);
     b->itl = malloc((nf + 1) * sizeof *b->itl);
@@ -447,7 +468,7 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
     b->root_pi = calloc(nf + 1, sizeof *b->root_pi);
     b->root_lag = -INFINITY;
     b->fixed_ub = INFINITY;
-    b->hot = malloc(ns + 1);
+    b->cur_basis = -1;
     b->warm_pair = malloc((inst->n_pairs + 1) * sizeof *b->warm_pair);
     b->warm_n = malloc((ns + 1) * sizeof *b->warm_n);
     b->pair_at = malloc((nf + 1) * sizeof *b->pair_at);
@@ -457,11 +478,11 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
     b->sigma_stop = calloc(ns + 1, sizeof *b->sigma_stop);
     b->best = malloc((nf + 1) * sizeof *b->best);
     if (b->stop_begin == NULL || b->stop_pair == NULL || b->row_of_fruit == NULL ||
-        b->row_of_stop == NULL || b->lo == NULL || b->hi == NULL || b->itl == NULL ||
-        b->itr == NULL || b->sel == NULL || b->pi_lp == NULL || b->pi_c == NULL ||
+        b->row_of_stop == NULL || b->fixed_pat == NULL || b->lo == NULL || b->hi == NULL ||
+        b->itl == NULL || b->itr == NULL || b->sel == NULL || b->pi_lp == NULL || b->pi_c == NULL ||
         b->pi_sep == NULL || b->mu_lp == NULL || b->sigma_lp == NULL || b->cand == NULL ||
 
-        b->warm_pair == NULL || b->warm_n == NULL || b->pair_at == NULL || b->hot == NULL ||
+        b->warm_pair == NULL || b->warm_n == NULL || b->pair_at == NULL ||
         b->pair_dead == NULL || b->root_pi == NULL ||
         b->ind == NULL || b->val == NULL || b->best == NULL || b->sigma_stop == NULL || !hash_rebuild(b, 1024)) {
         return HV_ERR_PLAN_NOMEM;
@@ -475,7 +496,7 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
     for (size_t p = 0; p < ns; ++p) {
         b->stop_begin[p + 1] += b->stop_begin[p];
         b->warm_n[p] = SIZE_MAX;
-        b->hot[p] = 1;
+        b->fixed_pat[p] = -1;
     }
     size_t *fill = malloc((ns + 1) * sizeof *fill);
     if (fill == NULL) {
@@ -583,14 +604,22 @@ static int32_t heap_pop(bp_t *b)
 static int32_t basis_save(bp_t *b)
 {
     int nr = glp_get_num_rows(b->lp), nc = glp_get_num_cols(b->lp);
-    size_t bytes = (size_t)nr + (size_t)nc;
+    size_t n_duals = b->nf + b->n_crow;
+    size_t bytes = (size_t)nr + (size_t)nc + n_duals * sizeof(double);
     if (b->bases_bytes + bytes > ((size_t)256 << 20) ||
         !hv_grow((void **)&b->bases, &b->bases_cap, b->n_bases + 1, sizeof *b->bases)) {
         return -1;
     }
-    unsigned char *st = malloc(bytes);
-    if (st == NULL) {
+    unsigned char *st = malloc((size_t)nr + (size_t)nc);
+    double *duals = malloc((n_duals + 1) * sizeof *duals);
+    if (st == NULL || duals == NULL) {
+        free(st);
+        free(duals);
         return -1;
+    }
+    memcpy(duals, b->pi_c, b->nf * sizeof *duals);
+    if (b->n_crow > 0) {
+        memcpy(duals + b->nf, b->sg_c, b->n_crow * sizeof *duals);
     }
     for (int i = 1; i <= nr; ++i) {
         st[i - 1] = (unsigned char)glp_get_row_stat(b->lp, i);
@@ -598,7 +627,9 @@ static int32_t basis_save(bp_t *b)
     for (int j = 1; j <= nc; ++j) {
         st[nr + j - 1] = (unsigned char)glp_get_col_stat(b->lp, j);
     }
-    b->bases[b->n_bases] = (basis_t){nr, nc, st};
+    b->bases[b->n_bases] =
+        (basis_t){nr, nc, st, duals, duals + b->nf, b->n_crow,
+                  isfinite(b->center_lag) ? b->center_lag : -INFINITY};
     b->bases_bytes += bytes;
     return (int32_t)b->n_bases++;
 }
@@ -663,6 +694,9 @@ static hv_status_t node_apply(bp_t *b, int32_t k, int *infeasible)
         b->crow[r].min = -INFINITY;
         b->crow[r].max = INFINITY;
     }
+    for (size_t p = 0; p < b->ns; ++p) {
+        b->fixed_pat[p] = -1;
+    }
     /* deeper restrictions of a fruit lie inside shallower ones: intersect along the path */
     for (int32_t q = k; q >= 0; q = b->nodes[q].parent) {
         const node_t *n = &b->nodes[q];
@@ -672,6 +706,12 @@ static hv_status_t node_apply(bp_t *b, int32_t k, int *infeasible)
             }
             if (n->hi < b->hi[n->fruit]) {
                 b->hi[n->fruit] = n->hi;
+            }
+        } else if (n->kind == KIND_PATTERN) {
+            const pattern_t *pt = &b->pat[n->rhs];
+            b->fixed_pat[pt->stop] = n->rhs;
+            for (uint32_t q = 0; q < pt->n; ++q) {
+                b->lo[b->pf[pt->first + q]] = b->hi[b->pf[pt->first + q]] = pt->stop;
             }
         } else if (n->kind != KIND_ROOT) {
             count_row_t *c = crow_get(b, n->lo, n->hi);
@@ -705,10 +745,12 @@ static hv_status_t node_apply(bp_t *b, int32_t k, int *infeasible)
             uint32_t f = b->pf[p->first + q];
             ok = b->lo[f] <= p->stop && p->stop <= b->hi[f];
         }
-        col_open(b, j, ok && !b->pat_dead[j]);
+        int32_t fx = b->fixed_pat[p->stop];
+        col_open(b, j, fx == (int32_t)j ? 2 : (ok && fx < 0 && !b->pat_dead[j]));
     }
-    if (b->nodes[k].basis >= 0) {
-        basis_restore(b, b->nodes[k].basis);
+    b->cur_basis = b->nodes[k].basis;
+    if (b->cur_basis >= 0) {
+        basis_restore(b, b->cur_basis);
     }
     return HV_OK;
 }
@@ -780,8 +822,8 @@ static void stop_items(bp_t *b, size_t p, const double *pi, int node_only, size_
  * allows at p; valid for any pi and any sg of the right signs. Each stop's best pattern is
  * added to the master when its reduced cost at the master's own duals (pi_lp, mu_lp,
  * sg_lp) is negative. */
-static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, int full,
-                            double *lag_ms, int *added)
+static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, double *lag_ms,
+                            int *added)
 {
     const hv_instance_t *in = b->inst;
     double sum = b->travel_ms;
@@ -801,7 +843,17 @@ static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, int ful
         b->cand[p].rc = 0.0;
     }
     for (size_t p = 0; p < b->ns; ++p) {
-        if (b->row_of_stop[p] == 0 || (!full && !b->hot[p])) {
+        if (b->row_of_stop[p] == 0) {
+            continue;
+        }
+        if (b->fixed_pat[p] >= 0) {
+            /* the one pattern allowed here, and it must be used: no min with 0 */
+            const pattern_t *pt = &b->pat[b->fixed_pat[p]];
+            double v = pt->cost_ms - b->sigma_stop[p];
+            for (uint32_t q = 0; q < pt->n; ++q) {
+                v -= pi[b->pf[pt->first + q]];
+            }
+            sum += v;
             continue;
         }
         size_t nl, nr;
@@ -844,7 +896,6 @@ static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, int ful
             }
         }
         sum += v; /* v <= 0 by construction */
-        b->hot[p] = v < 0.0;
         if (time < 0.0) {
             continue;
         }
@@ -884,7 +935,7 @@ static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, int ful
             *added += r;
         }
     }
-    *lag_ms = full ? sum : -INFINITY; /* a bound needs every stop */
+    *lag_ms = sum;
     return HV_OK;
 }
 
@@ -901,12 +952,17 @@ static hv_status_t price_round(bp_t *b, int fresh_node, double *lag_ms, int *add
     }
     if (fresh_node && !b->root_centre) {
         b->center_lag = -INFINITY;
+        const basis_t *pb = b->cur_basis >= 0 ? &b->bases[b->cur_basis] : NULL;
+        if (pb != NULL && isfinite(pb->lag)) { /* start from the parent's centre */
+            memcpy(b->pi_c, pb->pi, b->nf * sizeof *b->pi_c);
+            for (size_t r = 0; r < ncr; ++r) {
+                b->sg_c[r] = r < pb->n_sg ? pb->sg[r] : 0.0;
+            }
+            b->center_lag = pb->lag;
+        }
     }
     b->root_centre = 0;
     double alpha = isfinite(b->center_lag) ? SMOOTHING : 0.0;
-    /* partial rounds price only the stops that had a negative value when last priced;
-     * every few rounds, and before calling the master optimal, all of them */
-    int full = fresh_node || ++b->partial_rounds >= FULL_EVERY;
     *lag_ms = -INFINITY;
     for (;;) {
         for (size_t f = 0; f < b->nf; ++f) {
@@ -916,12 +972,9 @@ static hv_status_t price_round(bp_t *b, int fresh_node, double *lag_ms, int *add
             b->sg_sep[r] = alpha * b->sg_c[r] + (1.0 - alpha) * b->sg_lp[r];
         }
         double lag;
-        hv_status_t st = price_at(b, b->pi_sep, b->sg_sep, full, &lag, added);
+        hv_status_t st = price_at(b, b->pi_sep, b->sg_sep, &lag, added);
         if (st != HV_OK) {
             return st;
-        }
-        if (full) {
-            b->partial_rounds = 0;
         }
         *lag_ms = fmax(*lag_ms, lag);
         if (lag > b->center_lag) {
@@ -932,13 +985,10 @@ static hv_status_t price_round(bp_t *b, int fresh_node, double *lag_ms, int *add
         if (*added > 0) {
             return HV_OK;
         }
-        if (alpha > 0.0) {
-            alpha = 0.0; /* mis-pricing: the smoothed duals found nothing */
-        } else if (!full) {
-            full = 1;
-        } else {
+        if (alpha == 0.0) {
             return HV_OK;
         }
+        alpha = 0.0; /* mis-pricing: the smoothed duals found nothing */
     }
 }
 
@@ -953,7 +1003,17 @@ static hv_status_t lp_solve(bp_t *b, int first)
     double left_ms = (b->t_deadline - now_s()) * 1000.0;
     sp.tm_lim = (int)fmax(1.0, fmin(left_ms, 2e9));
     double t0 = now_s();
+    sp.it_lim = STALL_ITERS_PER_ROW * glp_get_num_rows(b->lp) + 1000;
     int r = glp_simplex(b->lp, &sp);
+    if (r == GLP_EITLIM) {
+        /* the master is highly degenerate and GLPK's primal simplex can stall on it (seen:
+         * 300,000 iterations, 22 s, on one call); the dual simplex from the same basis
+         * finishes such a call in milliseconds */
+        b->lp_stalls++;
+        sp.it_lim = INT_MAX;
+        sp.meth = GLP_DUALP;
+        r = glp_simplex(b->lp, &sp);
+    }
     if (r == GLP_EBADB || r == GLP_ESING || r == GLP_ECOND) {
         b->lp_restarts++;
         glp_adv_basis(b->lp, 0); /* an unusable warm start (singular, invalid): start afresh */
@@ -1088,8 +1148,22 @@ static hv_status_t choose_split(bp_t *b, const double *x, split_t *best)
     return HV_OK;
 }
 
-/* Local search from plan `a` with `kicks` kicks; kept (with its patterns as columns) when
- * it beats the incumbent. */
+/* Plan `a` (makespan t_s) becomes the incumbent, with its patterns as columns, when it
+ * beats the incumbent. */
+static hv_status_t offer_plan(bp_t *b, const hv_assignment_t *a, double t_s)
+{
+    if (1000.0 * t_s < b->ub_ms - 1e-6) {
+        b->ub_ms = 1000.0 * t_s;
+        b->heur_wins++;
+        memcpy(b->best, a->fruit_stop, b->nf * sizeof *b->best);
+        if (add_assignment_columns(b, b->best) < 0) {
+            return HV_ERR_PLAN_NOMEM;
+        }
+    }
+    return HV_OK;
+}
+
+/* Local search from plan `a` with `kicks` kicks; kept when it beats the incumbent. */
 static hv_status_t improve_plan(bp_t *b, hv_assignment_t *a, unsigned kicks)
 {
     hv_ls_options_t lo;
@@ -1099,15 +1173,7 @@ static hv_status_t improve_plan(bp_t *b, hv_assignment_t *a, unsigned kicks)
     double t;
     hv_status_t st = hv_local_search(b->inst, &lo, a, &t);
     b->heur_runs++;
-    if (st == HV_OK && 1000.0 * t < b->ub_ms - 1e-6) {
-        b->ub_ms = 1000.0 * t;
-        b->heur_wins++;
-        memcpy(b->best, a->fruit_stop, b->nf * sizeof *b->best);
-        if (add_assignment_columns(b, b->best) < 0) {
-            st = HV_ERR_PLAN_NOMEM;
-        }
-    }
-    return st;
+    return st == HV_OK ? offer_plan(b, a, t) : st;
 }
 
 /* Round a fractional master point to a plan (each fruit at the stop holding most of its
@@ -1144,7 +1210,7 @@ static hv_status_t round_and_improve(bp_t *b, const double *x)
     return st;
 }
 
-/* When the root leaves more than POLISH_ROOT_GAP: a long local search from the incumbent,
+/* When the root leaves more than PRIMAL_ROOT_GAP: a long local search from the incumbent,
  * polish_work * 100 / n^2 kicks (a descent costs ~n^2), at most POLISH_MAX_KICKS. Before the
  * pair fixing, which a better incumbent makes stronger. */
 static hv_status_t polish_incumbent(bp_t *b)
@@ -1321,7 +1387,7 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
             /* the root is solved: its best duals fix pairs for the whole tree */
             memcpy(b->root_pi, b->pi_c, b->nf * sizeof *b->root_pi);
             b->root_lag = b->center_lag;
-            if (b->ub_ms - b->root_lag > POLISH_ROOT_GAP * b->ub_ms &&
+            if (b->ub_ms - b->root_lag > PRIMAL_ROOT_GAP * b->ub_ms &&
                 (st = polish_incumbent(b)) != HV_OK) {
                 return st;
             }
@@ -1399,7 +1465,7 @@ static void compact_centre(bp_t *b, double limit_s)
         }
         double lag;
         int added;
-        if (price_at(b, b->pi_c, b->sg_lp, 1, &lag, &added) == HV_OK) {
+        if (price_at(b, b->pi_c, b->sg_lp, &lag, &added) == HV_OK) {
             b->center_lag = lag;
             b->root_centre = 1;
         }
@@ -1409,6 +1475,71 @@ static void compact_centre(bp_t *b, double limit_s)
         fprintf(stderr, "price: centre from the paper's LP, bound %.3f s in %.2f s\n",
                 b->center_lag / 1000.0, now_s() - t0);
     }
+}
+
+/* A primal dive by column fixing: from node `from` (just solved), repeatedly fix the master's
+ * heaviest fractional pattern (its column at 1; its stop and its fruits in no other column)
+ * and re-solve by column generation, until the master point is a plan or the dive's bound
+ * reaches the incumbent. The dive's nodes are never queued: they take no part in the proof. */
+static hv_status_t column_dive(bp_t *b, int32_t from)
+{
+    int inexact = b->inexact; /* a dive node closed as doubtful says nothing about the tree */
+    double t0 = now_s();
+    int32_t k = from;
+    hv_status_t st = HV_OK;
+    for (;;) {
+        int32_t jbest = -1;
+        double xbest = LAMBDA_EPS;
+        for (size_t j = 0; j < b->n_pat; ++j) {
+            double v = glp_get_col_prim(b->lp, b->pat[j].col);
+            if (v > xbest && v < 1.0 - LAMBDA_EPS) {
+                xbest = v;
+                jbest = (int32_t)j;
+            }
+        }
+        if (jbest < 0) {
+            break;
+        }
+        k = node_new(b, k, KIND_PATTERN, 0, b->pat[jbest].stop, b->pat[jbest].stop, jbest,
+                     b->nodes[k].lb_ms);
+        if (k < 0) {
+            return HV_ERR_PLAN_NOMEM;
+        }
+        node_end_t end;
+        split_t sp;
+        if ((st = node_process(b, k, &end, &sp)) != HV_OK || end != NODE_BRANCH) {
+            break;
+        }
+    }
+    b->inexact = inexact;
+    b->t_dive += now_s() - t0;
+    b->dives++;
+    return st;
+}
+
+/* Row windows of the incumbent re-planned exactly (milp_window.h), for up to WINDOW_SHARE of
+ * the time left; a better plan becomes the incumbent. */
+static hv_status_t window_reopt(bp_t *b)
+{
+    double t0 = now_s();
+    hv_assignment_t a;
+    if (hv_assignment_alloc(&a, b->nf) != HV_OK) {
+        return HV_ERR_PLAN_NOMEM;
+    }
+    memcpy(a.fruit_stop, b->best, b->nf * sizeof *b->best);
+    double t = b->ub_ms / 1000.0;
+    hv_window_stats_t ws;
+    hv_status_t st = hv_window_improve(b->inst, b->opt, (unsigned)b->opt->window_width,
+                                       WINDOW_LIMIT_S, t0 + WINDOW_SHARE * (b->t_deadline - t0),
+                                       &a, &t, &ws);
+    if (st == HV_OK) {
+        st = offer_plan(b, &a, t);
+    }
+    hv_assignment_free(&a);
+    b->t_window += now_s() - t0;
+    b->windows += ws.windows;
+    b->windows_better += ws.improved;
+    return st;
 }
 
 /* ---- the search --------------------------------------------------------------------------- */
@@ -1480,6 +1611,18 @@ static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
         if ((dive != c1 && !heap_push(b, c1)) || (dive != c2 && !heap_push(b, c2))) {
             return HV_ERR_PLAN_NOMEM;
         }
+        /* the root's plan may be far from optimal: a column-fixing dive finds better
+         * ones than the branch dive (SOLVER.md) */
+        if (k == root &&
+            (b->opt->column_dive == 2 ||
+             (b->opt->column_dive == 1 && b->ub_ms - lb > PRIMAL_ROOT_GAP * b->ub_ms)) &&
+            (st = column_dive(b, root)) != HV_OK) {
+            return st;
+        }
+        if (k == root && b->opt->window_width > 0 &&
+            b->ub_ms - lb > PRIMAL_ROOT_GAP * b->ub_ms && (st = window_reopt(b)) != HV_OK) {
+            return st;
+        }
     }
     return HV_OK;
 }
@@ -1518,12 +1661,16 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
         progress(&b, lb, 1);
         if (opt->verbose >= 1) {
             fprintf(stderr,
-                    "price: %ld LP rounds in %.2f s (%ld restarts), pricing %.2f s (%llu stops, "
-                    "%.1f points each), heuristic %ld runs (%ld better) in %.2f s, %ld of %zu pairs "
-                    "fixed\n",
-                    b.cg_iters, b.t_lp, b.lp_restarts, b.t_price, b.pricer.calls,
+                    "price: %ld LP rounds in %.2f s (%d iterations, %ld restarts, %ld stalls), "
+                    "pricing %.2f s (%llu stops, %.1f points each), heuristic %ld runs "
+                    "(%ld better) in %.2f s, %ld column dives in %.2f s, %ld windows (%ld better) "
+                    "in %.2f s, %ld of %zu pairs fixed\n",
+                    b.cg_iters, b.t_lp, glp_get_it_cnt(b.lp), b.lp_restarts, b.lp_stalls,
+                    b.t_price, b.pricer.calls,
                     (double)b.pricer.points / (double)(b.pricer.calls ? b.pricer.calls : 1),
-                    b.heur_runs, b.heur_wins, b.t_heur, b.pairs_fixed, inst->n_pairs);
+                    b.heur_runs, b.heur_wins, b.t_heur, b.dives, b.t_dive, b.windows,
+                    b.windows_better, b.t_window, b.pairs_fixed,
+                    inst->n_pairs);
         }
         res->nodes = nodes;
         res->columns = (long)b.n_pat;

@@ -20,6 +20,7 @@ void hv_pricer_free(hv_pricer_t *pr)
     free(pr->next);
     free(pr->left_front);
     free(pr->sorted);
+    free(pr->brk);
     free(pr->pw);
     free(pr->parg);
     free(pr->pidx);
@@ -57,11 +58,13 @@ static void sort_by_density(hv_price_item_t *it, size_t n)
 /* Bounds for pruning a frontier point: with max(W_A, W_B) >= l W_A + (1 - l) W_B for any
  * l in [0, 1], a point (W, P) of arm A whose remaining items are k.. gives patterns with
  *     v >= offset + l W - P + sum_{j >= k} min(0, l w_j - p_j) + other_l,
- * other_l = sum over arm B of min(0, (1 - l) w - p); l = 0, 1/2 and 1 are checked. When arm
+ * other_l = sum over arm B of min(0, (1 - l) w - p); l = 0, 1 and lam are checked, lam the
+ * weight that gives the empty pattern its best bound (best_weight()). When arm
  * B's frontier is known (the partner), g(W) = min over its points of max(W_B, W) - P_B is
  * the best arm B can add to a stop time W, and v >= offset + g(W) - P - (profit left). */
 typedef struct front_bound {
-    double other0, other_half, other1;
+    double lam; /* the weight l of this arm in the third bound */
+    double other0, other_mid, other1;
     const double *pw, *pp, *psuf; /* partner frontier: time, profit, suffix min of w - p */
     const size_t *parg;           /* the partner point attaining psuf[i] */
     const int32_t *pidx;          /* partner points' arena indices */
@@ -88,10 +91,11 @@ static double partner_best(const front_bound_t *fb, size_t gi, double w, size_t 
 static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
                        const front_bound_t *fb, double offset, size_t *len)
 {
-    double suf0 = 0.0, suf_half = 0.0, suf1 = 0.0; /* over the items not yet added */
+    double suf0 = 0.0, suf_mid = 0.0, suf1 = 0.0; /* over the items not yet added */
+    double lam = fb->lam;
     for (size_t k = 0; k < n; ++k) {
         suf0 -= items[k].profit;
-        suf_half += fmin(0.0, 0.5 * items[k].w_ms - items[k].profit);
+        suf_mid += fmin(0.0, lam * items[k].w_ms - items[k].profit);
         suf1 += fmin(0.0, items[k].w_ms - items[k].profit);
     }
     int32_t e;
@@ -107,7 +111,7 @@ static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
         ++gi;
     }
     double g0 = fb->pn > 0 ? partner_best(fb, gi, 0.0, &arg) : 0.0;
-    if (offset + suf0 + fb->other0 < thr && offset + suf_half + fb->other_half < thr &&
+    if (offset + suf0 + fb->other0 < thr && offset + suf_mid + fb->other_mid < thr &&
         offset + suf1 + fb->other1 < thr && (fb->pn == 0 || offset + g0 + suf0 < thr)) {
         pr->cur[ncur++] = (hv_front_ref_t){0.0, 0.0, e};
         if (fb->pn > 0 && offset + g0 < thr) {
@@ -118,9 +122,9 @@ static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
     }
     for (size_t k = 0; k < n && ncur > 0; ++k) {
         suf0 += items[k].profit;
-        suf_half -= fmin(0.0, 0.5 * items[k].w_ms - items[k].profit);
+        suf_mid -= fmin(0.0, lam * items[k].w_ms - items[k].profit);
         suf1 -= fmin(0.0, items[k].w_ms - items[k].profit);
-        double c0 = offset + suf0 + fb->other0, c_half = offset + suf_half + fb->other_half,
+        double c0 = offset + suf0 + fb->other0, c_mid = offset + suf_mid + fb->other_mid,
                c1 = offset + suf1 + fb->other1, cg = offset + suf0;
         if (!hv_grow((void **)&pr->next, &pr->next_cap, 2 * ncur, sizeof *pr->next)) {
             return 0;
@@ -141,7 +145,7 @@ static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
                 continue; /* dominated: no more profit for at least as much time */
             }
             last_p = p;
-            if (c0 - p >= thr || c_half + 0.5 * w - p >= thr || c1 + w - p >= thr) {
+            if (c0 - p >= thr || c_mid + lam * w - p >= thr || c1 + w - p >= thr) {
                 continue;
             }
             double g = 0.0;
@@ -180,15 +184,62 @@ static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
     return 1;
 }
 
-/* The crude bounds' sums of arm B (see front_bound_t). */
-static void other_sums(const hv_price_item_t *it, size_t n, front_bound_t *fb)
+/* The crude bounds' sums of arm B (see front_bound_t), the arm being built weighing lam. */
+static void other_sums(const hv_price_item_t *it, size_t n, double lam, front_bound_t *fb)
 {
     memset(fb, 0, sizeof *fb);
+    fb->lam = lam;
     for (size_t k = 0; k < n; ++k) {
         fb->other0 += fmin(0.0, it[k].w_ms - it[k].profit);
-        fb->other_half += fmin(0.0, 0.5 * it[k].w_ms - it[k].profit);
+        fb->other_mid += fmin(0.0, (1.0 - lam) * it[k].w_ms - it[k].profit);
         fb->other1 -= it[k].profit;
     }
+}
+
+static int by_breakpoint(const void *x, const void *y)
+{
+    const double *u = x, *v = y;
+    return u[0] < v[0] ? -1 : u[0] > v[0];
+}
+
+/* The weight l of arm A that maximises the bound of the empty pattern,
+ *     F(l) = sum_A min(0, l w - p) + sum_B min(0, (1 - l) w - p),
+ * concave and piecewise linear: walk its breakpoints while the slope is positive. */
+static int best_weight(hv_pricer_t *pr, const hv_price_item_t *a, size_t na,
+                       const hv_price_item_t *b, size_t nb, double *lam)
+{
+    if (!hv_grow((void **)&pr->brk, &pr->brk_cap, 2 * (na + nb) + 2, sizeof *pr->brk)) {
+        return 0;
+    }
+    double slope = 0.0;
+    size_t n = 0;
+    for (size_t k = 0; k < na; ++k) { /* slope w while l < p / w */
+        double r = a[k].profit / a[k].w_ms;
+        slope += a[k].w_ms;
+        if (r < 1.0) {
+            pr->brk[2 * n] = r;
+            pr->brk[2 * n++ + 1] = a[k].w_ms;
+        }
+    }
+    for (size_t k = 0; k < nb; ++k) { /* slope -w once l > 1 - p / w */
+        double r = 1.0 - b[k].profit / b[k].w_ms;
+        if (r <= 0.0) {
+            slope -= b[k].w_ms;
+        } else {
+            pr->brk[2 * n] = r;
+            pr->brk[2 * n++ + 1] = b[k].w_ms;
+        }
+    }
+    qsort(pr->brk, n, 2 * sizeof *pr->brk, by_breakpoint);
+    *lam = 0.0;
+    for (size_t i = 0; i < n && slope > 0.0; ++i) {
+        *lam = pr->brk[2 * i];
+        slope -= pr->brk[2 * i + 1];
+    }
+    if (slope > 0.0) {
+        *lam = 1.0; /* still rising at the last breakpoint */
+    }
+    return 1;
 }
 
 static size_t collect(const hv_pricer_t *pr, int32_t pt, const hv_price_item_t *items,
@@ -225,12 +276,16 @@ hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t 
     if (nb) {
         memcpy(sb, ib, nb * sizeof *sb);
     }
+    double lam;
+    if (!best_weight(pr, sa, na, sb, nb, &lam)) {
+        return HV_ERR_PLAN_NOMEM;
+    }
     front_bound_t fa, fb;
-    other_sums(sb, nb, &fa);
-    other_sums(sa, na, &fb);
+    other_sums(sb, nb, lam, &fa);
+    other_sums(sa, na, 1.0 - lam, &fb);
     /* the empty point of arm A bounds every pattern: most stops end here */
     if (off_p + fb.other1 + fa.other0 >= 0.0 || off_p + fb.other0 + fa.other1 >= 0.0 ||
-        off_p + fb.other_half + fa.other_half >= 0.0) {
+        off_p + fb.other_mid + fa.other_mid >= 0.0) {
         return HV_OK;
     }
     sort_by_density(sa, na);

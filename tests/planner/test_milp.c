@@ -20,6 +20,7 @@
 #include "hv/milp.h"
 #include "hv/milp_local_search.h"
 #include "hv/milp_status.h"
+#include "hv/milp_window.h"
 #include "hv/plan_eval.h"
 
 static uint64_t rng_next(uint64_t *s)
@@ -206,6 +207,15 @@ static void test_price_matches_compact(void **state)
         assert_int_equal(hv_assignment_makespan(&in, &out, &t), HV_OK);
         assert_true(fabs(t - rp.objective_s) < 1e-6);
         branched += rp.nodes > 1;
+        /* the column-fixing dive only finds plans: with it after every root, the same optimum */
+        o.column_dive = 2;
+        hv_milp_result_t rd;
+        assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &rd), HV_OK);
+        assert_int_equal(rd.status, HV_SOLVE_OPTIMAL);
+        if (fabs(rd.objective_s - rp.objective_s) > 1e-6) {
+            fail_msg("seed %llu: price %.3f s, with the dive %.3f s", (unsigned long long)seed,
+                     rp.objective_s, rd.objective_s);
+        }
         o.algorithm = HV_MILP_ALG_COMPACT;
         assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &rc), HV_OK);
         assert_int_equal(rc.status, HV_SOLVE_OPTIMAL);
@@ -218,6 +228,49 @@ static void test_price_matches_compact(void **state)
         hv_instance_free(&in);
     }
     assert_true(branched >= 3); /* precondition: the search really branched */
+}
+
+/* Row windows re-planned exactly: from a poor plan (every fruit at its first stop) the plan
+ * improves, stays a plan whose makespan is the one reported, and never beats the optimum. */
+static void test_window_improve(void **state)
+{
+    (void)state;
+    int improved = 0;
+    for (uint64_t seed = 200; seed < 230; ++seed) {
+        hv_instance_t in;
+        make_instance(&in, 14 + seed % 6, 40, 10, seed % 5 == 0, seed);
+        hv_assignment_t a, opt_a;
+        assert_int_equal(hv_assignment_alloc(&a, in.n_fruits), HV_OK);
+        assert_int_equal(hv_assignment_alloc(&opt_a, in.n_fruits), HV_OK);
+        for (size_t f = 0; f < in.n_fruits; ++f) {
+            if (in.fruit_begin[f] < in.fruit_begin[f + 1]) {
+                a.fruit_stop[f] = in.pairs[in.fruit_begin[f]].stop;
+            }
+        }
+        double t0, t, check;
+        assert_int_equal(hv_assignment_makespan(&in, &a, &t0), HV_OK);
+        hv_milp_options_t o;
+        hv_milp_options_default(&o);
+        hv_window_stats_t ws;
+        t = t0;
+        assert_int_equal(hv_window_improve(&in, &o, 2, 5.0, 1e12, &a, &t, &ws), HV_OK);
+        assert_int_equal(hv_assignment_makespan(&in, &a, &check), HV_OK);
+        assert_true(fabs(check - t) < 1e-9);
+        assert_true(t <= t0 + 1e-9);
+        assert_true(ws.windows > 0 && ws.improved <= ws.windows);
+        improved += t < t0 - 1e-6;
+        hv_milp_result_t res;
+        assert_int_equal(hv_milp_solve(&in, &o, NULL, &opt_a, &res), HV_OK);
+        assert_int_equal(res.status, HV_SOLVE_OPTIMAL);
+        assert_true(t >= res.objective_s - 1e-6);
+        /* a window as wide as the plan is the whole problem: nothing to do */
+        assert_int_equal(hv_window_improve(&in, &o, 1000, 5.0, 1e12, &a, &t, &ws), HV_OK);
+        assert_int_equal(ws.windows, 0);
+        hv_assignment_free(&a);
+        hv_assignment_free(&opt_a);
+        hv_instance_free(&in);
+    }
+    assert_true(improved >= 20);
 }
 
 static void test_heuristic_and_local_search(void **state)
@@ -493,6 +546,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_matches_brute_force),
         cmocka_unit_test(test_price_matches_compact),
+        cmocka_unit_test(test_window_improve),
         cmocka_unit_test(test_heuristic_and_local_search),
         cmocka_unit_test(test_incumbent_callback),
         cmocka_unit_test(test_time_limit_is_honest),

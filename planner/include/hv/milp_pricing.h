@@ -58,6 +58,8 @@ typedef struct hv_pricer {
     unsigned long long calls, points; /* statistics: pricings, frontier points made */
     hv_price_item_t *sorted; /* both sides' items, sorted by profit density */
     size_t sorted_cap;
+    double *brk; /* (breakpoint, slope change) pairs of the bound's weight (best_weight) */
+    size_t brk_cap;
 } hv_pricer_t;
 
 void hv_pricer_init(hv_pricer_t *pr);

@@ -1,0 +1,42 @@
+/* Row-window re-optimisation: a primal heuristic that decomposes a plan along the row
+ * (internal to the MILP solvers; milp.h).
+ *
+ * A window is `width` consecutive stops of the plan. Its fruits are freed and re-planned
+ * exactly (hv_milp_solve on the sub-instance) over every candidate stop strictly between
+ * the plan's stops on either side of the window, the rest of the plan staying as it is.
+ * Since the stops outside stay where they are and keep their fruits, the plan's makespan
+ * changes by exactly the window's change, so an improved window is an improved plan.
+ * Windows slide along the row by half their width; passes repeat while one improves and
+ * time is left.
+ */
+#ifndef HV_MILP_WINDOW_H
+#define HV_MILP_WINDOW_H
+
+#include "hv/milp.h"
+#include "hv/plan_instance.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct hv_window_stats {
+    long windows;   /* sub-problems solved */
+    long improved;  /* of which gave a better window */
+    long proven;    /* of which were solved to proven optimality */
+} hv_window_stats_t;
+
+/* Improve `plan` (a complete plan of `inst`, makespan *t_s) window by window, `width`
+ * stops each, until a pass improves nothing or the clock (CLOCK_MONOTONIC, s) reaches
+ * t_deadline_s; each sub-solve gets at most window_limit_s. `opt` is copied for the
+ * sub-solves with their own limit, no progress output and no window re-optimisation of
+ * their own. *t_s is updated with the plan. stats may be NULL.
+ * Returns HV_OK, or the first error of a sub-solve (HV_ERR_PLAN_NOMEM, GLPK failure);
+ * the plan is left valid either way. */
+hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t *opt,
+                              unsigned width, double window_limit_s, double t_deadline_s,
+                              hv_assignment_t *plan, double *t_s, hv_window_stats_t *stats);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* HV_MILP_WINDOW_H */
