@@ -42,7 +42,8 @@ static void usage(FILE *f)
             "                       count_branching, block_stops, backtracking,\n"
             "                       polish_work, algorithm (0 compact, 1 price),\n"
             "                       column_dive (0 off, 1 root gap > 0.2 %%, 2 always),\n"
-            "                       window_width (stops per re-planned window, 0 off)\n"
+            "                       window_width (stops per re-planned window, 0 off),\n"
+            "                       helper_thread (1: windows on a second thread)\n"
             "  --no-baselines       skip FOV and Serial\n"
             "  -v                   solver progress on stderr\n"
             "  --help               this text\n",
@@ -79,6 +80,7 @@ static int set_option(hv_milp_options_t *o, const char *kv)
         {"algorithm", &o->algorithm},
         {"column_dive", &o->column_dive},
         {"window_width", &o->window_width},
+        {"helper_thread", &o->helper_thread},
     };
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; ++i) {
         if (strlen(keys[i].k) == n && strncmp(kv, keys[i].k, n) == 0) {

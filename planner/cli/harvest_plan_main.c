@@ -39,6 +39,8 @@ static const char k_usage[] =
     "                   both makespans (the plan written is the horizon's)\n"
     "  --row-length M   row length, m (default: row.length of the config)\n"
     "  --export-lp FILE milp: write the model in CPLEX LP format\n"
+    "  --threads N      milp, price: 2 (default) re-plans row windows of the best plan on a\n"
+    "                   second thread while the search runs; 1 keeps to one thread\n"
     "  --algorithm A    milp: price (branch-and-price over stop patterns, default) or\n"
     "                   compact (GLPK's branch-and-cut on the paper's model); both exact\n"
     "  --quiet          no progress lines on stderr (errors are still printed)\n"
@@ -54,6 +56,7 @@ typedef struct args {
     double time_limit_s, gap, fov_width_m, horizon_m, commit_m, row_length_m;
     int quiet;
     int compare_single;
+    int threads; /* 0: the default */
 } args_t;
 
 static int usage_error(const char *msg, const char *what)
@@ -166,7 +169,7 @@ static int parse_args(int argc, char **argv, args_t *a)
         static const char *const valued[] = {
             "--config", "--left", "--right", "--fruits", "--method", "--out", "--export-lp",
             "--time-limit", "--gap", "--fov-width", "--horizon", "--commit", "--row-length",
-            "--algorithm", NULL};
+            "--algorithm", "--threads", NULL};
         int known = 0;
         for (const char *const *k = valued; *k != NULL; ++k) {
             known |= strcmp(*k, f) == 0;
@@ -186,6 +189,12 @@ static int parse_args(int argc, char **argv, args_t *a)
         else if (strcmp(f, "--out") == 0) a->out = v;
         else if (strcmp(f, "--export-lp") == 0) a->export_lp = v;
         else if (strcmp(f, "--algorithm") == 0) a->algorithm = v;
+        else if (strcmp(f, "--threads") == 0) {
+            if (strcmp(v, "1") != 0 && strcmp(v, "2") != 0) {
+                return usage_error("--threads must be 1 or 2, not", v);
+            }
+            a->threads = v[0] - '0';
+        }
         else if (strcmp(f, "--time-limit") == 0) {
             if (parse_pos(f, v, &a->time_limit_s)) return EXIT_USAGE;
         } else if (strcmp(f, "--gap") == 0) {
@@ -223,6 +232,9 @@ static int parse_args(int argc, char **argv, args_t *a)
     }
     if (a->algorithm != NULL && strcmp(a->method, "milp") != 0) {
         return usage_error("--algorithm applies to --method milp only", NULL);
+    }
+    if (a->threads != 0 && strcmp(a->method, "milp") != 0) {
+        return usage_error("--threads applies to --method milp only", NULL);
     }
     if (a->horizon_m > 0 && strcmp(a->method, "milp") != 0) {
         return usage_error("--horizon applies to --method milp only", NULL);
@@ -393,6 +405,9 @@ static int run_plan(const args_t *a)
     if (a->algorithm != NULL) {
         mopt.algorithm = strcmp(a->algorithm, "compact") == 0 ? HV_MILP_ALG_COMPACT
                                                               : HV_MILP_ALG_PRICE;
+    }
+    if (a->threads != 0) {
+        mopt.helper_thread = a->threads == 2;
     }
 
     if (rc == 0) {

@@ -42,6 +42,9 @@ void hv_milp_options_default(hv_milp_options_t *opt)
     opt->polish_work = 150000;
     opt->column_dive = 1;
     opt->window_width = 4;
+    opt->helper_thread = 1;
+    opt->stop = NULL;
+    opt->stop_ctx = NULL;
     opt->glpk_cuts_phase2 = HV_MILP_CUT_GMI | HV_MILP_CUT_MIR | HV_MILP_CUT_COVER |
                             HV_MILP_CUT_CLIQUE;
 }

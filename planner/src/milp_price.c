@@ -20,6 +20,7 @@
 #include "hv/milp_local_search.h"
 #include "hv/milp_model.h"
 #include "hv/milp_status.h"
+#include "hv/milp_helper.h"
 #include "hv/milp_window.h"
 #include "hv/plan_eval.h"
 #include "hv/plan_status.h"
@@ -165,12 +166,22 @@ typedef struct bp {
     long dives;
     double t_window; /* time spent re-planning row windows (s) */
     long windows, windows_better;
+    hv_helper_t *helper; /* re-plans windows on the second core, NULL when not running */
+    long helper_plans;   /* incumbents taken from it */
     double t_lp, t_price; /* time in the master LP and in pricing (s) */
     long lp_restarts;     /* master bases rebuilt after a singular warm start */
     long lp_stalls;       /* primal simplex calls stopped as stalled, finished by the dual */
     long heur_runs, heur_wins;
     int inexact; /* a numerically doubtful node was closed: do not claim optimality */
 } bp_t;
+
+static double now_s(void);
+
+/* The time limit is reached or the caller asked to stop. */
+static int must_stop(const bp_t *b)
+{
+    return now_s() >= b->t_deadline || (b->opt->stop != NULL && b->opt->stop(b->opt->stop_ctx));
+}
 
 static double now_s(void)
 {
@@ -1156,6 +1167,9 @@ static hv_status_t offer_plan(bp_t *b, const hv_assignment_t *a, double t_s)
         b->ub_ms = 1000.0 * t_s;
         b->heur_wins++;
         memcpy(b->best, a->fruit_stop, b->nf * sizeof *b->best);
+        if (b->helper != NULL) {
+            hv_helper_offer(b->helper, a, t_s);
+        }
         if (add_assignment_columns(b, b->best) < 0) {
             return HV_ERR_PLAN_NOMEM;
         }
@@ -1334,8 +1348,31 @@ static void progress(bp_t *b, double lb_ms, int force)
 
 /* Column generation at node k until the master is optimal, the node is pruned, or time is
  * up. On NODE_BRANCH `sp` says where. */
+/* The helper's better plan, if it has one, becomes the incumbent. */
+static hv_status_t take_helper_plan(bp_t *b)
+{
+    hv_assignment_t a;
+    if (hv_assignment_alloc(&a, b->nf) != HV_OK) {
+        return HV_ERR_PLAN_NOMEM;
+    }
+    double t;
+    hv_status_t st = HV_OK;
+    if (hv_helper_take(b->helper, b->ub_ms / 1000.0, &a, &t)) {
+        b->helper_plans++;
+        st = offer_plan(b, &a, t);
+    }
+    hv_assignment_free(&a);
+    return st;
+}
+
 static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp)
 {
+    if (b->helper != NULL) {
+        hv_status_t sth = take_helper_plan(b);
+        if (sth != HV_OK) {
+            return sth;
+        }
+    }
     if (isfinite(b->root_lag) && b->ub_ms < b->fixed_ub - 0.5) {
         hv_status_t stf = fix_pairs(b); /* a better incumbent fixes more */
         if (stf != HV_OK) {
@@ -1349,7 +1386,7 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
         return st0;
     }
     for (int round = 0;; ++round) {
-        if (now_s() >= b->t_deadline) {
+        if (must_stop(b)) {
             *end = NODE_TIMEOUT;
             return HV_OK;
         }
@@ -1357,7 +1394,7 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
         if (st != HV_OK) {
             return st;
         }
-        if (now_s() >= b->t_deadline) {
+        if (must_stop(b)) {
             *end = NODE_TIMEOUT;
             return HV_OK;
         }
@@ -1619,9 +1656,17 @@ static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
             (st = column_dive(b, root)) != HV_OK) {
             return st;
         }
-        if (k == root && b->opt->window_width > 0 &&
-            b->ub_ms - lb > PRIMAL_ROOT_GAP * b->ub_ms && (st = window_reopt(b)) != HV_OK) {
-            return st;
+        if (k == root && b->opt->window_width > 0 && b->ub_ms - lb > PRIMAL_ROOT_GAP * b->ub_ms) {
+            if (b->opt->helper_thread) {
+                hv_assignment_t a = {b->nf, b->best};
+                st = hv_helper_start(b->inst, b->opt, &a, b->ub_ms / 1000.0, b->t_deadline,
+                                     &b->helper);
+            } else {
+                st = window_reopt(b);
+            }
+            if (st != HV_OK) {
+                return st;
+            }
         }
     }
     return HV_OK;
@@ -1653,6 +1698,15 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
     if (st == HV_OK) {
         st = search(&b, &root_lb, &nodes);
     }
+    if (b.helper != NULL) { /* its last plan, then stop it (also after an error) */
+        hv_status_t sth = st == HV_OK ? take_helper_plan(&b) : HV_OK;
+        hv_window_stats_t ws;
+        hv_status_t stj = hv_helper_stop(b.helper, &ws);
+        b.helper = NULL;
+        b.windows += ws.windows;
+        b.windows_better += ws.improved;
+        st = st != HV_OK ? st : (sth != HV_OK ? sth : stj);
+    }
     if (st == HV_OK) {
         double lb = b.ub_ms;
         for (size_t i = 0; i < b.heap_len; ++i) {
@@ -1664,12 +1718,12 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
                     "price: %ld LP rounds in %.2f s (%d iterations, %ld restarts, %ld stalls), "
                     "pricing %.2f s (%llu stops, %.1f points each), heuristic %ld runs "
                     "(%ld better) in %.2f s, %ld column dives in %.2f s, %ld windows (%ld better) "
-                    "in %.2f s, %ld of %zu pairs fixed\n",
+                    "in %.2f s, %ld plans from the helper thread, %ld of %zu pairs fixed\n",
                     b.cg_iters, b.t_lp, glp_get_it_cnt(b.lp), b.lp_restarts, b.lp_stalls,
                     b.t_price, b.pricer.calls,
                     (double)b.pricer.points / (double)(b.pricer.calls ? b.pricer.calls : 1),
                     b.heur_runs, b.heur_wins, b.t_heur, b.dives, b.t_dive, b.windows,
-                    b.windows_better, b.t_window, b.pairs_fixed,
+                    b.windows_better, b.t_window, b.helper_plans, b.pairs_fixed,
                     inst->n_pairs);
         }
         res->nodes = nodes;

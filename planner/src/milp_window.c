@@ -120,15 +120,17 @@ hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t
         so.verbose = 0;
         so.export_lp_path = NULL;
         so.window_width = 0; /* no windows within windows */
+        so.polish_work = 0;  /* a long local search would not see opt->stop */
         int again = 1;
-        while (again && st == HV_OK && now_s() < t_deadline_s) {
+        while (again && st == HV_OK && now_s() < t_deadline_s &&
+               !(opt->stop != NULL && opt->stop(opt->stop_ctx))) {
             again = 0;
             size_t k = used_stops(inst, plan, mark, used);
             /* windows advance by half their width: each stop is re-planned twice a pass */
             size_t step = width > 1 ? width / 2 : 1;
             for (size_t i = 0; i + width <= k && k > width && st == HV_OK; i += step) {
                 double left = t_deadline_s - now_s();
-                if (left <= 0.0) {
+                if (left <= 0.0 || (opt->stop != NULL && opt->stop(opt->stop_ctx))) {
                     break;
                 }
                 so.time_limit_s = fmin(window_limit_s, left);

@@ -13,12 +13,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <cmocka.h>
 
 #include "hv/milp.h"
 #include "hv/milp_local_search.h"
+#include "hv/milp_helper.h"
 #include "hv/milp_status.h"
 #include "hv/milp_window.h"
 #include "hv/plan_eval.h"
@@ -271,6 +273,90 @@ static void test_window_improve(void **state)
         hv_instance_free(&in);
     }
     assert_true(improved >= 20);
+}
+
+static double mono_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* The helper thread improves a poor plan on its own, hands over only plans better than the
+ * caller's, and stops promptly long before its deadline. */
+static void test_helper_thread(void **state)
+{
+    (void)state;
+    hv_instance_t in;
+    make_instance(&in, 40, 120, 25, 0, 77);
+    hv_assignment_t a, got;
+    assert_int_equal(hv_assignment_alloc(&a, in.n_fruits), HV_OK);
+    assert_int_equal(hv_assignment_alloc(&got, in.n_fruits), HV_OK);
+    for (size_t f = 0; f < in.n_fruits; ++f) {
+        a.fruit_stop[f] = in.pairs[in.fruit_begin[f]].stop; /* every fruit at its first stop */
+    }
+    double t0, t = INFINITY, check;
+    assert_int_equal(hv_assignment_makespan(&in, &a, &t0), HV_OK);
+    hv_milp_options_t o;
+    hv_milp_options_default(&o);
+    hv_helper_t *h;
+    assert_int_equal(hv_helper_start(&in, &o, &a, t0, mono_s() + 60.0, &h), HV_OK);
+    int taken = 0;
+    for (double until = mono_s() + 20.0; !taken && mono_s() < until;) {
+        taken = hv_helper_take(h, t0, &got, &t);
+        if (!taken) {
+            struct timespec ms = {0, 1000000};
+            nanosleep(&ms, NULL);
+        }
+    }
+    assert_true(taken);
+    assert_true(t < t0);
+    assert_int_equal(hv_assignment_makespan(&in, &got, &check), HV_OK);
+    assert_true(fabs(check - t) < 1e-9);
+    /* a plan already taken, or one no better than the caller's, is not handed over */
+    assert_false(hv_helper_take(h, t, &got, &check));
+    hv_helper_offer(h, &got, t);
+    assert_false(hv_helper_take(h, 0.0, &got, &check));
+    double t_stop = mono_s();
+    hv_window_stats_t ws;
+    assert_int_equal(hv_helper_stop(h, &ws), HV_OK);
+    assert_true(mono_s() - t_stop < 2.0);
+    assert_true(ws.windows > 0 && ws.improved > 0);
+    hv_assignment_free(&a);
+    hv_assignment_free(&got);
+    hv_instance_free(&in);
+}
+
+static int stop_after(void *ctx)
+{
+    int *polls = ctx;
+    return ++*polls > 3;
+}
+
+/* A caller's stop ends the branch-and-price early and honestly: never OPTIMAL unproven. */
+static void test_stop_callback(void **state)
+{
+    (void)state;
+    hv_instance_t in;
+    make_instance(&in, 60, 150, 30, 0, 91);
+    hv_assignment_t out;
+    assert_int_equal(hv_assignment_alloc(&out, in.n_fruits), HV_OK);
+    hv_milp_options_t o;
+    hv_milp_options_default(&o);
+    o.decompose = 0;
+    int polls = 0;
+    o.stop = stop_after;
+    o.stop_ctx = &polls;
+    hv_milp_result_t res;
+    assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &res), HV_OK);
+    assert_true(polls > 3);
+    assert_int_not_equal(res.status, HV_SOLVE_OPTIMAL);
+    assert_int_equal(res.status, HV_SOLVE_FEASIBLE); /* the heuristic's plan */
+    double t;
+    assert_int_equal(hv_assignment_makespan(&in, &out, &t), HV_OK);
+    assert_true(fabs(t - res.objective_s) < 1e-6 && res.gap > 0.0);
+    hv_assignment_free(&out);
+    hv_instance_free(&in);
 }
 
 static void test_heuristic_and_local_search(void **state)
@@ -547,6 +633,8 @@ int main(void)
         cmocka_unit_test(test_matches_brute_force),
         cmocka_unit_test(test_price_matches_compact),
         cmocka_unit_test(test_window_improve),
+        cmocka_unit_test(test_helper_thread),
+        cmocka_unit_test(test_stop_callback),
         cmocka_unit_test(test_heuristic_and_local_search),
         cmocka_unit_test(test_incumbent_callback),
         cmocka_unit_test(test_time_limit_is_honest),

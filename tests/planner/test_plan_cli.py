@@ -62,7 +62,7 @@ def test_help():
     p = run("--help", check=0)
     for flag in ("--config", "--left", "--right", "--fruits", "--method", "--out",
                  "--time-limit", "--gap", "--fov-width", "--horizon", "--export-lp", "--quiet",
-                 "--algorithm", "check"):
+                 "--algorithm", "--threads", "check"):
         assert flag in p.stdout
     assert run("check", "--help", check=0).stdout.startswith("usage")
 
@@ -79,6 +79,8 @@ def test_usage_errors(tables, tmp_path):
         (plan_args(tables, fruits, out, "milp", "--bogus"), "unknown option: --bogus"),
         (plan_args(tables, fruits, out, "milp", "--algorithm", "cplex"), "--algorithm"),
         (plan_args(tables, fruits, out, "fov", "--algorithm", "price"), "--algorithm"),
+        (plan_args(tables, fruits, out, "milp", "--threads", "4"), "--threads"),
+        (plan_args(tables, fruits, out, "fov", "--threads", "1"), "--threads"),
     ):
         p = run(*args, check=2)
         assert needle in p.stderr
@@ -127,14 +129,15 @@ def test_algorithms_agree(tables, tmp_path):
     # branch-and-price and GLPK's branch-and-cut on the paper's model: one optimum
     fruits = write_map(tmp_path / "m.csv", random_fruits(12, 12, seed=11))
     res = {}
-    for alg in ("price", "compact"):
-        out = str(tmp_path / f"{alg}.json")
+    for alg, threads in (("price", "2"), ("price", "1"), ("compact", "1")):
+        out = str(tmp_path / f"{alg}{threads}.json")
         run(*plan_args(tables, fruits, out, "milp", "--quiet", "--algorithm", alg,
-                       "--time-limit", "120"), check=0)
+                       "--threads", threads, "--time-limit", "120"), check=0)
         plan = json.load(open(out))
         assert plan["solver"]["status"] == "optimal", plan["solver"]
-        res[alg] = plan["totals"]["makespan_s"]
-    assert res["price"] == pytest.approx(res["compact"], abs=1e-6)
+        res[alg + threads] = plan["totals"]["makespan_s"]
+    assert res["price2"] == pytest.approx(res["compact1"], abs=1e-6)
+    assert res["price1"] == pytest.approx(res["compact1"], abs=1e-6)
 
 
 def test_unreachable_listed(tables, tmp_path):
