@@ -58,9 +58,9 @@ typedef struct hv_milp_options {
     int window_width;        /* price: when the root leaves > 0.2 %, re-plan windows of this
                                 many consecutive stops of the incumbent exactly
                                 (milp_window.h) for up to a quarter of the limit; 0 never */
-    int helper_thread;       /* price, with window_width > 0: 1 re-plans the windows in a
-                                second thread for the rest of the solve instead
-                                (milp_helper.h) */
+    int helper_thread;       /* price, with window_width > 0: 1 re-plans windows in a
+                                second thread for the rest of the solve instead, cycling
+                                through widths 4, 3, 5, 6, 2 (milp_helper.h) */
     /* When not NULL, polled by the branch-and-price at each node and pricing round: a
      * non-zero return ends the solve as its time limit would (status FEASIBLE or
      * NO_SOLUTION, never OPTIMAL unless proven). */
