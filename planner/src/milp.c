@@ -1,16 +1,12 @@
 /* The stop-and-harvest MILP on GLPK (milp.h): incumbent, model, branch-and-cut, result. */
-#ifndef _POSIX_C_SOURCE
-#define _POSIX_C_SOURCE 200809L /* clock_gettime */
-#endif
-
 #define HV_CUT_MAX_ROUNDS 8 /* pattern-cut separation rounds over the whole tree */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "hv/milp_clock.h"
 #include "hv/milp.h"
 #include "hv/milp_cuts.h"
 #include "hv/milp_local_search.h"
@@ -47,13 +43,6 @@ void hv_milp_options_default(hv_milp_options_t *opt)
     opt->stop_ctx = NULL;
     opt->glpk_cuts_phase2 = HV_MILP_CUT_GMI | HV_MILP_CUT_MIR | HV_MILP_CUT_COVER |
                             HV_MILP_CUT_CLIQUE;
-}
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 /* What the GLPK callback needs. */
@@ -168,7 +157,7 @@ static void callback(glp_tree *tree, void *info)
     case GLP_ISELECT:
         track_bound(tree, c);
         if (c->opt->verbose >= 1) {
-            double t = now_s();
+            double t = hv_milp_now_s();
             if (t - c->t_last_print >= 1.0) {
                 c->t_last_print = t;
                 fprintf(stderr, "milp: %.1f s, %d active nodes, %d total, bound %.3f s, gap %.4f\n",
@@ -338,7 +327,7 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
                              const hv_assignment_t *inc, double inc_t, double t_deadline,
                              hv_assignment_t *out, hv_milp_result_t *res)
 {
-    double t0 = now_s();
+    double t0 = hv_milp_now_s();
     if (inst->n_pairs == 0) {
         set_trivial(inst, out, res);
         return HV_OK;
@@ -381,7 +370,7 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
             so.side_bounds = 0;
             so.export_lp_path = NULL;
             so.verbose = opt->verbose >= 2 ? 2 : 0;
-            so.time_limit_s = fmax(0.01, t_deadline - now_s());
+            so.time_limit_s = fmax(0.01, t_deadline - hv_milp_now_s());
             hv_assignment_t sa;
             st = hv_assignment_alloc(&sa, sub.n_fruits);
             hv_milp_result_t sr;
@@ -433,7 +422,7 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
     glp_init_smcp(&sp);
     sp.msg_lev = opt->verbose >= 2 ? GLP_MSG_ON : GLP_MSG_OFF;
     sp.presolve = GLP_OFF;
-    double left_s = t_deadline - now_s();
+    double left_s = t_deadline - hv_milp_now_s();
     sp.tm_lim = (int)fmax(1.0, fmin(left_s * 1000.0, 2e9));
     glp_scale_prob(m.lp, GLP_SF_AUTO); /* costs of 1..60 s against 0/1 columns */
     sp.meth = GLP_DUALP;
@@ -445,7 +434,7 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
         if (added == 0) {
             break;
         }
-        left_s = t_deadline - now_s();
+        left_s = t_deadline - hv_milp_now_s();
         sp.tm_lim = (int)fmax(1.0, fmin(left_s * 1000.0, 2e9));
         ret = glp_simplex(m.lp, &sp);
         lp_stat = glp_get_status(m.lp);
@@ -500,7 +489,7 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
                 ip.cov_cuts = (cuts & HV_MILP_CUT_COVER) ? GLP_ON : GLP_OFF;
                 ip.clq_cuts = (cuts & HV_MILP_CUT_CLIQUE) ? GLP_ON : GLP_OFF;
             }
-            left_s = t_deadline - now_s();
+            left_s = t_deadline - hv_milp_now_s();
             if (two_phase && phase == 0) {
                 left_s = fmin(left_s, fmax(1.0, 0.2 * opt->time_limit_s));
             }
@@ -519,7 +508,7 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
             }
             have |= isfinite(best_t);
             int proven = (mip_ret == 0 && mip_stat == GLP_OPT) || mip_ret == GLP_EMIPGAP;
-            if (proven || !two_phase || phase == 1 || t_deadline - now_s() < 2.0 ||
+            if (proven || !two_phase || phase == 1 || t_deadline - hv_milp_now_s() < 2.0 ||
                 (mip_ret == 0 && mip_stat == GLP_NOFEAS)) {
                 break;
             }
@@ -666,7 +655,7 @@ static hv_status_t solve_segments(const hv_instance_t *inst, const hv_milp_optio
         hv_milp_options_t o = *opt;
         o.decompose = 0;
         o.export_lp_path = NULL;
-        o.time_limit_s = fmax(0.01, t_deadline - now_s());
+        o.time_limit_s = fmax(0.01, t_deadline - hv_milp_now_s());
         hv_milp_result_t r;
         if (st == HV_OK) {
             st = hv_milp_solve(&sub, &o, inc != NULL ? &si : NULL, &so, &r);
@@ -714,7 +703,7 @@ hv_status_t hv_milp_solve(const hv_instance_t *inst, const hv_milp_options_t *op
                           const hv_assignment_t *incumbent, hv_assignment_t *out,
                           hv_milp_result_t *res)
 {
-    double t0 = now_s();
+    double t0 = hv_milp_now_s();
     if (inst == NULL || opt == NULL || out == NULL || res == NULL || out->fruit_stop == NULL ||
         out->n_fruits != inst->n_fruits || !(opt->time_limit_s > 0) ||
         !(opt->rel_gap >= 0) || !isfinite(opt->rel_gap)) {
@@ -753,7 +742,7 @@ hv_status_t hv_milp_solve(const hv_instance_t *inst, const hv_milp_options_t *op
     }
     if (opt->verbose >= 1 && incp != NULL) {
         fprintf(stderr, "milp: incumbent T = %.3f s after %.2f s\n", res->incumbent_s,
-                now_s() - t0);
+                hv_milp_now_s() - t0);
     }
 
     size_t nf = inst->n_fruits, ns = inst->n_stops, n_seg = 1;
@@ -783,7 +772,7 @@ hv_status_t hv_milp_solve(const hv_instance_t *inst, const hv_milp_options_t *op
     free(lo);
     free(hi);
     hv_assignment_free(&inc);
-    res->runtime_s = now_s() - t0;
+    res->runtime_s = hv_milp_now_s() - t0;
     if (opt->verbose >= 1 && st == HV_OK) {
         fprintf(stderr, "milp: T = %.3f s, bound %.3f s, gap %.2e, %.2f s\n", res->objective_s,
                 res->bound_s, res->gap, res->runtime_s);

@@ -1,14 +1,10 @@
 /* The helper thread of the branch-and-price (milp_helper.h). */
-#ifndef _POSIX_C_SOURCE
-#define _POSIX_C_SOURCE 200809L /* clock_gettime */
-#endif
-
 #include <glpk.h>
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "hv/milp_clock.h"
 #include "hv/milp_helper.h"
 #include "hv/milp_local_search.h"
 #include "hv/plan_status.h"
@@ -33,13 +29,6 @@ struct hv_helper {
     hv_status_t err;
     hv_window_stats_t stats;
 };
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static int stop_requested(void *ctx)
 {
@@ -70,7 +59,7 @@ static void *helper_main(void *arg)
     hv_status_t st = hv_assignment_alloc(&a, nf);
     int have_a = st == HV_OK;
     unsigned round = 0, idle = 0; /* widths tried since the last improvement */
-    while (st == HV_OK && !stop_requested(h) && now_s() < h->t_deadline) {
+    while (st == HV_OK && !stop_requested(h) && hv_milp_now_s() < h->t_deadline) {
         pthread_mutex_lock(&h->mu);
         memcpy(a.fruit_stop, h->best.fruit_stop, nf * sizeof *a.fruit_stop);
         double t = h->best_t, t0 = t;
@@ -88,7 +77,7 @@ static void *helper_main(void *arg)
             hv_ls_options_default(&lo);
             lo.kicks = HELPER_KICKS_CHUNK; /* in chunks: the local search does not poll */
             for (unsigned c = 0; c < HELPER_KICKS / HELPER_KICKS_CHUNK && st == HV_OK &&
-                                 !stop_requested(h) && now_s() < h->t_deadline;
+                                 !stop_requested(h) && hv_milp_now_s() < h->t_deadline;
                  ++c) {
                 lo.seed = 0x2545f4914f6cdd1dull * (uint64_t)(round * 64u + c + 1u);
                 st = hv_local_search(h->inst, &lo, &a, &t);

@@ -1,10 +1,6 @@
 /* Branch-and-price for the stop-and-harvest MILP (milp_price.h): the master LP on GLPK's
  * simplex, exact per-stop pricing (milp_pricing.h), branching on a fruit's stop interval,
  * best-bound node order, Lagrangian bounds. Internally times are in ms. */
-#ifndef _POSIX_C_SOURCE
-#define _POSIX_C_SOURCE 200809L /* clock_gettime */
-#endif
-
 #include <float.h>
 #include <limits.h>
 #include <glpk.h>
@@ -12,8 +8,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "hv/milp_clock.h"
 #include "hv/milp_price.h"
 #include "hv/milp_pricing.h"
 #include "hv/grow_array.h"
@@ -175,19 +171,10 @@ typedef struct bp {
     int inexact; /* a numerically doubtful node was closed: do not claim optimality */
 } bp_t;
 
-static double now_s(void);
-
 /* The time limit is reached or the caller asked to stop. */
 static int must_stop(const bp_t *b)
 {
-    return now_s() >= b->t_deadline || (b->opt->stop != NULL && b->opt->stop(b->opt->stop_ctx));
-}
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+    return hv_milp_now_s() >= b->t_deadline || (b->opt->stop != NULL && b->opt->stop(b->opt->stop_ctx));
 }
 
 static int prunable(const bp_t *b, double lb_ms)
@@ -1011,9 +998,9 @@ static hv_status_t lp_solve(bp_t *b, int first)
     glp_init_smcp(&sp);
     sp.msg_lev = GLP_MSG_OFF;
     sp.meth = first ? GLP_DUALP : GLP_PRIMAL;
-    double left_ms = (b->t_deadline - now_s()) * 1000.0;
+    double left_ms = (b->t_deadline - hv_milp_now_s()) * 1000.0;
     sp.tm_lim = (int)fmax(1.0, fmin(left_ms, 2e9));
-    double t0 = now_s();
+    double t0 = hv_milp_now_s();
     sp.it_lim = STALL_ITERS_PER_ROW * glp_get_num_rows(b->lp) + 1000;
     int r = glp_simplex(b->lp, &sp);
     if (r == GLP_EITLIM) {
@@ -1030,7 +1017,7 @@ static hv_status_t lp_solve(bp_t *b, int first)
         glp_adv_basis(b->lp, 0); /* an unusable warm start (singular, invalid): start afresh */
         r = glp_simplex(b->lp, &sp);
     }
-    b->t_lp += now_s() - t0;
+    b->t_lp += hv_milp_now_s() - t0;
     if (r == GLP_ETMLIM) {
         return HV_OK; /* the caller sees the deadline */
     }
@@ -1194,7 +1181,7 @@ static hv_status_t improve_plan(bp_t *b, hv_assignment_t *a, unsigned kicks)
  * mass), improve it by local search and keep it when it beats the incumbent. */
 static hv_status_t round_and_improve(bp_t *b, const double *x)
 {
-    double t0 = now_s();
+    double t0 = hv_milp_now_s();
     hv_assignment_t a;
     double *mass = calloc(b->nf + 1, sizeof *mass);
     if (mass == NULL || hv_assignment_alloc(&a, b->nf) != HV_OK) {
@@ -1220,7 +1207,7 @@ static hv_status_t round_and_improve(bp_t *b, const double *x)
     hv_status_t st = complete ? improve_plan(b, &a, 20) : HV_OK;
     hv_assignment_free(&a);
     free(mass);
-    b->t_heur += now_s() - t0;
+    b->t_heur += hv_milp_now_s() - t0;
     return st;
 }
 
@@ -1232,7 +1219,7 @@ static hv_status_t polish_incumbent(bp_t *b)
     if (b->opt->polish_work <= 0 || !isfinite(b->ub_ms)) {
         return HV_OK;
     }
-    double t0 = now_s();
+    double t0 = hv_milp_now_s();
     size_t n = b->nf ? b->nf : 1;
     size_t kicks = (size_t)b->opt->polish_work * 100u / (n * n);
     hv_assignment_t a;
@@ -1242,7 +1229,7 @@ static hv_status_t polish_incumbent(bp_t *b)
     memcpy(a.fruit_stop, b->best, b->nf * sizeof *b->best);
     hv_status_t st = improve_plan(b, &a, (unsigned)(kicks < 50 ? 50 : (kicks > POLISH_MAX_KICKS ? POLISH_MAX_KICKS : kicks)));
     hv_assignment_free(&a);
-    b->t_heur += now_s() - t0;
+    b->t_heur += hv_milp_now_s() - t0;
     return st;
 }
 
@@ -1334,7 +1321,7 @@ typedef enum node_end { NODE_PRUNED, NODE_INTEGRAL, NODE_BRANCH, NODE_TIMEOUT } 
 
 static void progress(bp_t *b, double lb_ms, int force)
 {
-    double t = now_s();
+    double t = hv_milp_now_s();
     if (b->opt->verbose < 1 || (!force && t - b->t_print < 1.0)) {
         return;
     }
@@ -1400,9 +1387,9 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
         }
         double lag;
         int added;
-        double tp = now_s();
+        double tp = hv_milp_now_s();
         st = price_round(b, round == 0, &lag, &added);
-        b->t_price += now_s() - tp;
+        b->t_price += hv_milp_now_s() - tp;
         if (st != HV_OK) {
             return st;
         }
@@ -1479,7 +1466,7 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
  * least that LP's bound. Best effort: on any failure the root starts without a centre. */
 static void compact_centre(bp_t *b, double limit_s)
 {
-    double t0 = now_s();
+    double t0 = hv_milp_now_s();
     hv_milp_model_opts_t mo;
     memset(&mo, 0, sizeof mo);
     mo.link_disaggregated = 0; /* the small LP: its duals are a centre, not the bound */
@@ -1491,7 +1478,7 @@ static void compact_centre(bp_t *b, double limit_s)
     glp_init_smcp(&sp);
     sp.msg_lev = GLP_MSG_OFF;
     sp.meth = GLP_DUALP;
-    sp.tm_lim = (int)fmax(1.0, 1000.0 * fmin(limit_s, b->t_deadline - now_s()));
+    sp.tm_lim = (int)fmax(1.0, 1000.0 * fmin(limit_s, b->t_deadline - hv_milp_now_s()));
     glp_scale_prob(m.lp, GLP_SF_AUTO);
     if (glp_simplex(m.lp, &sp) == 0 && glp_get_status(m.lp) == GLP_OPT) {
         /* the model's first rows are the assignment rows, in fruit order */
@@ -1510,7 +1497,7 @@ static void compact_centre(bp_t *b, double limit_s)
     hv_milp_model_free(&m);
     if (b->opt->verbose >= 1) {
         fprintf(stderr, "price: centre from the paper's LP, bound %.3f s in %.2f s\n",
-                b->center_lag / 1000.0, now_s() - t0);
+                b->center_lag / 1000.0, hv_milp_now_s() - t0);
     }
 }
 
@@ -1521,7 +1508,7 @@ static void compact_centre(bp_t *b, double limit_s)
 static hv_status_t column_dive(bp_t *b, int32_t from)
 {
     int inexact = b->inexact; /* a dive node closed as doubtful says nothing about the tree */
-    double t0 = now_s();
+    double t0 = hv_milp_now_s();
     int32_t k = from;
     hv_status_t st = HV_OK;
     for (;;) {
@@ -1549,7 +1536,7 @@ static hv_status_t column_dive(bp_t *b, int32_t from)
         }
     }
     b->inexact = inexact;
-    b->t_dive += now_s() - t0;
+    b->t_dive += hv_milp_now_s() - t0;
     b->dives++;
     return st;
 }
@@ -1558,7 +1545,7 @@ static hv_status_t column_dive(bp_t *b, int32_t from)
  * the time left; a better plan becomes the incumbent. */
 static hv_status_t window_reopt(bp_t *b)
 {
-    double t0 = now_s();
+    double t0 = hv_milp_now_s();
     hv_assignment_t a;
     if (hv_assignment_alloc(&a, b->nf) != HV_OK) {
         return HV_ERR_PLAN_NOMEM;
@@ -1573,7 +1560,7 @@ static hv_status_t window_reopt(bp_t *b)
         st = offer_plan(b, &a, t);
     }
     hv_assignment_free(&a);
-    b->t_window += now_s() - t0;
+    b->t_window += hv_milp_now_s() - t0;
     b->windows += ws.windows;
     b->windows_better += ws.improved;
     return st;
@@ -1679,7 +1666,7 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
     bp_t b;
     hv_status_t st = bp_init(&b, inst, opt);
     b.t_deadline = t_deadline_s;
-    b.t_start = b.t_print = now_s();
+    b.t_start = b.t_print = hv_milp_now_s();
     if (st == HV_OK && inc != NULL) {
         memcpy(b.best, inc->fruit_stop, b.nf * sizeof *b.best);
         b.ub_ms = 1000.0 * inc_t;
@@ -1693,7 +1680,7 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
     double root_lb = -INFINITY;
     long nodes = 0;
     if (st == HV_OK && inst->n_pairs >= CENTRE_MIN_PAIRS) {
-        compact_centre(&b, 0.25 * (t_deadline_s - now_s()));
+        compact_centre(&b, 0.25 * (t_deadline_s - hv_milp_now_s()));
     }
     if (st == HV_OK) {
         st = search(&b, &root_lb, &nodes);

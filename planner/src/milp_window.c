@@ -1,23 +1,12 @@
 /* Row-window re-optimisation of a plan (milp_window.h). */
-#ifndef _POSIX_C_SOURCE
-#define _POSIX_C_SOURCE 200809L /* clock_gettime */
-#endif
-
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "hv/milp_clock.h"
 #include "hv/milp_window.h"
 #include "hv/plan_eval.h"
 #include "hv/plan_status.h"
-
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* The plan's used stops, ascending, into used[]; returns their number. */
 static size_t used_stops(const hv_instance_t *inst, const hv_assignment_t *plan,
@@ -122,14 +111,14 @@ hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t
         so.window_width = 0; /* no windows within windows */
         so.polish_work = 0;  /* a long local search would not see opt->stop */
         int again = 1;
-        while (again && st == HV_OK && now_s() < t_deadline_s &&
+        while (again && st == HV_OK && hv_milp_now_s() < t_deadline_s &&
                !(opt->stop != NULL && opt->stop(opt->stop_ctx))) {
             again = 0;
             size_t k = used_stops(inst, plan, mark, used);
             /* windows advance by half their width: each stop is re-planned twice a pass */
             size_t step = width > 1 ? width / 2 : 1;
             for (size_t i = 0; i + width <= k && k > width && st == HV_OK; i += step) {
-                double left = t_deadline_s - now_s();
+                double left = t_deadline_s - hv_milp_now_s();
                 if (left <= 0.0 || (opt->stop != NULL && opt->stop(opt->stop_ctx))) {
                     break;
                 }
