@@ -43,7 +43,8 @@ static void usage(FILE *f)
             "                       polish_work, algorithm (0 compact, 1 price),\n"
             "                       column_dive (0 off, 1 root gap > 0.2 %%, 2 always),\n"
             "                       window_width (stops per re-planned window, 0 off),\n"
-            "                       helper_thread (1: windows on a second thread)\n"
+            "                       helper_thread (1: windows on a second thread),\n"
+            "                       sr_cuts (rounds of subset-row cuts at the root, 0 off)\n"
             "  --no-baselines       skip FOV and Serial\n"
             "  -v                   solver progress on stderr\n"
             "  --help               this text\n",
@@ -79,6 +80,7 @@ static int set_option(hv_milp_options_t *o, const char *kv)
         {"polish_work", &o->polish_work},
         {"algorithm", &o->algorithm},
         {"column_dive", &o->column_dive},
+        {"sr_cuts", &o->sr_cuts},
         {"window_width", &o->window_width},
         {"helper_thread", &o->helper_thread},
     };

@@ -37,6 +37,8 @@ void hv_milp_options_default(hv_milp_options_t *opt)
     opt->block_stops = 10;
     opt->polish_work = 150000;
     opt->column_dive = 1;
+    opt->sr_cuts = 1;
+    opt->sr_keep_gain = 5e-4;
     opt->window_width = 4;
     opt->helper_thread = 1;
     opt->stop = NULL;

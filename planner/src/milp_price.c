@@ -17,6 +17,7 @@
 #include "hv/milp_model.h"
 #include "hv/milp_status.h"
 #include "hv/milp_helper.h"
+#include "hv/milp_srcuts.h"
 #include "hv/milp_window.h"
 #include "hv/plan_eval.h"
 #include "hv/plan_status.h"
@@ -35,6 +36,10 @@
 #define DIVE_EVERY 64     /* nodes between dives (search()) */
 #define WINDOW_SHARE 0.25 /* of the time left after the root, at most, for row windows */
 #define WINDOW_LIMIT_S 0.5 /* per window */
+#define SR_MAX 512          /* subset-row cuts at most (milp_srcuts.h), all made at the root */
+#define SR_PER_ROUND 64     /* cuts added per separation round */
+#define SR_PER_FRUIT 4      /* new cuts per fruit per round: spreads them over the row */
+#define SR_MIN_VIOL 0.05    /* a cut enters when the master point violates it by this */
 #define STALL_ITERS_PER_ROW 10 /* primal simplex iterations per master row before a call
                                   counts as stalled (a normal round takes ~40 in all) */
 
@@ -70,8 +75,8 @@ typedef struct node {
 typedef struct basis {
     int n_rows, n_cols;
     unsigned char *stat;
-    double *pi, *sg; /* fruit duals (nf) and count-row duals (n_sg) */
-    size_t n_sg;
+    double *pi, *sg; /* fruit then subset-row cut duals (n_pi), count-row duals (n_sg) */
+    size_t n_pi, n_sg;
     double lag;
 } basis_t;
 
@@ -133,9 +138,20 @@ typedef struct bp {
     uint32_t *lo, *hi; /* the current node's stop interval per fruit */
 
     hv_pricer_t pricer;
+    hv_src_t src;       /* subset-row cuts: their duals follow the fruits' in every pi */
+    int *src_row;       /* per cut: its master row */
+    uint32_t *src_hit;  /* scratch: the cuts a pattern meets (SR_MAX) */
+    int32_t *src_bit;   /* per cut: its bit in the stop being priced, -1 none */
+    double pen[64];     /* the penalties of those bits */
+    int sr_rounds;      /* separation rounds done at the root */
+    double sr_lb0;      /* the root's bound before the first cut */
+    int lp_dual_next;   /* rows were added: the next master solve is a dual one */
+    long src_overflow;  /* stops priced with more than 64 cuts (the rest left out) */
+    long src_bits, src_stops; /* cut bits given to priced stops, and those stops */
+    long sr_dropped;          /* cuts deleted after the root as not worth their cost */
     hv_price_item_t *itl, *itr;
     uint32_t *sel;
-    double *pi_lp, *mu_lp, *sg_lp; /* the master's duals: fruit, stop and count rows */
+    double *pi_lp, *mu_lp, *sg_lp; /* the master's duals: fruit (+ cut), stop, count rows */
     double *pi_c, *sg_c;          /* the duals of the best bound at this node (centre) */
     double *pi_sep, *sg_sep;      /* the duals priced at */
     size_t sg_cap, sgc_cap, sgs_cap;
@@ -158,6 +174,7 @@ typedef struct bp {
     double t_start, t_print;
     long cg_iters;
     double t_heur; /* time spent in the rounding heuristic (s) */
+    double t_fix;  /* time spent in reduced-cost fixing (s) */
     double t_dive; /* time spent in column-fixing dives (s) */
     long dives;
     double t_window; /* time spent re-planning row windows (s) */
@@ -305,7 +322,7 @@ static int pattern_add(bp_t *b, uint32_t stop, uint32_t *f, uint32_t n, double c
     } else {
         hash_insert(b, k);
     }
-    if (!iv_reserve(b, n + 2 + b->n_crow)) {
+    if (!iv_reserve(b, n + 2 + b->n_crow + b->src.n)) {
         return -1;
     }
     int j = glp_add_cols(b->lp, 1);
@@ -322,6 +339,11 @@ static int pattern_add(bp_t *b, uint32_t stop, uint32_t *f, uint32_t n, double c
             b->ind[++len] = b->crow[r].row;
             b->val[len] = 1.0;
         }
+    }
+    size_t nh = hv_src_hits(&b->src, f, n, b->src_hit);
+    for (size_t h = 0; h < nh; ++h) {
+        b->ind[++len] = b->src_row[b->src_hit[h]];
+        b->val[len] = 1.0;
     }
     glp_set_mat_col(b->lp, j, len, b->ind, b->val);
     glp_set_col_bnds(b->lp, j, GLP_LO, 0.0, 0.0);
@@ -411,6 +433,10 @@ static void bp_free(bp_t *b)
     free(b->lo);
     free(b->hi);
     hv_pricer_free(&b->pricer);
+    hv_src_free(&b->src);
+    free(b->src_row);
+    free(b->src_hit);
+    free(b->src_bit);
     free(b->itl);
     free(b->itr);
     free(b->sel);
@@ -456,14 +482,17 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
     b->itl = malloc((nf + 1) * sizeof *b->itl);
     b->itr = malloc((nf + 1) * sizeof *b->itr);
     b->sel = malloc((nf + 1) * sizeof *b->sel);
-    b->pi_lp = calloc(nf + 1, sizeof *b->pi_lp);
-    b->pi_c = calloc(nf + 1, sizeof *b->pi_c);
-    b->pi_sep = calloc(nf + 1, sizeof *b->pi_sep);
+    b->pi_lp = calloc(nf + SR_MAX + 1, sizeof *b->pi_lp);
+    b->pi_c = calloc(nf + SR_MAX + 1, sizeof *b->pi_c);
+    b->pi_sep = calloc(nf + SR_MAX + 1, sizeof *b->pi_sep);
+    b->src_row = calloc(SR_MAX + 1, sizeof *b->src_row);
+    b->src_hit = calloc(SR_MAX + 1, sizeof *b->src_hit);
+    b->src_bit = malloc((SR_MAX + 1) * sizeof *b->src_bit);
     b->mu_lp = calloc(ns + 1, sizeof *b->mu_lp);
     b->sigma_lp = calloc(ns + 1, sizeof *b->sigma_lp);
     b->cand = calloc(ns + 1, sizeof *b->cand);
     b->pair_dead = calloc(inst->n_pairs + 1, 1);
-    b->root_pi = calloc(nf + 1, sizeof *b->root_pi);
+    b->root_pi = calloc(nf + SR_MAX + 1, sizeof *b->root_pi);
     b->root_lag = -INFINITY;
     b->fixed_ub = INFINITY;
     b->cur_basis = -1;
@@ -481,7 +510,8 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
         b->pi_sep == NULL || b->mu_lp == NULL || b->sigma_lp == NULL || b->cand == NULL ||
 
         b->warm_pair == NULL || b->warm_n == NULL || b->pair_at == NULL ||
-        b->pair_dead == NULL || b->root_pi == NULL ||
+        b->pair_dead == NULL || b->root_pi == NULL || b->src_row == NULL ||
+        b->src_hit == NULL || b->src_bit == NULL || hv_src_init(&b->src, nf) != HV_OK ||
         b->ind == NULL || b->val == NULL || b->best == NULL || b->sigma_stop == NULL || !hash_rebuild(b, 1024)) {
         return HV_ERR_PLAN_NOMEM;
     }
@@ -490,6 +520,9 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
         b->stop_begin[inst->pairs[k].stop + 1]++;
         double ms = 1000.0 * inst->pairs[k].cost_s;
         b->whole_ms &= fabs(ms - round(ms)) < 1e-6;
+    }
+    for (size_t c = 0; c < SR_MAX; ++c) {
+        b->src_bit[c] = -1;
     }
     for (size_t p = 0; p < ns; ++p) {
         b->stop_begin[p + 1] += b->stop_begin[p];
@@ -598,11 +631,17 @@ static int32_t heap_pop(bp_t *b)
     return top;
 }
 
+/* Duals per pi vector: the fruits' and then the subset-row cuts'. */
+static size_t n_pi(const bp_t *b)
+{
+    return b->nf + b->src.n;
+}
+
 /* Keep the master's current basis; returns its index, -1 when not kept (memory). */
 static int32_t basis_save(bp_t *b)
 {
     int nr = glp_get_num_rows(b->lp), nc = glp_get_num_cols(b->lp);
-    size_t n_duals = b->nf + b->n_crow;
+    size_t npi = n_pi(b), n_duals = npi + b->n_crow;
     size_t bytes = (size_t)nr + (size_t)nc + n_duals * sizeof(double);
     if (b->bases_bytes + bytes > ((size_t)256 << 20) ||
         !hv_grow((void **)&b->bases, &b->bases_cap, b->n_bases + 1, sizeof *b->bases)) {
@@ -615,9 +654,9 @@ static int32_t basis_save(bp_t *b)
         free(duals);
         return -1;
     }
-    memcpy(duals, b->pi_c, b->nf * sizeof *duals);
+    memcpy(duals, b->pi_c, npi * sizeof *duals);
     if (b->n_crow > 0) {
-        memcpy(duals + b->nf, b->sg_c, b->n_crow * sizeof *duals);
+        memcpy(duals + npi, b->sg_c, b->n_crow * sizeof *duals);
     }
     for (int i = 1; i <= nr; ++i) {
         st[i - 1] = (unsigned char)glp_get_row_stat(b->lp, i);
@@ -626,7 +665,7 @@ static int32_t basis_save(bp_t *b)
         st[nr + j - 1] = (unsigned char)glp_get_col_stat(b->lp, j);
     }
     b->bases[b->n_bases] =
-        (basis_t){nr, nc, st, duals, duals + b->nf, b->n_crow,
+        (basis_t){nr, nc, st, duals, duals + npi, npi, b->n_crow,
                   isfinite(b->center_lag) ? b->center_lag : -INFINITY};
     b->bases_bytes += bytes;
     return (int32_t)b->n_bases++;
@@ -766,6 +805,9 @@ static int duals_read(bp_t *b)
     for (size_t f = 0; f < b->nf; ++f) {
         b->pi_lp[f] = b->row_of_fruit[f] ? glp_get_row_dual(b->lp, b->row_of_fruit[f]) : 0.0;
     }
+    for (size_t c = 0; c < b->src.n; ++c) { /* "<= 1" rows: a dual above 0 is round-off */
+        b->pi_lp[b->nf + c] = fmin(0.0, glp_get_row_dual(b->lp, b->src_row[c]));
+    }
     for (size_t p = 0; p < b->ns; ++p) {
         b->mu_lp[p] = b->row_of_stop[p] ? glp_get_row_dual(b->lp, b->row_of_stop[p]) : 0.0;
     }
@@ -805,7 +847,7 @@ static void stop_items(bp_t *b, size_t p, const double *pi, int node_only, size_
         if (pi[f] <= 1e-9 || b->pair_dead[k] || (node_only && (b->lo[f] > p || b->hi[f] < p))) {
             continue;
         }
-        hv_price_item_t it = {f, 1000.0 * in->pairs[k].cost_s, pi[f]};
+        hv_price_item_t it = {f, 1000.0 * in->pairs[k].cost_s, pi[f], 0};
         if (in->fruits[f].side == HV_SIDE_LEFT) {
             b->itl[(*nl)++] = it;
         } else {
@@ -814,10 +856,69 @@ static void stop_items(bp_t *b, size_t p, const double *pi, int node_only, size_
     }
 }
 
+/* The penalty the subset-row cuts at the duals pi put on a pattern of the fruits
+ * f[0 .. n): -pi of every cut holding two or more of them. */
+static double cut_penalty(bp_t *b, const uint32_t *f, size_t n, const double *pi)
+{
+    double s = 0.0;
+    size_t nh = hv_src_hits(&b->src, f, n, b->src_hit);
+    for (size_t h = 0; h < nh; ++h) {
+        s -= pi[b->nf + b->src_hit[h]];
+    }
+    return s;
+}
+
+/* The cut bits of the stop's items itl[0 .. nl), itr[0 .. nr) (milp_pricing.h): one per
+ * cut with a negative dual in pi that holds two or more of them, its penalty in b->pen.
+ * Beyond 64 such cuts the rest are left out (*overflow = 1), which can only lower the
+ * pricing's v, so bounds stay valid. Returns b->pen, or NULL when no item has a bit. */
+static const double *cut_bits(bp_t *b, const double *pi, size_t nl, size_t nr, int *overflow)
+{
+    const hv_src_t *sr = &b->src;
+    size_t n_touched = 0;
+    int nbits = 0;
+    *overflow = 0;
+    for (size_t i = 0; i < nl + nr && sr->n > 0; ++i) {
+        uint32_t f = i < nl ? b->itl[i].fruit : b->itr[i - nl].fruit;
+        for (size_t q = sr->fbeg[f]; q < sr->fbeg[f + 1]; ++q) {
+            uint32_t c = sr->fcut[q];
+            if (pi[b->nf + c] >= 0.0) {
+                continue;
+            }
+            if (b->src_bit[c] == -1) { /* met once */
+                b->src_bit[c] = -2;
+                b->src_hit[n_touched++] = c;
+            } else if (b->src_bit[c] == -2) { /* twice: it can bite here */
+                if (nbits < 64) {
+                    b->pen[nbits] = -pi[b->nf + c];
+                    b->src_bit[c] = nbits++;
+                } else {
+                    *overflow = 1;
+                }
+            }
+        }
+    }
+    for (size_t i = 0; i < nl + nr; ++i) {
+        hv_price_item_t *it = i < nl ? &b->itl[i] : &b->itr[i - nl];
+        it->cuts = 0;
+        for (size_t q = sr->fbeg[it->fruit]; nbits > 0 && q < sr->fbeg[it->fruit + 1]; ++q) {
+            int32_t bit = b->src_bit[sr->fcut[q]];
+            it->cuts |= bit >= 0 ? (uint64_t)1 << bit : 0;
+        }
+    }
+    for (size_t t = 0; t < n_touched; ++t) {
+        b->src_bit[b->src_hit[t]] = -1;
+    }
+    b->src_bits += nbits;
+    b->src_stops += sr->n > 0;
+    return nbits > 0 ? b->pen : NULL;
+}
+
 /* Price every stop at the duals (pi, sg): the Lagrangian bound
- *     T_travel + sum_f pi_f + sum_r sg_r rhs_r + sum_p min(0, v_p)
- * with v_p the least tau + max(W_L, W_R) - pi(S) - sigma(p) over the patterns the node
- * allows at p; valid for any pi and any sg of the right signs. Each stop's best pattern is
+ *     T_travel + sum_f pi_f + sum_c pi_c + sum_r sg_r rhs_r + sum_p min(0, v_p)
+ * with v_p the least tau + max(W_L, W_R) - pi(S) - sigma(p) + (the cut penalties) over the
+ * patterns the node allows at p (pi_c <= 0: the subset-row cuts' duals); valid for any pi
+ * and any sg of the right signs. Each stop's best pattern is
  * added to the master when its reduced cost at the master's own duals (pi_lp, mu_lp,
  * sg_lp) is negative. */
 static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, double *lag_ms,
@@ -825,8 +926,8 @@ static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, double 
 {
     const hv_instance_t *in = b->inst;
     double sum = b->travel_ms;
-    for (size_t f = 0; f < b->nf; ++f) {
-        sum += pi[f];
+    for (size_t f = 0; f < n_pi(b); ++f) {
+        sum += pi[f]; /* the fruits' duals, then the cuts' (right-hand sides 1) */
     }
     for (size_t r = 0; r < b->n_crow; ++r) {
         if (sg[r] != 0.0) {
@@ -847,7 +948,7 @@ static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, double 
         if (b->fixed_pat[p] >= 0) {
             /* the one pattern allowed here, and it must be used: no min with 0 */
             const pattern_t *pt = &b->pat[b->fixed_pat[p]];
-            double v = pt->cost_ms - b->sigma_stop[p];
+            double v = pt->cost_ms - b->sigma_stop[p] + cut_penalty(b, b->pf + pt->first, pt->n, pi);
             for (uint32_t q = 0; q < pt->n; ++q) {
                 v -= pi[b->pf[pt->first + q]];
             }
@@ -856,6 +957,9 @@ static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, double 
         }
         size_t nl, nr;
         stop_items(b, p, pi, 1, &nl, &nr);
+        int overflow;
+        const double *pen = cut_bits(b, pi, nl, nr, &overflow);
+        b->src_overflow += overflow;
         /* last round's best pattern here, at today's duals: a threshold for the pricing */
         double offset = b->tau_ms - b->sigma_stop[p], v0 = INFINITY, t0 = 0.0;
         size_t *warm = b->warm_pair + b->stop_begin[p];
@@ -867,15 +971,16 @@ static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, double 
                 ok = b->lo[pa->fruit] <= p && p <= b->hi[pa->fruit] && !b->pair_dead[warm[q]];
                 *(in->fruits[pa->fruit].side == HV_SIDE_LEFT ? &wl : &wr) += 1000.0 * pa->cost_s;
                 prof += pi[pa->fruit];
+                b->sel[q] = pa->fruit;
             }
             if (ok) {
                 t0 = fmax(wl, wr);
-                v0 = offset + t0 - prof;
+                v0 = offset + t0 - prof + cut_penalty(b, b->sel, b->warm_n[p], pi);
             }
         }
         double v, time;
         size_t n_sel;
-        hv_status_t st = hv_pricer_best(&b->pricer, b->itl, nl, b->itr, nr, offset, fmin(0.0, v0),
+        hv_status_t st = hv_pricer_best(&b->pricer, b->itl, nl, b->itr, nr, offset, pen, fmin(0.0, v0),
                                         &v, b->sel, &n_sel, &time);
         if (st != HV_OK) {
             return st;
@@ -897,7 +1002,8 @@ static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, double 
         if (time < 0.0) {
             continue;
         }
-        double cost = b->tau_ms + time, rc = cost - b->mu_lp[p] - b->sigma_lp[p];
+        double cost = b->tau_ms + time, rc = cost - b->mu_lp[p] - b->sigma_lp[p] +
+                                              cut_penalty(b, b->sel, n_sel, b->pi_lp);
         for (size_t q = 0; q < n_sel; ++q) {
             rc -= b->pi_lp[b->sel[q]];
         }
@@ -952,7 +1058,9 @@ static hv_status_t price_round(bp_t *b, int fresh_node, double *lag_ms, int *add
         b->center_lag = -INFINITY;
         const basis_t *pb = b->cur_basis >= 0 ? &b->bases[b->cur_basis] : NULL;
         if (pb != NULL && isfinite(pb->lag)) { /* start from the parent's centre */
-            memcpy(b->pi_c, pb->pi, b->nf * sizeof *b->pi_c);
+            for (size_t f = 0; f < n_pi(b); ++f) {
+                b->pi_c[f] = f < pb->n_pi ? pb->pi[f] : 0.0;
+            }
             for (size_t r = 0; r < ncr; ++r) {
                 b->sg_c[r] = r < pb->n_sg ? pb->sg[r] : 0.0;
             }
@@ -963,7 +1071,7 @@ static hv_status_t price_round(bp_t *b, int fresh_node, double *lag_ms, int *add
     double alpha = isfinite(b->center_lag) ? SMOOTHING : 0.0;
     *lag_ms = -INFINITY;
     for (;;) {
-        for (size_t f = 0; f < b->nf; ++f) {
+        for (size_t f = 0; f < n_pi(b); ++f) {
             b->pi_sep[f] = alpha * b->pi_c[f] + (1.0 - alpha) * b->pi_lp[f];
         }
         for (size_t r = 0; r < ncr; ++r) {
@@ -977,7 +1085,7 @@ static hv_status_t price_round(bp_t *b, int fresh_node, double *lag_ms, int *add
         *lag_ms = fmax(*lag_ms, lag);
         if (lag > b->center_lag) {
             b->center_lag = lag;
-            memcpy(b->pi_c, b->pi_sep, b->nf * sizeof *b->pi_c);
+            memcpy(b->pi_c, b->pi_sep, n_pi(b) * sizeof *b->pi_c);
             memcpy(b->sg_c, b->sg_sep, ncr * sizeof *b->sg_c);
         }
         if (*added > 0) {
@@ -1257,15 +1365,26 @@ static hv_status_t fix_pairs(bp_t *b)
     const double *pi = b->root_pi;
     const double big = 1e7; /* forces an item into the pattern */
     double slack = b->ub_ms - b->root_lag - (b->whole_ms ? 1.0 : b->opt->rel_gap * b->ub_ms);
+    double t0 = hv_milp_now_s();
+    int stopped = 0;
     for (size_t p = 0; p < b->ns; ++p) {
         if (b->row_of_stop[p] == 0) {
             continue;
         }
+        if (must_stop(b)) {
+            stopped = 1; /* every pair fixed so far stays fixed: each was proven alone */
+            break;
+        }
         size_t nl, nr;
         stop_items(b, p, pi, 0, &nl, &nr); /* fixing is global: every pair not yet fixed */
+        int overflow;
+        const double *pen = cut_bits(b, pi, nl, nr, &overflow);
+        if (overflow) {
+            continue; /* v_p would be below the root's own: fixing from it is not safe */
+        }
         double vp, time;
         size_t n_sel;
-        hv_status_t st = hv_pricer_best(&b->pricer, b->itl, nl, b->itr, nr, b->tau_ms, 0.0,
+        hv_status_t st = hv_pricer_best(&b->pricer, b->itl, nl, b->itr, nr, b->tau_ms, pen, 0.0,
                                         &vp, b->sel, &n_sel, &time);
         if (st != HV_OK) {
             return st;
@@ -1287,7 +1406,9 @@ static hv_status_t fix_pairs(bp_t *b)
             double v;
             if (it != NULL) {
                 it->profit += big;
-                st = hv_pricer_best(&b->pricer, b->itl, nl, b->itr, nr, b->tau_ms,
+                /* without the cuts' penalties: v_p(f) only gets lower, so fixing stays
+                 * valid, and a forced item makes the pricing with cut states slow */
+                st = hv_pricer_best(&b->pricer, b->itl, nl, b->itr, nr, b->tau_ms, NULL,
                                     fmin(0.0, thr - big + 1e-6), &v, b->sel, &n_sel, &time);
                 it->profit -= big;
                 if (st != HV_OK) {
@@ -1313,7 +1434,108 @@ static hv_status_t fix_pairs(bp_t *b)
             col_open(b, j, 0);
         }
     }
-    b->fixed_ub = b->ub_ms;
+    if (!stopped) {
+        b->fixed_ub = b->ub_ms;
+    }
+    b->t_fix += hv_milp_now_s() - t0;
+    return HV_OK;
+}
+
+/* One round of subset-row cuts (milp_srcuts.h) on the master's point: the violated ones
+ * become "<= 1" rows over the patterns holding two or more of their fruits; their duals
+ * start at 0, where every bound so far stays valid. */
+static hv_status_t separate_cuts(bp_t *b, size_t *added)
+{
+    *added = 0;
+    b->sr_rounds++;
+    size_t first = b->src.n, room = SR_MAX - first;
+    hv_src_col_t *cols = malloc((b->n_pat + 1) * sizeof *cols);
+    if (cols == NULL) {
+        return HV_ERR_PLAN_NOMEM;
+    }
+    size_t n = 0;
+    for (size_t j = 0; j < b->n_pat; ++j) {
+        double x = glp_get_col_prim(b->lp, b->pat[j].col);
+        if (x > LAMBDA_EPS) {
+            cols[n++] = (hv_src_col_t){b->pf + b->pat[j].first, b->pat[j].n, x};
+        }
+    }
+    hv_status_t st = room == 0 ? HV_OK
+                               : hv_src_separate(&b->src, b->inst, cols, n,
+                                                 room < SR_PER_ROUND ? room : SR_PER_ROUND,
+                                                 SR_PER_FRUIT, SR_MIN_VIOL, added);
+    free(cols);
+    if (st != HV_OK || *added == 0) {
+        return st;
+    }
+    /* the new rows' columns, cut by cut: count, then fill (CSR over the new cuts) */
+    size_t *beg = calloc(*added + 2, sizeof *beg), len = 0;
+    int *col = NULL;
+    for (int pass = 0; pass < 2 && beg != NULL; ++pass) {
+        for (size_t j = 0; j < b->n_pat; ++j) {
+            size_t nh = hv_src_hits(&b->src, b->pf + b->pat[j].first, b->pat[j].n, b->src_hit);
+            for (size_t h = 0; h < nh; ++h) {
+                if (b->src_hit[h] >= first) {
+                    size_t c = b->src_hit[h] - first;
+                    if (pass == 0) {
+                        beg[c + 2]++;
+                    } else {
+                        col[beg[c + 1]++] = b->pat[j].col;
+                    }
+                }
+            }
+        }
+        if (pass == 0) {
+            for (size_t c = 0; c < *added; ++c) {
+                beg[c + 2] += beg[c + 1];
+            }
+            len = beg[*added + 1];
+            col = malloc((len + 1) * sizeof *col);
+            if (col == NULL) {
+                break;
+            }
+        }
+    }
+    if (beg == NULL || col == NULL || !iv_reserve(b, len + 1)) {
+        free(beg);
+        free(col);
+        return HV_ERR_PLAN_NOMEM;
+    }
+    int r0 = glp_add_rows(b->lp, (int)*added);
+    for (size_t c = 0; c < *added; ++c) { /* beg[c] .. beg[c + 1]: cut first + c's columns */
+        int row = r0 + (int)c, m = 0;
+        for (size_t q = beg[c]; q < beg[c + 1]; ++q) {
+            b->ind[++m] = col[q];
+            b->val[m] = 1.0;
+        }
+        glp_set_mat_row(b->lp, row, m, b->ind, b->val);
+        glp_set_row_bnds(b->lp, row, GLP_UP, 0.0, 1.0);
+        glp_set_row_stat(b->lp, row, GLP_BS); /* keeps the current basis valid */
+        b->src_row[first + c] = row;
+        b->pi_lp[b->nf + first + c] = b->pi_c[b->nf + first + c] = 0.0;
+        b->pi_sep[b->nf + first + c] = b->root_pi[b->nf + first + c] = 0.0;
+    }
+    free(beg);
+    free(col);
+    return HV_OK;
+}
+
+/* Deletes every cut row (at the root, before any count row or kept basis). The master is
+ * re-solved without them; a basis left without a basic variable is rebuilt by lp_solve. */
+static hv_status_t drop_cuts(bp_t *b)
+{
+    if (!iv_reserve(b, b->src.n + 1)) {
+        return HV_ERR_PLAN_NOMEM;
+    }
+    int *num = b->ind;
+    for (size_t c = 0; c < b->src.n; ++c) {
+        num[c + 1] = b->src_row[c];
+    }
+    glp_del_rows(b->lp, (int)b->src.n, num);
+    b->sr_dropped += (long)b->src.n;
+    hv_src_clear(&b->src);
+    b->sr_rounds = b->opt->sr_cuts;
+    b->center_lag = -INFINITY; /* the centre's bound counted the cuts' duals */
     return HV_OK;
 }
 
@@ -1377,7 +1599,8 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
             *end = NODE_TIMEOUT;
             return HV_OK;
         }
-        hv_status_t st = lp_solve(b, round == 0);
+        hv_status_t st = lp_solve(b, round == 0 || b->lp_dual_next);
+        b->lp_dual_next = 0;
         if (st != HV_OK) {
             return st;
         }
@@ -1407,9 +1630,29 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
             continue;
         }
         /* the master is optimal over all columns of this node */
+        if (b->nodes[k].parent < 0 && !isfinite(b->root_lag) && b->sr_rounds < b->opt->sr_cuts) {
+            size_t n_cuts;
+            if (b->sr_rounds == 0) {
+                b->sr_lb0 = b->nodes[k].lb_ms;
+            }
+            if ((st = separate_cuts(b, &n_cuts)) != HV_OK) {
+                return st;
+            }
+            if (n_cuts > 0) {
+                b->lp_dual_next = 1; /* the point violates the new rows: repair by the dual */
+                continue;
+            }
+        }
+        if (b->nodes[k].parent < 0 && !isfinite(b->root_lag) && b->src.n > 0 &&
+            b->nodes[k].lb_ms - b->sr_lb0 < b->opt->sr_keep_gain * b->sr_lb0) {
+            if ((st = drop_cuts(b)) != HV_OK) { /* not worth their cost in the tree */
+                return st;
+            }
+            continue; /* the root keeps its bound; the master converges without them */
+        }
         if (b->nodes[k].parent < 0 && !isfinite(b->root_lag)) {
             /* the root is solved: its best duals fix pairs for the whole tree */
-            memcpy(b->root_pi, b->pi_c, b->nf * sizeof *b->root_pi);
+            memcpy(b->root_pi, b->pi_c, n_pi(b) * sizeof *b->root_pi);
             b->root_lag = b->center_lag;
             if (b->ub_ms - b->root_lag > PRIMAL_ROOT_GAP * b->ub_ms &&
                 (st = polish_incumbent(b)) != HV_OK) {
@@ -1705,16 +1948,21 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
                     "price: %ld LP rounds in %.2f s (%d iterations, %ld restarts, %ld stalls), "
                     "pricing %.2f s (%llu stops, %.1f points each), heuristic %ld runs "
                     "(%ld better) in %.2f s, %ld column dives in %.2f s, %ld windows (%ld better) "
-                    "in %.2f s, %ld plans from the helper thread, %ld of %zu pairs fixed\n",
+                    "in %.2f s, %ld plans from the helper thread, %ld of %zu pairs fixed in %.2f s, "
+                    "%zu subset-row cuts in %d rounds (%ld dropped; %.1f with a negative dual "
+                    "per priced stop, %ld stops over 64)\n",
                     b.cg_iters, b.t_lp, glp_get_it_cnt(b.lp), b.lp_restarts, b.lp_stalls,
                     b.t_price, b.pricer.calls,
                     (double)b.pricer.points / (double)(b.pricer.calls ? b.pricer.calls : 1),
                     b.heur_runs, b.heur_wins, b.t_heur, b.dives, b.t_dive, b.windows,
                     b.windows_better, b.t_window, b.helper_plans, b.pairs_fixed,
-                    inst->n_pairs);
+                    inst->n_pairs, b.t_fix, b.src.n, b.sr_rounds, b.sr_dropped,
+                    (double)b.src_bits / (double)(b.src_stops ? b.src_stops : 1),
+                    b.src_overflow);
         }
         res->nodes = nodes;
         res->columns = (long)b.n_pat;
+        res->cuts = (long)b.src.n;
         res->root_bound_s = root_lb / 1000.0;
         if (!isfinite(b.ub_ms)) {
             res->status = b.heap_len == 0 ? HV_SOLVE_INFEASIBLE : HV_SOLVE_NO_SOLUTION;

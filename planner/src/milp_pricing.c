@@ -86,11 +86,42 @@ static double partner_best(const front_bound_t *fb, size_t gi, double w, size_t 
     return g;
 }
 
+/* The penalties of the cuts in mask m. */
+static double cut_penalty(const double *pen, uint64_t m)
+{
+    double s = 0.0;
+    for (; m != 0; m &= m - 1) {
+        s += pen[__builtin_ctzll(m)];
+    }
+    return s;
+}
+
+/* A point (time >= every kept point's, profit p, holding the cuts `one` once) is dominated
+ * by a kept point whose profit, less the penalties it may still pay and p's point would
+ * not (cuts it holds once and p's point does not), is at least p. The caller checked the
+ * kept points against their profit less all such penalties; here the last DOM_SCAN are
+ * checked exactly (a point kept though dominated costs time, never exactness). */
+#define DOM_SCAN 4
+static int dominated(const double *pen, const hv_front_ref_t *kept, size_t n, double p,
+                     uint64_t one)
+{
+    for (size_t q = n; q-- > 0 && q + DOM_SCAN >= n;) {
+        if (kept[q].one != 0 && kept[q].p - cut_penalty(pen, kept[q].one & ~one) >= p) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
 /* The frontier of one arm's items into pr->cur[0 .. *len), without the points that cannot
  * lead to v < 0. */
 static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
-                       const front_bound_t *fb, double offset, size_t *len)
+                       const double *pen, const front_bound_t *fb, double offset, size_t *len)
 {
+    int cuts = 0; /* some item is in a cut: points carry cut states */
+    for (size_t k = 0; k < n && pen != NULL; ++k) {
+        cuts |= items[k].cuts != 0;
+    }
     double suf0 = 0.0, suf_mid = 0.0, suf1 = 0.0; /* over the items not yet added */
     double lam = fb->lam;
     for (size_t k = 0; k < n; ++k) {
@@ -113,7 +144,7 @@ static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
     double g0 = fb->pn > 0 ? partner_best(fb, gi, 0.0, &arg) : 0.0;
     if (offset + suf0 + fb->other0 < thr && offset + suf_mid + fb->other_mid < thr &&
         offset + suf1 + fb->other1 < thr && (fb->pn == 0 || offset + g0 + suf0 < thr)) {
-        pr->cur[ncur++] = (hv_front_ref_t){0.0, 0.0, e};
+        pr->cur[ncur++] = (hv_front_ref_t){0.0, 0.0, e, 0, 0};
         if (fb->pn > 0 && offset + g0 < thr) {
             thr = offset + g0;
             pr->rec_a = fb->pidx[arg];
@@ -130,21 +161,43 @@ static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
             return 0;
         }
         double wk = items[k].w_ms, pk = items[k].profit;
+        uint64_t mk = cuts ? items[k].cuts : 0;
+        uint64_t live = 0; /* the cuts of the items still to come: only they can charge */
+        for (size_t q = k + 1; q < n && cuts; ++q) {
+            live |= items[q].cuts;
+        }
         size_t i = 0, j = 0, nn = 0;
         gi = 0; /* the first partner point with time > w */
-        double last_p = -INFINITY;
+        double last_p = -INFINITY; /* the best profit so far less all penalties it may pay */
         while (i < ncur || j < ncur) {
             double wa = i < ncur ? pr->cur[i].w : INFINITY;
             double pa = i < ncur ? pr->cur[i].p : -INFINITY;
-            double wb = j < ncur ? pr->cur[j].w + wk : INFINITY;
-            double pb = j < ncur ? pr->cur[j].p + pk : -INFINITY;
+            double wb = INFINITY, pb = -INFINITY;
+            uint64_t one = 0, two = 0;
+            if (j < ncur) {
+                const hv_front_ref_t *c = &pr->cur[j];
+                wb = c->w + wk;
+                pb = c->p + pk - (mk & c->one ? cut_penalty(pen, mk & c->one) : 0.0);
+                two = c->two | (c->one & mk);
+                one = (c->one | mk) & ~two;
+            }
             int take_a = wa < wb || (wa == wb && pa >= pb);
             double w = take_a ? wa : wb, p = take_a ? pa : pb;
+            if (take_a) {
+                one = pr->cur[i].one;
+                two = pr->cur[i].two;
+            }
+            one &= live;
+            two &= live;
             int32_t from = take_a ? pr->cur[i++].idx : pr->cur[j++].idx;
             if (p <= last_p) {
                 continue; /* dominated: no more profit for at least as much time */
             }
-            last_p = p;
+            if (cuts && dominated(pen, pr->next, nn, p, one)) {
+                continue;
+            }
+            double p_safe = one != 0 ? p - cut_penalty(pen, one) : p;
+            last_p = p_safe > last_p ? p_safe : last_p;
             if (c0 - p >= thr || c_mid + lam * w - p >= thr || c1 + w - p >= thr) {
                 continue;
             }
@@ -167,7 +220,7 @@ static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
                 pr->rec_a = fb->pidx[arg];
                 pr->rec_b = idx;
             }
-            pr->next[nn++] = (hv_front_ref_t){w, p, idx};
+            pr->next[nn++] = (hv_front_ref_t){w, p, idx, one, two};
         }
         hv_front_ref_t *t = pr->cur;
         size_t tc = pr->cur_cap;
@@ -175,6 +228,15 @@ static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
         pr->cur_cap = pr->next_cap;
         pr->next = t;
         pr->next_cap = tc;
+        ncur = nn;
+    }
+    if (cuts) { /* all items added: cut states no longer matter, keep the plain frontier */
+        size_t nn = 0;
+        for (size_t i = 0; i < ncur; ++i) {
+            if (nn == 0 || pr->cur[i].p > pr->cur[nn - 1].p) {
+                pr->cur[nn++] = pr->cur[i];
+            }
+        }
         ncur = nn;
     }
     *len = ncur;
@@ -254,7 +316,7 @@ static size_t collect(const hv_pricer_t *pr, int32_t pt, const hv_price_item_t *
 
 hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t nl,
                            const hv_price_item_t *right, size_t nr, double offset_ms,
-                           double v_bound, double *v_out, uint32_t *sel, size_t *n_sel,
+                           const double *pen_ms, double v_bound, double *v_out, uint32_t *sel, size_t *n_sel,
                            double *time_ms)
 {
     *v_out = v_bound;
@@ -292,7 +354,7 @@ hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t 
     sort_by_density(sb, nb);
     pr->arena_len = 0;
     size_t n_a = 0, n_b = 0;
-    if (!build_front(pr, sa, na, &fa, off_p, &n_a)) {
+    if (!build_front(pr, sa, na, pen_ms, &fa, off_p, &n_a)) {
         return HV_ERR_PLAN_NOMEM;
     }
     if (n_a == 0) {
@@ -326,7 +388,7 @@ hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t 
     fb.pn = n_a;
     pr->rec_v = 0.0;
     pr->rec_a = pr->rec_b = -1;
-    if (!build_front(pr, sb, nb, &fb, off_p, &n_b)) {
+    if (!build_front(pr, sb, nb, pen_ms, &fb, off_p, &n_b)) {
         return HV_ERR_PLAN_NOMEM;
     }
     const hv_front_ref_t *fa_pts = pr->left_front, *fb_pts = pr->cur;

@@ -30,6 +30,8 @@ typedef struct inst {
     hv_price_item_t l[MAXN], r[MAXN];
     size_t nl, nr;
     double offset;
+    const double *pen; /* subset-row cut penalties by cut bit, NULL: no cuts */
+    double pen_store[64];
 } inst_t;
 
 typedef struct res {
@@ -82,13 +84,43 @@ static void gen(uint64_t *s, inst_t *in, size_t nl, size_t nr, int quarter)
     in->offset = quarter ? -3000.0 + (double)(xs64(s) % 36001) / 4.0 : -3000.0 + 9000.0 * unif(s);
 }
 
-static void subset_sums(const hv_price_item_t *it, size_t n, double *w, double *p)
+/* The penalties the items it[0 .. n) pay together: pen[c] for every cut c holding two or
+ * more of them. */
+static double set_penalty(const double *pen, const hv_price_item_t *const *it, size_t n)
+{
+    double s = 0.0;
+    for (int c = 0; c < 64 && pen != NULL; ++c) {
+        int cnt = 0;
+        for (size_t k = 0; k < n; ++k) {
+            cnt += (int)((it[k]->cuts >> c) & 1u);
+        }
+        s += cnt >= 2 ? pen[c] : 0.0;
+    }
+    return s;
+}
+
+/* Time and profit (net of cut penalties) of every subset m of it[0 .. n). */
+static void subset_sums(const hv_price_item_t *it, size_t n, const double *pen, double *w,
+                        double *p)
 {
     w[0] = p[0] = 0.0;
     for (size_t m = 1; m < ((size_t)1 << n); ++m) {
         size_t low = (size_t)__builtin_ctzll(m);
         w[m] = w[m & (m - 1)] + it[low].w_ms;
         p[m] = p[m & (m - 1)] + it[low].profit;
+    }
+    if (pen == NULL) {
+        return;
+    }
+    for (size_t m = 1; m < ((size_t)1 << n); ++m) {
+        const hv_price_item_t *set[BRUTE_SIDE];
+        size_t k = 0;
+        for (size_t i = 0; i < n; ++i) {
+            if ((m >> i) & 1u) {
+                set[k++] = &it[i];
+            }
+        }
+        p[m] -= set_penalty(pen, set, k);
     }
 }
 
@@ -98,8 +130,8 @@ static double brute(const inst_t *in)
     static double wl[1 << BRUTE_SIDE], pl[1 << BRUTE_SIDE], wr[1 << BRUTE_SIDE],
         pr[1 << BRUTE_SIDE];
     assert_true(in->nl <= BRUTE_SIDE && in->nr <= BRUTE_SIDE);
-    subset_sums(in->l, in->nl, wl, pl);
-    subset_sums(in->r, in->nr, wr, pr);
+    subset_sums(in->l, in->nl, in->pen, wl, pl);
+    subset_sums(in->r, in->nr, in->pen, wr, pr);
     double best = INFINITY;
     for (size_t a = 0; a < ((size_t)1 << in->nl); ++a) {
         for (size_t b = 0; b < ((size_t)1 << in->nr); ++b) {
@@ -116,8 +148,8 @@ static void run(hv_pricer_t *pr, const inst_t *in, double vb, res_t *r)
     }
     r->n_sel = 12345;
     r->v = r->time = NAN;
-    r->st = hv_pricer_best(pr, in->l, in->nl, in->r, in->nr, in->offset, vb, &r->v, r->sel,
-                           &r->n_sel, &r->time);
+    r->st = hv_pricer_best(pr, in->l, in->nl, in->r, in->nr, in->offset, in->pen, vb, &r->v,
+                           r->sel, &r->n_sel, &r->time);
 }
 
 static void dump(const inst_t *in, double vb, double bmin, const res_t *r, const char *why)
@@ -163,6 +195,7 @@ static const char *check(const inst_t *in, double vb, double bmin, int exact, co
     REQUIRE(isnan(bmin) || fabs(r->v - bmin) <= TOL, "v is not the minimum");
     REQUIRE(r->n_sel <= n, "n_sel > nl + nr");
     double wl = 0.0, wr = 0.0, p = 0.0;
+    const hv_price_item_t *set[2 * MAXN];
     for (size_t i = 0; i < r->n_sel; ++i) {
         for (size_t j = 0; j < i; ++j) {
             REQUIRE(r->sel[j] != r->sel[i], "fruit selected twice");
@@ -174,9 +207,12 @@ static const char *check(const inst_t *in, double vb, double bmin, int exact, co
         REQUIRE(k < n, "unknown fruit id in sel");
         *(k < in->nl ? &wl : &wr) += item(in, k)->w_ms;
         p += item(in, k)->profit;
+        set[i] = item(in, k);
     }
+    p -= set_penalty(in->pen, set, r->n_sel);
     REQUIRE(r->time == fmax(wl, wr), "time_ms != max(W(L), W(R)) of sel");
-    REQUIRE(fabs(in->offset + r->time - p - r->v) <= TOL, "v != offset + time - P(sel)");
+    REQUIRE(fabs(in->offset + r->time - p - r->v) <= TOL,
+            "v != offset + time - P(sel) + penalties(sel)");
     return NULL;
 }
 
@@ -224,12 +260,61 @@ static void test_random_vs_brute_force(void **state)
     assert_true(pr->calls == (unsigned long long)calls);
 }
 
+/* Random subset-row cuts on `in`: 1-8 cuts, each on 2-3 items of one side (the pricer
+ * charges a cut within one arm), penalties in quarter ms up to 3000. */
+static void gen_cuts(uint64_t *s, inst_t *in)
+{
+    in->pen = in->pen_store;
+    int n_cut = 1 + (int)(xs64(s) % 8);
+    for (int c = 0; c < n_cut; ++c) {
+        int left = xs64(s) % 2 == 0;
+        size_t n = left ? in->nl : in->nr;
+        hv_price_item_t *it = left ? in->l : in->r;
+        in->pen_store[c] = (double)(xs64(s) % 12001) / 4.0;
+        for (int m = 2 + (int)(xs64(s) % 2); m > 0 && n > 0; --m) {
+            it[xs64(s) % n].cuts |= (uint64_t)1 << c;
+        }
+    }
+}
+
+/* 1b. The same with subset-row cut penalties: 4000 random instances with 1-8 cuts each. */
+static void test_cuts_vs_brute_force(void **state)
+{
+    hv_pricer_t *pr = *state;
+    uint64_t s = 0xa4093822299f31d0ull;
+    long found = 0, calls = 0, cut_bites = 0;
+    failures = 0;
+    for (int t = 0; t < 4000; ++t) {
+        inst_t in;
+        gen(&s, &in, (size_t)(xs64(&s) % 8), (size_t)(xs64(&s) % 8), 1);
+        double plain = brute(&in);
+        gen_cuts(&s, &in);
+        double bmin = brute(&in);
+        cut_bites += bmin > plain; /* the cuts changed the minimum */
+        double vbs[3] = {0.0, bmin / 2.0, bmin};
+        for (size_t i = 0; i < 3; ++i) {
+            if (i >= 1 && bmin >= 0.0) {
+                continue;
+            }
+            res_t r;
+            run(pr, &in, vbs[i], &r);
+            ++calls;
+            expect_ok(&in, vbs[i], bmin, 1, &r);
+            found += r.time >= 0.0;
+        }
+    }
+    print_message("cuts: 4000 instances, %ld calls, %ld found, minimum raised by cuts on %ld\n",
+                  calls, found, cut_bites);
+    assert_int_equal(failures, 0);
+    assert_true(found > 2000 && cut_bites > 500); /* the penalties matter */
+}
+
 static inst_t hand(double wl, double pl, double wr, double pr_, double offset)
 {
     inst_t in;
     memset(&in, 0, sizeof in);
-    in.l[0] = (hv_price_item_t){11, wl, pl};
-    in.r[0] = (hv_price_item_t){22, wr, pr_};
+    in.l[0] = (hv_price_item_t){11, wl, pl, 0};
+    in.r[0] = (hv_price_item_t){22, wr, pr_, 0};
     in.nl = in.nr = 1;
     in.offset = offset;
     return in;
@@ -367,6 +452,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_random_vs_brute_force, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_cuts_vs_brute_force, setup, teardown),
         cmocka_unit_test_setup_teardown(test_hand_cases, setup, teardown),
         cmocka_unit_test_setup_teardown(test_workspace_reuse, setup, teardown),
     };

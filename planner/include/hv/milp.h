@@ -61,6 +61,11 @@ typedef struct hv_milp_options {
     int helper_thread;       /* price, with window_width > 0: 1 re-plans windows in a
                                 second thread for the rest of the solve instead, cycling
                                 through widths 4, 3, 5, 6, 2 (milp_helper.h) */
+    int sr_cuts;             /* price: rounds of subset-row cuts on same-side fruit triples
+                                at the root (milp_srcuts.h); 0 none */
+    double sr_keep_gain;     /* price: the cuts stay in the tree only when they raised the
+                                root's bound by this share (they slow every master LP);
+                                0 keeps them always */
     /* When not NULL, polled by the branch-and-price at each node and pricing round: a
      * non-zero return ends the solve as its time limit would (status FEASIBLE or
      * NO_SOLUTION, never OPTIMAL unless proven). */
@@ -86,7 +91,8 @@ typedef struct hv_milp_result {
     int incumbent_taken;  /* 1 when GLPK accepted that incumbent through its callback */
     double root_bound_s;  /* LP relaxation bound at the root (with the added rows) */
     int components;       /* independent row segments solved (1 without decomposition) */
-    long cuts;            /* stop-pattern cuts added (compact) */
+    long cuts;            /* compact: stop-pattern cuts added; price: subset-row cuts kept
+                             in the tree */
     long columns;         /* stop-pattern columns generated (branch-and-price) */
 } hv_milp_result_t;
 

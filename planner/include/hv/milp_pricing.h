@@ -4,10 +4,16 @@
  * dual price (profit, ms), find the pattern of least reduced cost
  *     v = offset + max(W(L), W(R)) - P(L) - P(R)
  * over all subsets L of the left items and R of the right items (the empty ones too);
- * offset is tau less the duals of any rows on the number of stops. Each arm's Pareto
+ * offset is tau less the duals of any rows on the number of stops. Subset-row cuts add
+ * their penalty pen[c] >= 0 to every pattern holding two or more of their items (cut c is
+ * bit c of an item's `cuts`). Each arm's Pareto
  * frontier of (time, profit) is built item by item (Nemhauser-Ullmann), points that cannot
  * lead to v < 0 are dropped, and the two frontiers are merged on the stop time
- * M = max(W(L), W(R)): v = min_M offset + M - P_L(M) - P_R(M).
+ * M = max(W(L), W(R)): v = min_M offset + M - P_L(M) - P_R(M). With cuts a point also
+ * carries which cuts it holds once; it dominates another only when its profit less the
+ * penalties it may still pay beyond the other's is at least the other's profit.
+ * Penalties are charged within an arm: a cut whose items lie on both arms is charged only
+ * for two items on one arm, and v is then a lower bound, not exact.
  */
 #ifndef HV_MILP_PRICING_H
 #define HV_MILP_PRICING_H
@@ -25,6 +31,7 @@ typedef struct hv_price_item {
     uint32_t fruit;  /* caller's fruit index, copied to the selection */
     double w_ms;     /* pick time, > 0 */
     double profit;   /* dual price, > 0 (items with profit <= 0 are never worth picking) */
+    uint64_t cuts;   /* bit c: the item is in subset-row cut c (pen[c]); 0 for none */
 } hv_price_item_t;
 
 /* One frontier point: time, profit, and the item added to its parent point. */
@@ -34,10 +41,12 @@ typedef struct hv_front_pt {
     int32_t parent; /* arena index, -1 for the empty set */
 } hv_front_pt_t;
 
-/* A frontier entry: its time and profit where the merge streams them, and its arena point. */
+/* A frontier entry: its time and profit (net of the cut penalties it pays) where the merge
+ * streams them, its arena point, and the cuts it holds exactly one item of / two or more. */
 typedef struct hv_front_ref {
     double w, p;
     int32_t idx;
+    uint64_t one, two;
 } hv_front_ref_t;
 
 /* Work space, reused across calls (grows as needed). */
@@ -66,14 +75,15 @@ void hv_pricer_init(hv_pricer_t *pr);
 void hv_pricer_free(hv_pricer_t *pr);
 
 /* The pattern of least reduced cost, if it is below v_bound (<= 0; the caller may know a
- * pattern that good, and a lower threshold prunes more). When one is, *v_out is its exact
+ * pattern that good, and a lower threshold prunes more). pen_ms: the cuts' penalties
+ * (>= 0, indexed by the items' cut bits; NULL when no item has any). When one is, *v_out is its exact
  * v, its fruits are written to sel (room for nl + nr entries; none for the empty pattern),
  * *n_sel, and *time_ms = max(W(L), W(R)) >= 0. Otherwise *v_out = v_bound, *n_sel = 0 and
  * *time_ms = -1 (v >= v_bound for every pattern). Items are not modified.
  * Returns HV_OK or HV_ERR_PLAN_NOMEM. */
 hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t nl,
                            const hv_price_item_t *right, size_t nr, double offset_ms,
-                           double v_bound, double *v_out, uint32_t *sel, size_t *n_sel,
+                           const double *pen_ms, double v_bound, double *v_out, uint32_t *sel, size_t *n_sel,
                            double *time_ms);
 
 #ifdef __cplusplus
