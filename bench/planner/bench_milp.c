@@ -44,7 +44,8 @@ static void usage(FILE *f)
             "                       column_dive (0 off, 1 root gap > 0.2 %%, 2 always),\n"
             "                       window_width (stops per re-planned window, 0 off),\n"
             "                       helper_thread (1: windows on a second thread),\n"
-            "                       sr_cuts (rounds of subset-row cuts at the root, 0 off)\n"
+            "                       sr_cuts (rounds of subset-row cuts at the root, 0 off),\n"
+            "                       sr_keep_gain (the root gain that keeps them, 0: always)\n"
             "  --no-baselines       skip FOV and Serial\n"
             "  -v                   solver progress on stderr\n"
             "  --help               this text\n",
@@ -58,6 +59,10 @@ static int set_option(hv_milp_options_t *o, const char *kv)
         return -1;
     }
     char *end;
+    if ((size_t)(eq - kv) == strlen("sr_keep_gain") && strncmp(kv, "sr_keep_gain", 12) == 0) {
+        o->sr_keep_gain = strtod(eq + 1, &end); /* the one fraction among the options */
+        return *end == '\0' && end != eq + 1 && o->sr_keep_gain >= 0.0 ? 0 : -1;
+    }
     long v = strtol(eq + 1, &end, 10);
     if (*end != '\0' || end == eq + 1) {
         return -1;

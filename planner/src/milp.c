@@ -38,7 +38,7 @@ void hv_milp_options_default(hv_milp_options_t *opt)
     opt->polish_work = 150000;
     opt->column_dive = 1;
     opt->sr_cuts = 1;
-    opt->sr_keep_gain = 5e-4;
+    opt->sr_keep_gain = 0.0;
     opt->window_width = 4;
     opt->helper_thread = 1;
     opt->stop = NULL;
