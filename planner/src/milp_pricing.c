@@ -96,23 +96,6 @@ static double cut_penalty(const double *pen, uint64_t m)
     return s;
 }
 
-/* A point (time >= every kept point's, profit p, holding the cuts `one` once) is dominated
- * by a kept point whose profit, less the penalties it may still pay and p's point would
- * not (cuts it holds once and p's point does not), is at least p. The caller checked the
- * kept points against their profit less all such penalties; here the last DOM_SCAN are
- * checked exactly (a point kept though dominated costs time, never exactness). */
-#define DOM_SCAN 4
-static int dominated(const double *pen, const hv_front_ref_t *kept, size_t n, double p,
-                     uint64_t one)
-{
-    for (size_t q = n; q-- > 0 && q + DOM_SCAN >= n;) {
-        if (kept[q].one != 0 && kept[q].p - cut_penalty(pen, kept[q].one & ~one) >= p) {
-            return 1;
-        }
-    }
-    return 0;
-}
-
 /* The frontier of one arm's items into pr->cur[0 .. *len), without the points that cannot
  * lead to v < 0. */
 static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
@@ -193,9 +176,9 @@ static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
             if (p <= last_p) {
                 continue; /* dominated: no more profit for at least as much time */
             }
-            if (cuts && dominated(pen, pr->next, nn, p, one)) {
-                continue;
-            }
+            /* a point holding cuts once may still pay them: it dominates later points only
+             * by its profit less those penalties (an exact pairwise check cost more time
+             * than the points it saved: SOLVER.md) */
             double p_safe = one != 0 ? p - cut_penalty(pen, one) : p;
             last_p = p_safe > last_p ? p_safe : last_p;
             if (c0 - p >= thr || c_mid + lam * w - p >= thr || c1 + w - p >= thr) {

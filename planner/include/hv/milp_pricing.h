@@ -10,8 +10,8 @@
  * frontier of (time, profit) is built item by item (Nemhauser-Ullmann), points that cannot
  * lead to v < 0 are dropped, and the two frontiers are merged on the stop time
  * M = max(W(L), W(R)): v = min_M offset + M - P_L(M) - P_R(M). With cuts a point also
- * carries which cuts it holds once; it dominates another only when its profit less the
- * penalties it may still pay beyond the other's is at least the other's profit.
+ * carries the cuts it holds exactly once that a later item still belongs to; it dominates
+ * later points by its profit less the penalties of those cuts.
  * Penalties are charged within an arm: a cut whose items lie on both arms is charged only
  * for two items on one arm, and v is then a lower bound, not exact.
  */
