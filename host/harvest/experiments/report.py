@@ -208,10 +208,11 @@ def claim_runtime(rows):
         text.append(
             f"**Verdict:** differs: {'the slowest plan takes ' + _fmt(mx) + ' s, ' if mx > PAPER_RUNTIME_S else ''}"
             f"{len(not_proven)} plan(s) not proven optimal. Why: our exact search (branch-and-"
-            "price on GLPK's simplex, planner/SOLVER.md) gets a tight root bound but closes its "
-            "last fraction of a percent slowly at alpha >= 1: near-identical neighbouring stops give "
-            "the LP many equivalent fractional optima, and GLPK's simplex makes a node cost 10-80 ms; "
-            "the largest instances (alpha 4) can spend half the limit at the root; our "
+            "price on GLPK's simplex with subset-row cuts, planner/SOLVER.md) gets a tight root "
+            "bound but closes its last fraction of a percent slowly at alpha >= 1: near-identical "
+            "neighbouring stops give the LP many equivalent fractional optima, and a node costs "
+            "10-300 ms (GLPK's simplex on the master with its cut rows, and the pricing that carries "
+            "the cuts); the largest instances (alpha 4) can spend half the limit at the root; our "
             "machine has 2 cores, the second used only to improve plans.")
     return "\n\n".join(text), {"max_s": mx, "not_proven": len(not_proven)}
 
