@@ -948,7 +948,8 @@ static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, double 
         if (b->fixed_pat[p] >= 0) {
             /* the one pattern allowed here, and it must be used: no min with 0 */
             const pattern_t *pt = &b->pat[b->fixed_pat[p]];
-            double v = pt->cost_ms - b->sigma_stop[p] + cut_penalty(b, b->pf + pt->first, pt->n, pi);
+            double v = pt->cost_ms - b->sigma_stop[p] +
+                       cut_penalty(b, b->pf + pt->first, pt->n, pi);
             for (uint32_t q = 0; q < pt->n; ++q) {
                 v -= pi[b->pf[pt->first + q]];
             }
@@ -980,8 +981,8 @@ static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, double 
         }
         double v, time;
         size_t n_sel;
-        hv_status_t st = hv_pricer_best(&b->pricer, b->itl, nl, b->itr, nr, offset, pen, fmin(0.0, v0),
-                                        &v, b->sel, &n_sel, &time);
+        hv_status_t st = hv_pricer_best(&b->pricer, b->itl, nl, b->itr, nr, offset, pen,
+                                        fmin(0.0, v0), &v, b->sel, &n_sel, &time);
         if (st != HV_OK) {
             return st;
         }
@@ -1948,7 +1949,8 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
                     "price: %ld LP rounds in %.2f s (%d iterations, %ld restarts, %ld stalls), "
                     "pricing %.2f s (%llu stops, %.1f points each), heuristic %ld runs "
                     "(%ld better) in %.2f s, %ld column dives in %.2f s, %ld windows (%ld better) "
-                    "in %.2f s, %ld plans from the helper thread, %ld of %zu pairs fixed in %.2f s, "
+                    "in %.2f s, %ld plans from the helper thread, %ld of %zu pairs fixed in "
+                    "%.2f s, "
                     "%zu subset-row cuts in %d rounds (%ld dropped; %.1f with a negative dual "
                     "per priced stop, %ld stops over 64)\n",
                     b.cg_iters, b.t_lp, glp_get_it_cnt(b.lp), b.lp_restarts, b.lp_stalls,

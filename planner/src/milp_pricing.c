@@ -299,8 +299,8 @@ static size_t collect(const hv_pricer_t *pr, int32_t pt, const hv_price_item_t *
 
 hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t nl,
                            const hv_price_item_t *right, size_t nr, double offset_ms,
-                           const double *pen_ms, double v_bound, double *v_out, uint32_t *sel, size_t *n_sel,
-                           double *time_ms)
+                           const double *pen_ms, double v_bound, double *v_out, uint32_t *sel,
+                           size_t *n_sel, double *time_ms)
 {
     *v_out = v_bound;
     /* pruning against v_bound instead of 0 is pruning against 0 with the offset raised */

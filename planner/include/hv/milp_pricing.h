@@ -76,15 +76,16 @@ void hv_pricer_free(hv_pricer_t *pr);
 
 /* The pattern of least reduced cost, if it is below v_bound (<= 0; the caller may know a
  * pattern that good, and a lower threshold prunes more). pen_ms: the cuts' penalties
- * (>= 0, indexed by the items' cut bits; NULL when no item has any). When one is, *v_out is its exact
- * v, its fruits are written to sel (room for nl + nr entries; none for the empty pattern),
+ * (>= 0, indexed by the items' cut bits; NULL: no cuts, the bits are ignored). When one
+ * is, *v_out is its exact v, its fruits are written to sel (room for nl + nr entries; none
+ * for the empty pattern),
  * *n_sel, and *time_ms = max(W(L), W(R)) >= 0. Otherwise *v_out = v_bound, *n_sel = 0 and
  * *time_ms = -1 (v >= v_bound for every pattern). Items are not modified.
  * Returns HV_OK or HV_ERR_PLAN_NOMEM. */
 hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t nl,
                            const hv_price_item_t *right, size_t nr, double offset_ms,
-                           const double *pen_ms, double v_bound, double *v_out, uint32_t *sel, size_t *n_sel,
-                           double *time_ms);
+                           const double *pen_ms, double v_bound, double *v_out, uint32_t *sel,
+                           size_t *n_sel, double *time_ms);
 
 #ifdef __cplusplus
 }
