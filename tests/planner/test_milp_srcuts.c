@@ -94,6 +94,23 @@ static void test_no_cut_where_none_holds(void **state)
     hv_src_free(&s);
 }
 
+/* Two odd cycles as six pair columns: {a, b}, {b, c} and {a, c} of each triple t, at x. */
+typedef struct cycles {
+    uint32_t f[6][2];
+    hv_src_col_t col[6];
+} cycles_t;
+
+static void two_cycles(cycles_t *c, const uint32_t *t1, double x1, const uint32_t *t2,
+                       double x2)
+{
+    for (int k = 0; k < 6; ++k) {
+        const uint32_t *t = k < 3 ? t1 : t2;
+        c->f[k][0] = t[k % 3 == 1 ? 1 : 0];
+        c->f[k][1] = t[k % 3 == 0 ? 1 : 2];
+        c->col[k] = (hv_src_col_t){c->f[k], 2, k < 3 ? x1 : x2};
+    }
+}
+
 /* Two odd cycles sharing fruit 0: with one new cut per fruit only the more violated one
  * enters. */
 static void test_per_fruit_limit(void **state)
@@ -103,17 +120,16 @@ static void test_per_fruit_limit(void **state)
     hv_instance_t in = sides(fr);
     hv_src_t s;
     assert_int_equal(hv_src_init(&s, NF), HV_OK);
-    static const uint32_t a[] = {0, 1}, b[] = {1, 2}, c[] = {0, 2};
-    static const uint32_t d[] = {0, 3}, e[] = {3, 4}, f[] = {0, 4};
-    hv_src_col_t cols[] = {{a, 2, 0.5}, {b, 2, 0.5}, {c, 2, 0.5},
-                           {d, 2, 0.4}, {e, 2, 0.4}, {f, 2, 0.4}};
+    static const uint32_t t1[] = {0, 1, 2}, t2[] = {0, 3, 4};
+    cycles_t cy;
+    two_cycles(&cy, t1, 0.5, t2, 0.4);
     size_t added;
-    assert_int_equal(hv_src_separate(&s, &in, cols, 6, 10, 1, 0.05, &added), HV_OK);
+    assert_int_equal(hv_src_separate(&s, &in, cy.col, 6, 10, 1, 0.05, &added), HV_OK);
     assert_int_equal(added, 1);
     assert_int_equal(s.tri[0][0], 0);
     assert_int_equal(s.tri[0][1], 1);
     assert_int_equal(s.tri[0][2], 2);
-    assert_int_equal(hv_src_separate(&s, &in, cols, 6, 10, 3, 0.05, &added), HV_OK);
+    assert_int_equal(hv_src_separate(&s, &in, cy.col, 6, 10, 3, 0.05, &added), HV_OK);
     assert_int_equal(added, 1); /* now {0, 3, 4} (lhs 1.2) */
     assert_int_equal(s.tri[1][1], 3);
     hv_src_free(&s);
@@ -127,12 +143,11 @@ static void test_hits(void **state)
     hv_instance_t in = sides(fr);
     hv_src_t s;
     assert_int_equal(hv_src_init(&s, NF), HV_OK);
-    static const uint32_t a[] = {0, 1}, b[] = {1, 2}, c[] = {0, 2};
-    static const uint32_t d[] = {5, 6}, e[] = {6, 7}, f[] = {5, 7};
-    hv_src_col_t cols[] = {{a, 2, 0.5}, {b, 2, 0.5}, {c, 2, 0.5},
-                           {d, 2, 0.5}, {e, 2, 0.5}, {f, 2, 0.5}};
+    static const uint32_t t1[] = {0, 1, 2}, t2[] = {5, 6, 7};
+    cycles_t cy;
+    two_cycles(&cy, t1, 0.5, t2, 0.5);
     size_t added;
-    assert_int_equal(hv_src_separate(&s, &in, cols, 6, 10, 10, 0.05, &added), HV_OK);
+    assert_int_equal(hv_src_separate(&s, &in, cy.col, 6, 10, 10, 0.05, &added), HV_OK);
     assert_int_equal(added, 2); /* {0, 1, 2} and {5, 6, 7} */
     uint32_t out[4];
     static const uint32_t p1[] = {0, 3}, p2[] = {1, 2, 3}, p3[] = {0, 1, 2, 5, 7}, p4[] = {6};

@@ -32,7 +32,7 @@ typedef struct hv_src {
     uint32_t *cnt;      /* per cut: scratch counter, 0 between calls */
 } hv_src_t;
 
-/* One master column with a positive value: its fruits and that value. */
+/* One master column with a positive value: its fruits (ascending) and that value. */
 typedef struct hv_src_col {
     const uint32_t *fruit;
     uint32_t n;
