@@ -84,10 +84,44 @@ typedef struct viol {
     double v;
 } viol_t;
 
+/* Most violated first; ties by the triple, so the order never depends on the enumeration. */
 static int by_violation(const void *a, const void *b)
 {
-    double x = ((const viol_t *)a)->v, y = ((const viol_t *)b)->v;
-    return x > y ? -1 : x < y;
+    const viol_t *x = a, *y = b;
+    if (x->v != y->v) {
+        return x->v > y->v ? -1 : 1;
+    }
+    return memcmp(x->f, y->f, sizeof x->f) < 0 ? -1 : memcmp(x->f, y->f, sizeof x->f) > 0;
+}
+
+/* A pair of fruits of one side and the fractional weight of the columns holding both. */
+typedef struct pair_w {
+    uint32_t a, b;
+    double w;
+} pair_w_t;
+
+static int by_pair(const void *x, const void *y)
+{
+    const pair_w_t *p = x, *q = y;
+    if (p->a != q->a) {
+        return p->a < q->a ? -1 : 1;
+    }
+    return p->b < q->b ? -1 : p->b > q->b;
+}
+
+/* w of the pair (a, b) in a's slice of the merged, sorted pair list; 0 when absent. */
+static double pair_weight(const pair_w_t *pw, const size_t *beg, uint32_t a, uint32_t b)
+{
+    size_t lo = beg[a], hi = beg[a + 1];
+    while (lo < hi) {
+        size_t mid = (lo + hi) / 2;
+        if (pw[mid].b < b) {
+            lo = mid + 1;
+        } else {
+            hi = mid;
+        }
+    }
+    return lo < beg[a + 1] && pw[lo].b == b ? pw[lo].w : 0.0;
 }
 
 static int known(const hv_src_t *s, const uint32_t *t)
@@ -115,74 +149,111 @@ static int has(const hv_src_col_t *c, uint32_t f)
     return lo < c->n && c->fruit[lo] == f;
 }
 
+static int fractional(const hv_src_col_t *c)
+{
+    return c->x > FRAC_EPS && c->x < 1.0 - FRAC_EPS; /* a column at 1 holding two of S
+                                                       leaves the cut at exactly 1 */
+}
+
 /* The lhs of triple (i, j, k) is w_ij + w_ik + w_jk - 2 t_ijk with w the fractional
- * weight of the columns holding a pair and t that of those holding all three; only pairs
- * of one column can reach lhs > 1, so triples are grown from pairs with w_ij > 0. */
+ * weight of the columns holding a pair and t that of those holding all three. lhs > 1
+ * needs two of the three pairs in some column, so every such triple has a fruit sharing a
+ * column with both others: triples are grown from each fruit's pairs (sparse: memory and
+ * time follow the fractional columns, not the number of fruits squared). */
 hv_status_t hv_src_separate(hv_src_t *s, const hv_instance_t *inst, const hv_src_col_t *cols,
                             size_t n, size_t max_new, size_t per_fruit, double min_viol,
                             size_t *added)
 {
     *added = 0;
-    size_t nf = s->nf;
-    double *w = calloc(nf * nf, sizeof *w);
-    size_t *cbeg = calloc(nf + 1, sizeof *cbeg);
-    size_t n_items = 0;
+    size_t nf = s->nf, n_items = 0, n_pw = 0;
     for (size_t c = 0; c < n; ++c) {
         n_items += cols[c].n;
+        n_pw += fractional(&cols[c]) ? (size_t)cols[c].n * (cols[c].n - 1) : 0;
     }
+    pair_w_t *pw = malloc((n_pw + 1) * sizeof *pw);
+    size_t *pbeg = calloc(nf + 1, sizeof *pbeg);
+    size_t *cbeg = calloc(nf + 1, sizeof *cbeg);
     size_t *citem = malloc((n_items + 1) * sizeof *citem);
     size_t *fill = calloc(nf + 1, sizeof *fill);
     uint32_t *used = calloc(nf + 1, sizeof *used);
     viol_t *cand = NULL;
     size_t n_cand = 0, cand_cap = 0;
     hv_status_t st = HV_ERR_PLAN_NOMEM;
-    if (w == NULL || cbeg == NULL || citem == NULL || fill == NULL || used == NULL) {
+    if (pw == NULL || pbeg == NULL || cbeg == NULL || citem == NULL || fill == NULL ||
+        used == NULL) {
         goto out;
     }
+    /* both directions of every same-side pair of a fractional column, merged per pair */
+    n_pw = 0;
     for (size_t c = 0; c < n; ++c) {
-        if (cols[c].x <= FRAC_EPS || cols[c].x >= 1.0 - FRAC_EPS) {
-            continue; /* a column at 1 holding two of S leaves the cut at exactly 1 */
+        if (!fractional(&cols[c])) {
+            continue;
         }
         for (uint32_t a = 0; a < cols[c].n; ++a) {
-            cbeg[cols[c].fruit[a] + 1]++;
-            for (uint32_t b = a + 1; b < cols[c].n; ++b) {
-                w[(size_t)cols[c].fruit[a] * nf + cols[c].fruit[b]] += cols[c].x;
+            uint32_t fa = cols[c].fruit[a];
+            cbeg[fa + 1]++;
+            for (uint32_t b = 0; b < cols[c].n; ++b) {
+                uint32_t fb = cols[c].fruit[b];
+                if (b != a && inst->fruits[fa].side == inst->fruits[fb].side) {
+                    pw[n_pw++] = (pair_w_t){fa, fb, cols[c].x};
+                }
             }
+        }
+    }
+    if (n_pw > 1) {
+        qsort(pw, n_pw, sizeof *pw, by_pair);
+    }
+    size_t m = 0;
+    for (size_t q = 0; q < n_pw; ++q) {
+        if (m > 0 && pw[m - 1].a == pw[q].a && pw[m - 1].b == pw[q].b) {
+            pw[m - 1].w += pw[q].w;
+        } else {
+            pw[m++] = pw[q];
+            pbeg[pw[q].a + 1]++;
         }
     }
     for (size_t f = 0; f < nf; ++f) {
+        pbeg[f + 1] += pbeg[f];
         cbeg[f + 1] += cbeg[f];
     }
     for (size_t c = 0; c < n; ++c) {
-        if (cols[c].x > FRAC_EPS && cols[c].x < 1.0 - FRAC_EPS) {
-            for (uint32_t a = 0; a < cols[c].n; ++a) {
-                citem[cbeg[cols[c].fruit[a]] + fill[cols[c].fruit[a]]++] = c;
-            }
+        for (uint32_t a = 0; fractional(&cols[c]) && a < cols[c].n; ++a) {
+            citem[cbeg[cols[c].fruit[a]] + fill[cols[c].fruit[a]]++] = c;
         }
     }
-    for (uint32_t i = 0; i < nf; ++i) {
-        for (uint32_t j = i + 1; j < nf; ++j) {
-            double wij = w[(size_t)i * nf + j];
-            if (wij <= FRAC_EPS || inst->fruits[i].side != inst->fruits[j].side) {
-                continue;
-            }
-            for (uint32_t k = j + 1; k < nf; ++k) {
-                double sum = wij + w[(size_t)i * nf + k] + w[(size_t)j * nf + k];
-                if (sum <= 1.0 + min_viol || inst->fruits[k].side != inst->fruits[i].side) {
+    for (uint32_t v = 0; v < nf; ++v) {
+        for (size_t p = pbeg[v]; p < pbeg[v + 1]; ++p) {
+            for (size_t q = p + 1; q < pbeg[v + 1]; ++q) {
+                uint32_t a = pw[p].b, b = pw[q].b; /* a < b: the slice is sorted */
+                double wab = pair_weight(pw, pbeg, a, b);
+                if (wab > 0.0 && (a < v || b < v)) {
+                    continue; /* a and b also share columns: grown from the least fruit */
+                }
+                double sum = pw[p].w + pw[q].w + wab;
+                if (sum <= 1.0 + min_viol) {
                     continue;
                 }
-                double t = 0.0;
-                for (size_t q = cbeg[i]; q < cbeg[i + 1]; ++q) {
-                    const hv_src_col_t *c = &cols[citem[q]];
-                    t += has(c, j) && has(c, k) ? c->x : 0.0;
+                uint32_t t3[3] = {v < a ? v : a, v < a ? a : v, b};
+                if (t3[1] > b) { /* keep t3 ascending */
+                    t3[2] = t3[1];
+                    t3[1] = b;
+                    if (t3[0] > t3[1]) {
+                        uint32_t x = t3[0];
+                        t3[0] = t3[1];
+                        t3[1] = x;
+                    }
                 }
-                double v = sum - 2.0 * t - 1.0;
-                uint32_t tri[3] = {i, j, k};
-                if (v > min_viol && !known(s, tri)) {
+                double t = 0.0;
+                for (size_t r = cbeg[t3[0]]; r < cbeg[t3[0] + 1]; ++r) {
+                    const hv_src_col_t *c = &cols[citem[r]];
+                    t += has(c, t3[1]) && has(c, t3[2]) ? c->x : 0.0;
+                }
+                double viol = sum - 2.0 * t - 1.0;
+                if (viol > min_viol && !known(s, t3)) {
                     if (!hv_grow((void **)&cand, &cand_cap, n_cand + 1, sizeof *cand)) {
                         goto out;
                     }
-                    cand[n_cand++] = (viol_t){{i, j, k}, v};
+                    cand[n_cand++] = (viol_t){{t3[0], t3[1], t3[2]}, viol};
                 }
             }
         }
@@ -204,7 +275,8 @@ hv_status_t hv_src_separate(hv_src_t *s, const hv_instance_t *inst, const hv_src
     }
     st = index_cuts(s) ? HV_OK : HV_ERR_PLAN_NOMEM;
 out:
-    free(w);
+    free(pw);
+    free(pbeg);
     free(cbeg);
     free(citem);
     free(fill);

@@ -5,6 +5,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <cmocka.h>
@@ -160,6 +161,35 @@ static void test_hits(void **state)
     hv_src_free(&s);
 }
 
+/* A whole row's fruits (50,000): separation follows the fractional columns, not the
+ * square of the fruit count (20 GB as a dense pair table). */
+static void test_many_fruits(void **state)
+{
+    (void)state;
+    const size_t nf = 50000;
+    hv_fruit_t *fr = calloc(nf, sizeof *fr); /* all on the left */
+    assert_non_null(fr);
+    hv_instance_t in;
+    memset(&in, 0, sizeof in);
+    in.n_fruits = nf;
+    in.fruits = fr;
+    hv_src_t s;
+    assert_int_equal(hv_src_init(&s, nf), HV_OK);
+    static const uint32_t t1[] = {10, 20000, 49999}, t2[] = {3, 4, 5};
+    cycles_t cy;
+    two_cycles(&cy, t1, 0.5, t2, 0.3); /* the second is no cut: lhs 0.9 */
+    size_t added;
+    assert_int_equal(hv_src_separate(&s, &in, cy.col, 6, 10, 10, 0.05, &added), HV_OK);
+    assert_int_equal(added, 1);
+    assert_int_equal(s.tri[0][0], 10);
+    assert_int_equal(s.tri[0][2], 49999);
+    static const uint32_t pat[] = {20000, 49999};
+    uint32_t out[1];
+    assert_int_equal(hv_src_hits(&s, pat, 2, out), 1);
+    hv_src_free(&s);
+    free(fr);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -167,6 +197,7 @@ int main(void)
         cmocka_unit_test(test_no_cut_where_none_holds),
         cmocka_unit_test(test_per_fruit_limit),
         cmocka_unit_test(test_hits),
+        cmocka_unit_test(test_many_fruits),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
