@@ -1609,6 +1609,9 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
             *end = NODE_TIMEOUT;
             return HV_OK;
         }
+        if (round > 0 && b->helper != NULL && (st = take_helper_plan(b)) != HV_OK) {
+            return st; /* the root can take seconds: take better plans as they come */
+        }
         double lag;
         int added;
         double tp = hv_milp_now_s();
@@ -1822,6 +1825,16 @@ static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
     }
     *root_lb = -INFINITY;
     *nodes_done = 0;
+    if (b->opt->window_width > 0 && b->opt->helper_thread && isfinite(b->ub_ms) &&
+        b->inst->n_pairs >= CENTRE_MIN_PAIRS) {
+        /* a root of seconds: the second core improves the plan meanwhile */
+        hv_assignment_t a = {b->nf, b->best};
+        hv_status_t st = hv_helper_start(b->inst, b->opt, &a, b->ub_ms / 1000.0, b->t_deadline,
+                                         &b->helper);
+        if (st != HV_OK) {
+            return st;
+        }
+    }
     /* Best bound first, interrupted by dives: from the root and then every DIVE_EVERY
      * nodes, follow the child holding more of the master's mass until the dive is pruned
      * or ends in a plan. Dives find plans (the bound rarely closes before the incumbent is
@@ -1887,7 +1900,8 @@ static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
             (st = column_dive(b, root)) != HV_OK) {
             return st;
         }
-        if (k == root && b->opt->window_width > 0 && b->ub_ms - lb > PRIMAL_ROOT_GAP * b->ub_ms) {
+        if (k == root && b->opt->window_width > 0 && b->ub_ms - lb > PRIMAL_ROOT_GAP * b->ub_ms &&
+            b->helper == NULL) {
             if (b->opt->helper_thread) {
                 hv_assignment_t a = {b->nf, b->best};
                 st = hv_helper_start(b->inst, b->opt, &a, b->ub_ms / 1000.0, b->t_deadline,
