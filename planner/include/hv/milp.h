@@ -60,7 +60,8 @@ typedef struct hv_milp_options {
                                 (milp_window.h) for up to a quarter of the limit; 0 never */
     int helper_thread;       /* price, with window_width > 0: 1 re-plans windows in a
                                 second thread for the rest of the solve instead, cycling
-                                through widths 4, 3, 5, 6, 2 (milp_helper.h) */
+                                through widths 4, 3, 5, 6, 2 (milp_helper.h); on instances
+                                of 9,000+ pairs from the start of the solve */
     int sr_cuts;             /* price: rounds of subset-row cuts on same-side fruit triples
                                 at the root (milp_srcuts.h); 0 none */
     double sr_keep_gain;     /* price: the cuts stay in the tree only when they raised the

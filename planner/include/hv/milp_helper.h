@@ -3,7 +3,7 @@
  *
  * The helper re-plans row windows of the best plan it knows (milp_window.h), with widths
  * 4, 3, 5, 6, 2 in turn, until it is stopped or its deadline passes. The search offers it
- * every better plan it finds and takes the helper's better plans at each node. Each
+ * every better plan it finds and takes the helper's better plans at each pricing round. Each
  * thread has its own GLPK environment (GLPK keeps it thread-local).
  */
 #ifndef HV_MILP_HELPER_H
