@@ -898,10 +898,9 @@ static const double *cut_bits(bp_t *b, const double *pi, size_t nl, size_t nr, i
             }
         }
     }
-    for (size_t i = 0; i < nl + nr; ++i) {
+    for (size_t i = 0; i < nl + nr && nbits > 0; ++i) { /* stop_items left every mask 0 */
         hv_price_item_t *it = i < nl ? &b->itl[i] : &b->itr[i - nl];
-        it->cuts = 0;
-        for (size_t q = sr->fbeg[it->fruit]; nbits > 0 && q < sr->fbeg[it->fruit + 1]; ++q) {
+        for (size_t q = sr->fbeg[it->fruit]; q < sr->fbeg[it->fruit + 1]; ++q) {
             int32_t bit = b->src_bit[sr->fcut[q]];
             it->cuts |= bit >= 0 ? (uint64_t)1 << bit : 0;
         }

@@ -91,7 +91,8 @@ static int by_violation(const void *a, const void *b)
     if (x->v != y->v) {
         return x->v > y->v ? -1 : 1;
     }
-    return memcmp(x->f, y->f, sizeof x->f) < 0 ? -1 : memcmp(x->f, y->f, sizeof x->f) > 0;
+    int c = memcmp(x->f, y->f, sizeof x->f);
+    return (c > 0) - (c < 0);
 }
 
 /* A pair of fruits of one side and the fractional weight of the columns holding both. */
@@ -233,15 +234,11 @@ hv_status_t hv_src_separate(hv_src_t *s, const hv_instance_t *inst, const hv_src
                 if (sum <= 1.0 + min_viol) {
                     continue;
                 }
-                uint32_t t3[3] = {v < a ? v : a, v < a ? a : v, b};
-                if (t3[1] > b) { /* keep t3 ascending */
-                    t3[2] = t3[1];
-                    t3[1] = b;
-                    if (t3[0] > t3[1]) {
-                        uint32_t x = t3[0];
-                        t3[0] = t3[1];
-                        t3[1] = x;
-                    }
+                uint32_t t3[3] = {a, b, v}; /* ascending: v goes where it belongs */
+                if (v < a) {
+                    t3[0] = v, t3[1] = a, t3[2] = b;
+                } else if (v < b) {
+                    t3[1] = v, t3[2] = b;
                 }
                 double t = 0.0;
                 for (size_t r = cbeg[t3[0]]; r < cbeg[t3[0] + 1]; ++r) {
