@@ -45,7 +45,10 @@ static void usage(FILE *f)
             "                       window_width (stops per re-planned window, 0 off),\n"
             "                       helper_thread (1: windows on a second thread),\n"
             "                       sr_cuts (rounds of subset-row cuts at the root, 0 off),\n"
-            "                       sr_keep_gain (the root gain that keeps them, 0: always)\n"
+            "                       sr_keep_gain (the root gain that keeps them, 0: always),\n"
+            "                       cover_rows (1: fruit rows >= 1, 0: = 1, 2: >= 1 from 9000 pairs),\n"
+            "                       sr_cross (1: cut triples over both sides, 0: one side),\n"
+            "                       pseudocost (1: fruit splits by pseudocosts, 0: balanced)\n"
             "  --no-baselines       skip FOV and Serial\n"
             "  -v                   solver progress on stderr\n"
             "  --help               this text\n",
@@ -86,6 +89,9 @@ static int set_option(hv_milp_options_t *o, const char *kv)
         {"algorithm", &o->algorithm},
         {"column_dive", &o->column_dive},
         {"sr_cuts", &o->sr_cuts},
+        {"cover_rows", &o->cover_rows},
+        {"sr_cross", &o->sr_cross},
+        {"pseudocost", &o->pseudocost},
         {"window_width", &o->window_width},
         {"helper_thread", &o->helper_thread},
     };
@@ -236,9 +242,12 @@ int main(int argc, char **argv)
         return 1;
     }
     printf("# MILP options: algorithm=%s disaggregated=%d heuristic=%d stops_first=%d "
-           "side_bounds=%d ms=%d decompose=%d cuts=%d pcost=%d limit=%.0fs\n",
-           mo.algorithm == HV_MILP_ALG_PRICE ? "price" : "compact", mo.link_disaggregated, mo.heuristic_incumbent, mo.branch_stops_first, mo.side_bounds,
-           mo.ms_granularity, mo.decompose, mo.glpk_cuts, mo.pcost_branching, mo.time_limit_s);
+           "side_bounds=%d ms=%d decompose=%d cuts=%d pcost=%d limit=%.0fs; price: "
+           "sr_cuts=%d sr_cross=%d cover_rows=%d pseudocost=%d helper_thread=%d\n",
+           mo.algorithm == HV_MILP_ALG_PRICE ? "price" : "compact", mo.link_disaggregated,
+           mo.heuristic_incumbent, mo.branch_stops_first, mo.side_bounds, mo.ms_granularity,
+           mo.decompose, mo.glpk_cuts, mo.pcost_branching, mo.time_limit_s, mo.sr_cuts,
+           mo.sr_cross, mo.cover_rows, mo.pseudocost, mo.helper_thread);
     printf("%-5s %-4s %4s %6s | %-9s %9s %9s %8s %7s %7s %5s | %9s %9s | %-9s %8s %7s | %9s %5s | %9s\n",
            "alpha", "seed", "nf", "pairs", "milp", "T_s", "bound_s", "gap", "time_s", "nodes",
            "stops", "root_s", "heur_T_s", "plain", "plain_gap", "plain_s", "fov_T_s", "stops", "serial_T");

@@ -39,6 +39,9 @@ void hv_milp_options_default(hv_milp_options_t *opt)
     opt->column_dive = 1;
     opt->sr_cuts = 1;
     opt->sr_keep_gain = 0.0;
+    opt->cover_rows = 2;
+    opt->sr_cross = 0;
+    opt->pseudocost = 1;
     opt->window_width = 4;
     opt->helper_thread = 1;
     opt->stop = NULL;

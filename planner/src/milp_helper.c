@@ -51,6 +51,12 @@ static void publish(hv_helper_t *h, const hv_assignment_t *a, double t, int from
     pthread_mutex_unlock(&h->mu);
 }
 
+/* hv_window_better_fn: each better window reaches the search at once, not after the pass */
+static void publish_window(void *ctx, const hv_assignment_t *a, double t)
+{
+    publish(ctx, a, t, 1);
+}
+
 static void *helper_main(void *arg)
 {
     hv_helper_t *h = arg;
@@ -66,7 +72,8 @@ static void *helper_main(void *arg)
         pthread_mutex_unlock(&h->mu);
         hv_window_stats_t ws;
         st = hv_window_improve(h->inst, &h->opt, widths[round++ % N_WIDTHS],
-                               HELPER_WINDOW_LIMIT_S, h->t_deadline, &a, &t, &ws);
+                               HELPER_WINDOW_LIMIT_S, h->t_deadline, &a, &t, &ws,
+                               publish_window, h);
         h->stats.windows += ws.windows; /* only this thread writes the counts */
         h->stats.improved += ws.improved;
         h->stats.proven += ws.proven;

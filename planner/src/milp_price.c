@@ -29,10 +29,12 @@
 #define CAND_WINDOW 5      /* a stop's column enters when its reduced cost is the least
                               within +-CAND_WINDOW stops */
 #define CENTRE_MIN_PAIRS 9000 /* from this many pairs the root starts from the paper's LP
-                                 duals (SOLVER.md: alpha 4 needs it, alpha <= 2.5 does not) */
+                                 duals (SOLVER.md: alpha 4 needs it, alpha <= 2.5 does not),
+                                 and cover_rows 2 makes the fruit rows ">= 1" */
 #define PRIMAL_ROOT_GAP 2e-3 /* polish, column dive and row windows when the root leaves
                                 more than 0.2 % (SOLVER.md) */
 #define POLISH_MAX_KICKS 1000 /* ~0.15 s at 60 fruits */
+#define POLISH_CHUNK 50       /* kicks between two readings of the clock */
 #define DIVE_EVERY 64     /* nodes between dives (search()) */
 #define WINDOW_SHARE 0.25 /* of the time left after the root, at most, for row windows */
 #define WINDOW_LIMIT_S 0.5 /* per window */
@@ -53,7 +55,7 @@ typedef struct pattern {
 /* A branch-and-bound node: the parent's restrictions plus one more. */
 typedef enum node_kind {
     KIND_ROOT,
-    KIND_FRUIT,    /* fruit `fruit` at a stop in [lo, hi] */
+    KIND_FRUIT,    /* fruit `fruit` at a stop in [lo, hi]; rhs 1 for the "> stop" child */
     KIND_COUNT_LE, /* at most `rhs` stops used in [lo, hi] */
     KIND_COUNT_GE, /* at least `rhs` stops used in [lo, hi] */
     KIND_PATTERN   /* pattern `rhs` (at stop lo = hi) used: only in column-fixing dives */
@@ -67,6 +69,7 @@ typedef struct node {
     uint32_t depth;
     double lb_ms;
     int32_t basis; /* the parent's final master basis (index into bp_t.bases), -1 none */
+    double frac;   /* KIND_FRUIT: the parent's master mass of `fruit` this child forbids */
 } node_t;
 
 /* What a parent leaves its children: its master basis (the status of rows 1..n_rows then
@@ -186,6 +189,10 @@ typedef struct bp {
     long lp_stalls;       /* primal simplex calls stopped as stalled, finished by the dual */
     long heur_runs, heur_wins;
     int inexact; /* a numerically doubtful node was closed: do not claim optimality */
+    /* pseudocosts of fruit splits, [0] the child "<= stop", [1] "> stop": per fruit the sum
+     * of (child bound - parent bound) / frac and the count, and over all fruits */
+    double *pc_sum[2], pc_all[2];
+    long *pc_n[2], pc_all_n[2];
 } bp_t;
 
 /* The time limit is reached or the caller asked to stop. */
@@ -431,6 +438,10 @@ static void bp_free(bp_t *b)
     free(b->bases);
     free(b->heap);
     free(b->lo);
+    for (int d = 0; d < 2; ++d) {
+        free(b->pc_sum[d]);
+        free(b->pc_n[d]);
+    }
     free(b->hi);
     hv_pricer_free(&b->pricer);
     hv_src_free(&b->src);
@@ -478,6 +489,13 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
     b->row_of_stop = calloc(ns + 1, sizeof *b->row_of_stop);
     b->fixed_pat = malloc((ns + 1) * sizeof *b->fixed_pat);
     b->lo = malloc((nf + 1) * sizeof *b->lo);
+    for (int d = 0; d < 2; ++d) {
+        b->pc_sum[d] = calloc(nf + 1, sizeof *b->pc_sum[d]);
+        b->pc_n[d] = calloc(nf + 1, sizeof *b->pc_n[d]);
+        if (b->pc_sum[d] == NULL || b->pc_n[d] == NULL) {
+            return HV_ERR_PLAN_NOMEM;
+        }
+    }
     b->hi = malloc((nf + 1) * sizeof *b->hi);
     b->itl = malloc((nf + 1) * sizeof *b->itl);
     b->itr = malloc((nf + 1) * sizeof *b->itr);
@@ -515,6 +533,7 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
         b->ind == NULL || b->val == NULL || b->best == NULL || b->sigma_stop == NULL || !hash_rebuild(b, 1024)) {
         return HV_ERR_PLAN_NOMEM;
     }
+    b->src.cross_sides = opt->sr_cross;
     b->whole_ms = fabs(b->tau_ms - round(b->tau_ms)) < 1e-6 && opt->ms_granularity;
     for (size_t k = 0; k < inst->n_pairs; ++k) {
         b->stop_begin[inst->pairs[k].stop + 1]++;
@@ -539,8 +558,10 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
     }
     free(fill);
 
-    /* master: a row per reachable fruit (= 1), a row per usable stop (<= 1), and an
-     * artificial column per fruit row */
+    /* master: a row per reachable fruit (>= 1 or = 1: opt->cover_rows), a row per usable
+     * stop (<= 1), and an artificial column per fruit row */
+    int cover = opt->cover_rows == 1 ||
+                (opt->cover_rows == 2 && inst->n_pairs >= CENTRE_MIN_PAIRS);
     b->lp = glp_create_prob();
     glp_set_obj_dir(b->lp, GLP_MIN);
     int rows = 0;
@@ -557,7 +578,7 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
     }
     glp_add_rows(b->lp, rows);
     for (int i = 1; i <= b->n_art; ++i) {
-        glp_set_row_bnds(b->lp, i, GLP_FX, 1.0, 1.0);
+        glp_set_row_bnds(b->lp, i, cover ? GLP_LO : GLP_FX, 1.0, 1.0);
     }
     for (int i = b->n_art + 1; i <= rows; ++i) {
         glp_set_row_bnds(b->lp, i, GLP_UP, 0.0, 1.0);
@@ -582,7 +603,7 @@ static int node_new(bp_t *b, int32_t parent, node_kind_t kind, uint32_t fruit, u
         return -1;
     }
     uint32_t depth = parent < 0 ? 0 : b->nodes[parent].depth + 1;
-    b->nodes[b->n_nodes] = (node_t){parent, kind, fruit, lo, hi, rhs, depth, lb, -1};
+    b->nodes[b->n_nodes] = (node_t){parent, kind, fruit, lo, hi, rhs, depth, lb, -1, 0.0};
     return (int)b->n_nodes++;
 }
 
@@ -1191,6 +1212,7 @@ typedef struct split {
     int32_t rhs;
     double score;
     int up; /* the second child (> stop, >= rhs + 1) holds more of the master's mass */
+    double mass_hi, mass_lo; /* KIND_FRUIT: the fruit's mass above / at or below `stop` */
 } split_t;
 
 typedef struct mass {
@@ -1207,8 +1229,41 @@ static int by_fruit_stop(const void *a, const void *c)
     return u->stop < v->stop ? -1 : (u->stop > v->stop);
 }
 
-/* The fruit whose stop is split most evenly by the master point: branch there at the stop
- * that halves its mass. score 0 when no fruit is split. */
+/* The average pseudocost of fruit f's split in direction d (0 "<= stop", 1 "> stop"): its
+ * own when it was branched on in that direction, else the average over all fruits, else 1. */
+static double pseudocost(const bp_t *b, uint32_t f, int d)
+{
+    if (b->pc_n[d][f] > 0) {
+        return b->pc_sum[d][f] / (double)b->pc_n[d][f];
+    }
+    return b->pc_all_n[d] > 0 ? b->pc_all[d] / (double)b->pc_all_n[d] : 1.0;
+}
+
+/* Child k of a fruit split is solved: its bound rise over its parent's, per unit of mass
+ * its restriction forbade, goes to the pseudocosts (capped at the incumbent, where a child
+ * is pruned however far its bound would have risen). */
+static void pseudocost_record(bp_t *b, int32_t k)
+{
+    const node_t *c = &b->nodes[k];
+    if (c->kind != KIND_FRUIT || c->frac <= LAMBDA_EPS || c->parent < 0) {
+        return;
+    }
+    double plb = b->nodes[c->parent].lb_ms, lb = fmin(c->lb_ms, b->ub_ms);
+    if (!isfinite(plb) || !isfinite(lb)) {
+        return;
+    }
+    int d = c->rhs == 1; /* the "> stop" child */
+    double g = fmax(0.0, lb - plb) / c->frac;
+    b->pc_sum[d][c->fruit] += g;
+    b->pc_n[d][c->fruit]++;
+    b->pc_all[d] += g;
+    b->pc_all_n[d]++;
+}
+
+/* The fruit whose stop is split most evenly by the master point (with opt->pseudocost: the
+ * split of the largest product of the two children's estimated bound rises, mass times
+ * pseudocost): branch there at the stop that halves its mass. score 0 when no fruit is
+ * split. */
 static hv_status_t choose_split(bp_t *b, const double *x, split_t *best)
 {
     size_t n = 0, cap = 0;
@@ -1243,9 +1298,14 @@ static hv_status_t choose_split(bp_t *b, const double *x, split_t *best)
             double s = fmin(cum, tot - cum) / tot;
             /* prefer balanced splits, then splits between distant stops */
             double score = s + 1e-4 * (double)(m[e - 1].stop - m[i].stop);
+            if (b->opt->pseudocost && s > LAMBDA_EPS) {
+                double gd = (tot - cum) * pseudocost(b, m[i].fruit, 0);
+                double gu = cum * pseudocost(b, m[i].fruit, 1);
+                score = fmax(gd, 1e-6) * fmax(gu, 1e-6);
+            }
             if (s > LAMBDA_EPS && score > best->score) {
                 *best = (split_t){KIND_FRUIT, m[i].fruit, m[k - 1].stop, 0, 0, 0, score,
-                                  cum < 0.5 * tot};
+                                  cum < 0.5 * tot, tot - cum, cum};
             }
         }
         i = e;
@@ -1335,7 +1395,14 @@ static hv_status_t polish_incumbent(bp_t *b)
         return HV_ERR_PLAN_NOMEM;
     }
     memcpy(a.fruit_stop, b->best, b->nf * sizeof *b->best);
-    hv_status_t st = improve_plan(b, &a, (unsigned)(kicks < 50 ? 50 : (kicks > POLISH_MAX_KICKS ? POLISH_MAX_KICKS : kicks)));
+    kicks = kicks < 50 ? 50 : (kicks > POLISH_MAX_KICKS ? POLISH_MAX_KICKS : kicks);
+    hv_status_t st = HV_OK;
+    /* in chunks, between which the clock is read: the local search does not poll it, and
+     * at alpha 4 (250 fruits) 1000 kicks took 0.8 s, past a 10 s limit */
+    for (size_t done = 0; done < kicks && st == HV_OK && !must_stop(b); done += POLISH_CHUNK) {
+        st = improve_plan(b, &a, (unsigned)(kicks - done < POLISH_CHUNK ? kicks - done
+                                                                        : POLISH_CHUNK));
+    }
     hv_assignment_free(&a);
     b->t_heur += hv_milp_now_s() - t0;
     return st;
@@ -1352,7 +1419,7 @@ static void choose_count(const bp_t *b, const double *x, split_t *best)
     }
     double ft = tot - floor(tot), sc = fmin(ft, 1.0 - ft);
     *best = (split_t){KIND_COUNT_LE, 0, 0, 0, (uint32_t)(b->ns - 1), (int32_t)floor(tot),
-                      sc > LAMBDA_EPS ? sc : 0.0, ft >= 0.5};
+                      sc > LAMBDA_EPS ? sc : 0.0, ft >= 0.5, 0.0, 0.0};
 }
 
 /* Reduced-cost fixing of (fruit, stop) pairs from the root's duals pi (Lagrangian bound L):
@@ -1591,6 +1658,9 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
     int infeasible;
     hv_status_t st0 = node_apply(b, k, &infeasible);
     if (st0 != HV_OK || infeasible) {
+        if (infeasible) {
+            b->nodes[k].lb_ms = INFINITY; /* what the pseudocosts learn from it */
+        }
         *end = NODE_PRUNED;
         return st0;
     }
@@ -1680,7 +1750,7 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
         }
         /* the rounding pays near the root; deeper, every 8th node is enough */
         /* x covers the columns up to now: choose the branch before the rounding adds any */
-        split_t fs = {KIND_FRUIT, 0, 0, 0, 0, 0, 0.0, 0};
+        split_t fs = {KIND_FRUIT, 0, 0, 0, 0, 0, 0.0, 0, 0.0, 0.0};
         choose_count(b, x, sp);
         if (sp->score < 0.05) {
             st = choose_split(b, x, &fs);
@@ -1801,7 +1871,7 @@ static hv_status_t window_reopt(bp_t *b)
     hv_window_stats_t ws;
     hv_status_t st = hv_window_improve(b->inst, b->opt, (unsigned)b->opt->window_width,
                                        WINDOW_LIMIT_S, t0 + WINDOW_SHARE * (b->t_deadline - t0),
-                                       &a, &t, &ws);
+                                       &a, &t, &ws, NULL, NULL);
     if (st == HV_OK) {
         st = offer_plan(b, &a, t);
     }
@@ -1849,7 +1919,7 @@ static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
             continue;
         }
         node_end_t end;
-        split_t sp = {KIND_FRUIT, 0, 0, 0, 0, 0, 0.0, 0};
+        split_t sp = {KIND_FRUIT, 0, 0, 0, 0, 0, 0.0, 0, 0.0, 0.0};
         hv_status_t st = node_process(b, k, &end, &sp);
         if (st != HV_OK) {
             return st;
@@ -1857,6 +1927,9 @@ static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
         ++*nodes_done;
         if (k == root) {
             *root_lb = b->nodes[k].lb_ms;
+        }
+        if (end != NODE_TIMEOUT) {
+            pseudocost_record(b, k);
         }
         if (end == NODE_TIMEOUT) {
             return heap_push(b, k) ? HV_OK : HV_ERR_PLAN_NOMEM; /* still open */
@@ -1874,7 +1947,11 @@ static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
         int32_t c1, c2;
         if (sp.kind == KIND_FRUIT) {
             c1 = node_new(b, k, KIND_FRUIT, f, b->lo[f], sp.stop, 0, lb);
-            c2 = node_new(b, k, KIND_FRUIT, f, sp.stop + 1, b->hi[f], 0, lb);
+            c2 = node_new(b, k, KIND_FRUIT, f, sp.stop + 1, b->hi[f], 1, lb); /* rhs: up */
+            if (c1 >= 0 && c2 >= 0) {
+                b->nodes[c1].frac = sp.mass_hi;
+                b->nodes[c2].frac = sp.mass_lo;
+            }
         } else {
             c1 = node_new(b, k, KIND_COUNT_LE, 0, sp.lo, sp.hi, sp.rhs, lb);
             c2 = node_new(b, k, KIND_COUNT_GE, 0, sp.lo, sp.hi, sp.rhs + 1, lb);

@@ -24,6 +24,11 @@ void hv_pricer_free(hv_pricer_t *pr)
     free(pr->pw);
     free(pr->parg);
     free(pr->pidx);
+    free(pr->pref);
+    for (int a = 0; a < 2; ++a) {
+        free(pr->cross[a].mask);
+        free(pr->cross[a].idx);
+    }
     memset(pr, 0, sizeof *pr);
 }
 
@@ -68,6 +73,7 @@ typedef struct front_bound {
     const double *pw, *pp, *psuf; /* partner frontier: time, profit, suffix min of w - p */
     const size_t *parg;           /* the partner point attaining psuf[i] */
     const int32_t *pidx;          /* partner points' arena indices */
+    const hv_front_ref_t *pref;   /* partner points, for the cross-arm cuts they hold once */
     size_t pn;                    /* 0: no partner */
 } front_bound_t;
 
@@ -97,9 +103,11 @@ static double cut_penalty(const double *pen, uint64_t m)
 }
 
 /* The frontier of one arm's items into pr->cur[0 .. *len), without the points that cannot
- * lead to v < 0. */
+ * lead to v < 0. `cross`: the cuts with items on both arms; a point keeps the ones it holds
+ * once to the end, since the other arm may complete them (milp_pricing.h). */
 static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
-                       const double *pen, const front_bound_t *fb, double offset, size_t *len)
+                       const double *pen, uint64_t cross, const front_bound_t *fb,
+                       double offset, size_t *len)
 {
     int cuts = 0; /* some item is in a cut: points carry cut states */
     for (size_t k = 0; k < n && pen != NULL; ++k) {
@@ -145,7 +153,8 @@ static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
         }
         double wk = items[k].w_ms, pk = items[k].profit;
         uint64_t mk = cuts ? items[k].cuts : 0;
-        uint64_t live = 0; /* the cuts of the items still to come: only they can charge */
+        uint64_t live = cross; /* the cuts of the items still to come (or of the other arm):
+                                  only they can charge */
         for (size_t q = k + 1; q < n && cuts; ++q) {
             live |= items[q].cuts;
         }
@@ -198,10 +207,16 @@ static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
             if (!take_a && !push_pt(pr, w, p, (int32_t)k, from, &idx)) {
                 return 0;
             }
-            if (fb->pn > 0 && offset + g - p < thr) {
-                thr = offset + g - p;
+            /* thr is a pattern's exact v: with the cross-arm cuts this pair holds once each */
+            double vp = offset + g - p;
+            if (fb->pn > 0 && cross != 0 && vp < thr) {
+                vp += cut_penalty(pen, fb->pref[arg].one & one);
+            }
+            if (fb->pn > 0 && vp < thr) {
+                thr = vp;
                 pr->rec_a = fb->pidx[arg];
                 pr->rec_b = idx;
+                pr->rec_pen = cross != 0 ? cut_penalty(pen, fb->pref[arg].one & one) : 0.0;
             }
             pr->next[nn++] = (hv_front_ref_t){w, p, idx, one, two};
         }
@@ -213,12 +228,19 @@ static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
         pr->next_cap = tc;
         ncur = nn;
     }
-    if (cuts) { /* all items added: cut states no longer matter, keep the plain frontier */
+    if (cuts) { /* all items added: only the cross-arm cuts held once still matter */
         size_t nn = 0;
+        double last_p = -INFINITY;
         for (size_t i = 0; i < ncur; ++i) {
-            if (nn == 0 || pr->cur[i].p > pr->cur[nn - 1].p) {
-                pr->cur[nn++] = pr->cur[i];
+            hv_front_ref_t c = pr->cur[i];
+            c.one &= cross;
+            c.two = 0;
+            if (c.p <= last_p) {
+                continue;
             }
+            pr->cur[nn++] = c;
+            double p_safe = c.one != 0 ? c.p - cut_penalty(pen, c.one) : c.p;
+            last_p = p_safe > last_p ? p_safe : last_p;
         }
         ncur = nn;
     }
@@ -287,6 +309,107 @@ static int best_weight(hv_pricer_t *pr, const hv_price_item_t *a, size_t na,
     return 1;
 }
 
+/* Points pt[0 .. n) grouped by their cross-arm cuts held once: *k classes, class c holds
+ * ord[beg[c] .. beg[c + 1]) in frontier (time) order, its cuts in mask[c]. Returns 0 when
+ * out of memory. */
+static int classify(hv_pricer_t *pr, int arm, const hv_front_ref_t *pt, size_t n,
+                    uint64_t cross, size_t *k_out, uint64_t **mask_out, uint32_t **ord_out,
+                    uint32_t **beg_out)
+{
+    hv_cross_scratch_t *cs = &pr->cross[arm];
+    if (!hv_grow((void **)&cs->mask, &cs->mask_cap, n + 1, sizeof *cs->mask) ||
+        !hv_grow((void **)&cs->idx, &cs->idx_cap, 3 * n + 2, sizeof *cs->idx)) {
+        return 0;
+    }
+    uint32_t *cls = cs->idx, *ord = cs->idx + n, *beg = cs->idx + 2 * n;
+    size_t k = 0;
+    for (size_t i = 0; i < n; ++i) {
+        uint64_t m = pt[i].one & cross;
+        size_t c = 0;
+        while (c < k && cs->mask[c] != m) {
+            ++c;
+        }
+        if (c == k) {
+            cs->mask[k++] = m;
+        }
+        cls[i] = (uint32_t)c;
+    }
+    memset(beg, 0, (k + 1) * sizeof *beg);
+    for (size_t i = 0; i < n; ++i) {
+        beg[cls[i] + 1]++;
+    }
+    for (size_t c = 0; c < k; ++c) {
+        beg[c + 1] += beg[c];
+    }
+    for (size_t i = 0; i < n; ++i) { /* stable: time order within a class */
+        ord[beg[cls[i]]++] = (uint32_t)i;
+    }
+    for (size_t c = k; c > 0; --c) {
+        beg[c] = beg[c - 1];
+    }
+    beg[0] = 0;
+    *k_out = k;
+    *mask_out = cs->mask;
+    *ord_out = ord;
+    *beg_out = beg;
+    return 1;
+}
+
+/* The merge with cross-arm cuts: a pair pays the cuts both its points hold once, so each
+ * pair of classes (classify()) is walked on its own, in time order, with the most
+ * profitable point of each class that fits within the time M (profit need not rise with
+ * time within a class). Improves *best (and its penalty and points). Returns 0 when out
+ * of memory. */
+static int cross_merge(hv_pricer_t *pr, const hv_front_ref_t *fa, size_t n_a,
+                       const hv_front_ref_t *fb, size_t n_b, uint64_t cross, double offset,
+                       const double *pen, double *best, double *best_pen, int32_t *ba,
+                       int32_t *bb)
+{
+    uint64_t *ma, *mb;
+    uint32_t *oa, *ob, *ga, *gb;
+    size_t ka, kb;
+    if (!classify(pr, 0, fa, n_a, cross, &ka, &ma, &oa, &ga) ||
+        !classify(pr, 1, fb, n_b, cross, &kb, &mb, &ob, &gb)) {
+        return 0;
+    }
+    for (size_t ca = 0; ca < ka; ++ca) {
+        for (size_t cb = 0; cb < kb; ++cb) {
+            double pn = cut_penalty(pen, ma[ca] & mb[cb]);
+            size_t i = ga[ca], j = gb[cb];
+            double pa = -INFINITY, pb = -INFINITY;
+            int32_t xa = -1, xb = -1;
+            while (i < ga[ca + 1] || j < gb[cb + 1]) {
+                double wa = i < ga[ca + 1] ? fa[oa[i]].w : INFINITY;
+                double wb = j < gb[cb + 1] ? fb[ob[j]].w : INFINITY;
+                double m;
+                if (wa <= wb) {
+                    const hv_front_ref_t *q = &fa[oa[i++]];
+                    m = wa;
+                    if (q->p > pa) {
+                        pa = q->p;
+                        xa = q->idx;
+                    }
+                } else {
+                    const hv_front_ref_t *q = &fb[ob[j++]];
+                    m = wb;
+                    if (q->p > pb) {
+                        pb = q->p;
+                        xb = q->idx;
+                    }
+                }
+                double v = offset + m - pa - pb + pn;
+                if (xa >= 0 && xb >= 0 && v < *best) {
+                    *best = v;
+                    *best_pen = pn;
+                    *ba = xa;
+                    *bb = xb;
+                }
+            }
+        }
+    }
+    return 1;
+}
+
 static size_t collect(const hv_pricer_t *pr, int32_t pt, const hv_price_item_t *items,
                       uint32_t *sel)
 {
@@ -335,9 +458,17 @@ hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t 
     }
     sort_by_density(sa, na);
     sort_by_density(sb, nb);
+    uint64_t cut_a = 0, cut_b = 0; /* the cuts of each arm's items */
+    for (size_t k = 0; k < na && pen_ms != NULL; ++k) {
+        cut_a |= sa[k].cuts;
+    }
+    for (size_t k = 0; k < nb && pen_ms != NULL; ++k) {
+        cut_b |= sb[k].cuts;
+    }
+    uint64_t cross = cut_a & cut_b;
     pr->arena_len = 0;
     size_t n_a = 0, n_b = 0;
-    if (!build_front(pr, sa, na, pen_ms, &fa, off_p, &n_a)) {
+    if (!build_front(pr, sa, na, pen_ms, cross, &fa, off_p, &n_a)) {
         return HV_ERR_PLAN_NOMEM;
     }
     if (n_a == 0) {
@@ -352,14 +483,24 @@ hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t 
         !hv_grow((void **)&pr->pidx, &pr->pidx_cap, n_a, sizeof *pr->pidx)) {
         return HV_ERR_PLAN_NOMEM;
     }
-    double *pw = pr->pw, *pp = pr->pw + n_a, *psuf = pr->pw + 2 * n_a;
-    for (size_t i = 0; i < n_a; ++i) {
-        pw[i] = pr->left_front[i].w;
-        pp[i] = pr->left_front[i].p;
-        pr->pidx[i] = pr->left_front[i].idx;
+    if (!hv_grow((void **)&pr->pref, &pr->pref_cap, n_a, sizeof *pr->pref)) {
+        return HV_ERR_PLAN_NOMEM;
     }
-    for (size_t i = n_a; i-- > 0;) {
-        int later = i + 1 < n_a && psuf[i + 1] < pw[i] - pp[i];
+    /* the partner bound g needs profit rising with time: with cross-arm cuts the frontier
+     * keeps points an earlier one beats on profit alone, which g can leave out */
+    double *pw = pr->pw, *pp = pr->pw + n_a, *psuf = pr->pw + 2 * n_a;
+    size_t n_g = 0;
+    for (size_t i = 0; i < n_a; ++i) {
+        if (n_g > 0 && pr->left_front[i].p <= pp[n_g - 1]) {
+            continue;
+        }
+        pw[n_g] = pr->left_front[i].w;
+        pp[n_g] = pr->left_front[i].p;
+        pr->pidx[n_g] = pr->left_front[i].idx;
+        pr->pref[n_g++] = pr->left_front[i];
+    }
+    for (size_t i = n_g; i-- > 0;) {
+        int later = i + 1 < n_g && psuf[i + 1] < pw[i] - pp[i];
         psuf[i] = later ? psuf[i + 1] : pw[i] - pp[i];
         pr->parg[i] = later ? pr->parg[i + 1] : i;
     }
@@ -368,20 +509,26 @@ hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t 
     fb.psuf = psuf;
     fb.parg = pr->parg;
     fb.pidx = pr->pidx;
-    fb.pn = n_a;
+    fb.pref = pr->pref;
+    fb.pn = n_g;
     pr->rec_v = 0.0;
     pr->rec_a = pr->rec_b = -1;
-    if (!build_front(pr, sb, nb, pen_ms, &fb, off_p, &n_b)) {
+    pr->rec_pen = 0.0;
+    if (!build_front(pr, sb, nb, pen_ms, cross, &fb, off_p, &n_b)) {
         return HV_ERR_PLAN_NOMEM;
     }
     const hv_front_ref_t *fa_pts = pr->left_front, *fb_pts = pr->cur;
+    double best = v_bound, best_pen = 0.0;
+    int32_t ba = -1, bb = -1;
+    if (cross != 0 && !cross_merge(pr, fa_pts, n_a, fb_pts, n_b, cross, offset_ms, pen_ms,
+                                   &best, &best_pen, &ba, &bb)) {
+        return HV_ERR_PLAN_NOMEM;
+    }
     /* walk both frontiers in time order: at each time M the most profitable point of each
      * arm that fits within M */
     size_t i = 0, j = 0;
     long ia_pt = -1, ib_pt = -1;
-    double best = v_bound;
-    int32_t ba = -1, bb = -1;
-    while (i < n_a || j < n_b) {
+    while (cross == 0 && (i < n_a || j < n_b)) {
         double wa = i < n_a ? fa_pts[i].w : INFINITY;
         double wb = j < n_b ? fb_pts[j].w : INFINITY;
         double m;
@@ -404,9 +551,10 @@ hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t 
     }
     if (pr->rec_b >= 0) { /* the best pattern seen while building, maybe pruned since */
         const hv_front_pt_t *a = &pr->arena[pr->rec_a], *c = &pr->arena[pr->rec_b];
-        double v = offset_ms + fmax(a->w, c->w) - a->p - c->p;
+        double v = offset_ms + fmax(a->w, c->w) - a->p - c->p + pr->rec_pen;
         if (v < best) {
             best = v;
+            best_pen = pr->rec_pen;
             ba = pr->rec_a;
             bb = pr->rec_b;
         }
@@ -418,7 +566,7 @@ hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t 
     n += collect(pr, bb, sb, sel + n);
     double w = fmax(pr->arena[ba].w, pr->arena[bb].w);
     *time_ms = w;
-    *v_out = offset_ms + w - pr->arena[ba].p - pr->arena[bb].p;
+    *v_out = offset_ms + w - pr->arena[ba].p - pr->arena[bb].p + best_pen;
     *n_sel = n;
     return HV_OK;
 }

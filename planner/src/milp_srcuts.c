@@ -184,7 +184,7 @@ hv_status_t hv_src_separate(hv_src_t *s, const hv_instance_t *inst, const hv_src
         used == NULL) {
         goto out;
     }
-    /* both directions of every same-side pair of a fractional column, merged per pair */
+    /* both directions of every (same-side) pair of a fractional column, merged per pair */
     n_pw = 0;
     for (size_t c = 0; c < n; ++c) {
         if (!fractional(&cols[c])) {
@@ -195,7 +195,7 @@ hv_status_t hv_src_separate(hv_src_t *s, const hv_instance_t *inst, const hv_src
             cbeg[fa + 1]++;
             for (uint32_t b = 0; b < cols[c].n; ++b) {
                 uint32_t fb = cols[c].fruit[b];
-                if (b != a && inst->fruits[fa].side == inst->fruits[fb].side) {
+                if (b != a && (s->cross_sides || inst->fruits[fa].side == inst->fruits[fb].side)) {
                     pw[n_pw++] = (pair_w_t){fa, fb, cols[c].x};
                 }
             }

@@ -86,7 +86,8 @@ static hv_status_t window_once(const hv_instance_t *inst, const hv_milp_options_
 
 hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t *opt,
                               unsigned width, double window_limit_s, double t_deadline_s,
-                              hv_assignment_t *plan, double *t_s, hv_window_stats_t *stats)
+                              hv_assignment_t *plan, double *t_s, hv_window_stats_t *stats,
+                              hv_window_better_fn better_fn, void *better_ctx)
 {
     hv_window_stats_t dummy;
     if (stats == NULL) {
@@ -132,6 +133,9 @@ hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t
                     t < *t_s) {
                     *t_s = t;
                     again = 1;
+                    if (better_fn != NULL) {
+                        better_fn(better_ctx, plan, t);
+                    }
                     k = used_stops(inst, plan, mark, used); /* stops may have merged */
                 } else if (better) {
                     /* cannot happen when the window's change is the plan's; keep the old */

@@ -186,6 +186,20 @@ static void test_matches_brute_force(void **state)
     }
 }
 
+/* Solves `in` with `o` into `out` and `r`: it must prove the optimum `want` (seed and what
+ * differs name a failure). */
+static void solve_to_optimum(const hv_instance_t *in, const hv_milp_options_t *o,
+                             hv_assignment_t *out, double want, uint64_t seed, const char *what,
+                             hv_milp_result_t *r)
+{
+    assert_int_equal(hv_milp_solve(in, o, NULL, out, r), HV_OK);
+    assert_int_equal(r->status, HV_SOLVE_OPTIMAL);
+    if (fabs(r->objective_s - want) > 1e-6) {
+        fail_msg("seed %llu: price %.3f s, %s %.3f s", (unsigned long long)seed, want, what,
+                 r->objective_s);
+    }
+}
+
 /* Branch-and-price against GLPK's branch-and-cut on the paper's model, on instances too big
  * for enumeration where the pricing root is fractional, so the branching (stop count and
  * fruit intervals) and the count rows are exercised; both must prove the same optimum. */
@@ -202,7 +216,7 @@ static void test_price_matches_compact(void **state)
         hv_milp_options_default(&o);
         o.decompose = 0;
         o.time_limit_s = 120;
-        hv_milp_result_t rp, rc;
+        hv_milp_result_t rp;
         assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &rp), HV_OK);
         assert_int_equal(rp.status, HV_SOLVE_OPTIMAL);
         double t;
@@ -211,36 +225,25 @@ static void test_price_matches_compact(void **state)
         branched += rp.nodes > 1;
         /* the column-fixing dive only finds plans: with it after every root, the same optimum */
         o.column_dive = 2;
-        hv_milp_result_t rd;
-        assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &rd), HV_OK);
-        assert_int_equal(rd.status, HV_SOLVE_OPTIMAL);
-        if (fabs(rd.objective_s - rp.objective_s) > 1e-6) {
-            fail_msg("seed %llu: price %.3f s, with the dive %.3f s", (unsigned long long)seed,
-                     rp.objective_s, rd.objective_s);
-        }
+        hv_milp_result_t rs;
+        solve_to_optimum(&in, &o, &out, rp.objective_s, seed, "with the dive", &rs);
         /* subset-row cuts only cut off fractional points: three rounds, kept in the whole
          * tree whatever they gain, and the same optimum */
         o.column_dive = 1;
         o.sr_cuts = 3;
         o.sr_keep_gain = 0.0;
-        hv_milp_result_t rs;
-        assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &rs), HV_OK);
-        assert_int_equal(rs.status, HV_SOLVE_OPTIMAL);
-        if (fabs(rs.objective_s - rp.objective_s) > 1e-6) {
-            fail_msg("seed %llu: price %.3f s, with subset-row cuts %.3f s",
-                     (unsigned long long)seed, rp.objective_s, rs.objective_s);
-        }
+        solve_to_optimum(&in, &o, &out, rp.objective_s, seed, "with subset-row cuts", &rs);
         assert_int_equal(hv_assignment_makespan(&in, &out, &t), HV_OK);
         assert_true(fabs(t - rs.objective_s) < 1e-6);
         cut_runs += rs.cuts > 0;
         cut_branched += rs.cuts > 0 && rs.nodes > 1;
+        /* the master as set covering (">= 1" fruit rows; these small instances get "= 1" by
+         * default), and the most balanced fruit split instead of pseudocosts */
+        o.cover_rows = 1;
+        o.pseudocost = 0;
+        solve_to_optimum(&in, &o, &out, rp.objective_s, seed, "covering, balanced splits", &rs);
         o.algorithm = HV_MILP_ALG_COMPACT;
-        assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &rc), HV_OK);
-        assert_int_equal(rc.status, HV_SOLVE_OPTIMAL);
-        if (fabs(rp.objective_s - rc.objective_s) > 1e-6) {
-            fail_msg("seed %llu: price %.3f s, compact %.3f s", (unsigned long long)seed,
-                     rp.objective_s, rc.objective_s);
-        }
+        solve_to_optimum(&in, &o, &out, rp.objective_s, seed, "compact", &rs);
         assert_true(rp.root_bound_s <= rp.objective_s + 1e-6);
         hv_assignment_free(&out);
         hv_instance_free(&in);
@@ -249,6 +252,24 @@ static void test_price_matches_compact(void **state)
     print_message("subset-row cuts kept on %d of 30 instances, %d of them branched\n", cut_runs,
                   cut_branched);
     assert_true(cut_runs >= 3 && cut_branched >= 1); /* precondition: cuts were exercised */
+}
+
+/* What test_window_improve's callback saw: every reported plan is a plan, with the makespan
+ * reported, and better than the one before. */
+typedef struct window_reports {
+    const hv_instance_t *inst;
+    double last_t;
+    int n, bad;
+} window_reports_t;
+
+static void record_window(void *ctx, const hv_assignment_t *plan, double t_s)
+{
+    window_reports_t *w = ctx;
+    double check;
+    w->bad += hv_assignment_makespan(w->inst, plan, &check) != HV_OK ||
+              fabs(check - t_s) > 1e-9 || !(t_s < w->last_t);
+    w->last_t = t_s;
+    w->n++;
 }
 
 /* Row windows re-planned exactly: from a poor plan (every fruit at its first stop) the plan
@@ -274,18 +295,24 @@ static void test_window_improve(void **state)
         hv_milp_options_default(&o);
         hv_window_stats_t ws;
         t = t0;
-        assert_int_equal(hv_window_improve(&in, &o, 2, 5.0, 1e12, &a, &t, &ws), HV_OK);
+        window_reports_t rep = {&in, t0, 0, 0};
+        assert_int_equal(hv_window_improve(&in, &o, 2, 5.0, 1e12, &a, &t, &ws, record_window,
+                                           &rep), HV_OK);
         assert_int_equal(hv_assignment_makespan(&in, &a, &check), HV_OK);
         assert_true(fabs(check - t) < 1e-9);
         assert_true(t <= t0 + 1e-9);
         assert_true(ws.windows > 0 && ws.improved <= ws.windows);
+        /* each better window was reported at once, the last one being the result */
+        assert_int_equal(rep.bad, 0);
+        assert_int_equal(rep.n, ws.improved);
+        assert_true(rep.n == 0 ? t == t0 : rep.last_t == t);
         improved += t < t0 - 1e-6;
         hv_milp_result_t res;
         assert_int_equal(hv_milp_solve(&in, &o, NULL, &opt_a, &res), HV_OK);
         assert_int_equal(res.status, HV_SOLVE_OPTIMAL);
         assert_true(t >= res.objective_s - 1e-6);
         /* a window as wide as the plan is the whole problem: nothing to do */
-        assert_int_equal(hv_window_improve(&in, &o, 1000, 5.0, 1e12, &a, &t, &ws), HV_OK);
+        assert_int_equal(hv_window_improve(&in, &o, 1000, 5.0, 1e12, &a, &t, &ws, NULL, NULL), HV_OK);
         assert_int_equal(ws.windows, 0);
         hv_assignment_free(&a);
         hv_assignment_free(&opt_a);

@@ -99,11 +99,13 @@ static double set_penalty(const double *pen, const hv_price_item_t *const *it, s
     return s;
 }
 
-/* Time and profit (net of cut penalties) of every subset m of it[0 .. n). */
+/* Time and profit (net of the penalties of the cuts it holds two of) of every subset m of
+ * it[0 .. n), and the cuts it holds exactly one item of. */
 static void subset_sums(const hv_price_item_t *it, size_t n, const double *pen, double *w,
-                        double *p)
+                        double *p, uint64_t *one)
 {
     w[0] = p[0] = 0.0;
+    one[0] = 0;
     for (size_t m = 1; m < ((size_t)1 << n); ++m) {
         size_t low = (size_t)__builtin_ctzll(m);
         w[m] = w[m & (m - 1)] + it[low].w_ms;
@@ -121,6 +123,12 @@ static void subset_sums(const hv_price_item_t *it, size_t n, const double *pen, 
             }
         }
         p[m] -= set_penalty(pen, set, k);
+        uint64_t once = 0, twice = 0;
+        for (size_t i = 0; i < k; ++i) {
+            twice |= once & set[i]->cuts;
+            once ^= set[i]->cuts & ~twice;
+        }
+        one[m] = once & ~twice;
     }
 }
 
@@ -129,13 +137,18 @@ static double brute(const inst_t *in)
 {
     static double wl[1 << BRUTE_SIDE], pl[1 << BRUTE_SIDE], wr[1 << BRUTE_SIDE],
         pr[1 << BRUTE_SIDE];
+    static uint64_t ol[1 << BRUTE_SIDE], or_[1 << BRUTE_SIDE];
     assert_true(in->nl <= BRUTE_SIDE && in->nr <= BRUTE_SIDE);
-    subset_sums(in->l, in->nl, in->pen, wl, pl);
-    subset_sums(in->r, in->nr, in->pen, wr, pr);
+    subset_sums(in->l, in->nl, in->pen, wl, pl, ol);
+    subset_sums(in->r, in->nr, in->pen, wr, pr, or_);
     double best = INFINITY;
     for (size_t a = 0; a < ((size_t)1 << in->nl); ++a) {
         for (size_t b = 0; b < ((size_t)1 << in->nr); ++b) {
-            best = fmin(best, in->offset + fmax(wl[a], wr[b]) - (pl[a] + pr[b]));
+            double cross = 0.0; /* a cut with one item in each of L and R */
+            for (uint64_t m = ol[a] & or_[b]; m != 0 && in->pen != NULL; m &= m - 1) {
+                cross += in->pen[__builtin_ctzll(m)];
+            }
+            best = fmin(best, in->offset + fmax(wl[a], wr[b]) - (pl[a] + pr[b]) + cross);
         }
     }
     return best;
@@ -260,37 +273,44 @@ static void test_random_vs_brute_force(void **state)
     assert_true(pr->calls == (unsigned long long)calls);
 }
 
-/* Random subset-row cuts on `in`: 1-8 cuts, each on 2-3 items of one side (the pricer
- * charges a cut within one arm), penalties in quarter ms up to 3000. */
-static void gen_cuts(uint64_t *s, inst_t *in)
+/* Random subset-row cuts on `in`: 1-8 cuts, each on 2-3 items, of one side or (cross) of
+ * both; penalties in quarter ms up to 3000. */
+static void gen_cuts(uint64_t *s, inst_t *in, int cross)
 {
     in->pen = in->pen_store;
     int n_cut = 1 + (int)(xs64(s) % 8);
     for (int c = 0; c < n_cut; ++c) {
         int left = xs64(s) % 2 == 0;
-        size_t n = left ? in->nl : in->nr;
-        hv_price_item_t *it = left ? in->l : in->r;
         in->pen_store[c] = (double)(xs64(s) % 12001) / 4.0;
-        for (int m = 2 + (int)(xs64(s) % 2); m > 0 && n > 0; --m) {
-            it[xs64(s) % n].cuts |= (uint64_t)1 << c;
+        for (int m = 2 + (int)(xs64(s) % 2); m > 0; --m) {
+            if (cross) {
+                left = xs64(s) % 2 == 0;
+            }
+            size_t n = left ? in->nl : in->nr;
+            hv_price_item_t *it = left ? in->l : in->r;
+            if (n > 0) {
+                it[xs64(s) % n].cuts |= (uint64_t)1 << c;
+            }
         }
     }
 }
 
-/* 1b. The same with subset-row cut penalties: 4000 random instances with 1-8 cuts each. */
+/* 1b. The same with subset-row cut penalties: 4000 random instances with 1-8 cuts each,
+ * every other one with cuts on items of both arms. */
 static void test_cuts_vs_brute_force(void **state)
 {
     hv_pricer_t *pr = *state;
     uint64_t s = 0xa4093822299f31d0ull;
-    long found = 0, calls = 0, cut_bites = 0;
+    long found = 0, calls = 0, cut_bites = 0, cross_bites = 0;
     failures = 0;
     for (int t = 0; t < 4000; ++t) {
         inst_t in;
         gen(&s, &in, (size_t)(xs64(&s) % 8), (size_t)(xs64(&s) % 8), 1);
         double plain = brute(&in);
-        gen_cuts(&s, &in);
+        gen_cuts(&s, &in, t % 2);
         double bmin = brute(&in);
         cut_bites += bmin > plain; /* the cuts changed the minimum */
+        cross_bites += t % 2 && bmin > plain;
         double vbs[3] = {0.0, bmin / 2.0, bmin};
         for (size_t i = 0; i < 3; ++i) {
             if (i >= 1 && bmin >= 0.0) {
@@ -303,10 +323,10 @@ static void test_cuts_vs_brute_force(void **state)
             found += r.time >= 0.0;
         }
     }
-    print_message("cuts: 4000 instances, %ld calls, %ld found, minimum raised by cuts on %ld\n",
-                  calls, found, cut_bites);
+    print_message("cuts: 4000 instances, %ld calls, %ld found, minimum raised by cuts on %ld "
+                  "(%ld with cross-arm cuts)\n", calls, found, cut_bites, cross_bites);
     assert_int_equal(failures, 0);
-    assert_true(found > 2000 && cut_bites > 500); /* the penalties matter */
+    assert_true(found > 2000 && cut_bites > 500 && cross_bites > 250); /* penalties matter */
 }
 
 static inst_t hand(double wl, double pl, double wr, double pr_, double offset)

@@ -62,11 +62,22 @@ typedef struct hv_milp_options {
                                 second thread for the rest of the solve instead, cycling
                                 through widths 4, 3, 5, 6, 2 (milp_helper.h); on instances
                                 of 9,000+ pairs from the start of the solve */
-    int sr_cuts;             /* price: rounds of subset-row cuts on same-side fruit triples
-                                at the root (milp_srcuts.h); 0 none */
+    int sr_cuts;             /* price: rounds of subset-row cuts on fruit triples at the root
+                                (milp_srcuts.h); 0 none */
+    int sr_cross;            /* price: 1 the cuts' triples may hold fruits of both sides, 0
+                                one side only */
+    int pseudocost;          /* price: 1 fruit splits are chosen by pseudocosts (the bound
+                                rises seen per unit of mass moved), 0 the most balanced */
     double sr_keep_gain;     /* price: the cuts stay in the tree only when they raised the
                                 root's bound by this share (they slow every master LP);
                                 0 keeps them always */
+    int cover_rows;          /* price: 1 the master's fruit rows are ">= 1" (set covering:
+                                the same optimum, since dropping a fruit from a pattern never
+                                costs more, and duals >= 0, on which the root's column
+                                generation converges in fewer simplex iterations); 0 "= 1"
+                                (set partitioning, whose tree measured better at alpha 2.5);
+                                2 ">= 1" on instances of 9,000+ pairs (alpha 4), whose root
+                                takes seconds, else "= 1" */
     /* When not NULL, polled by the branch-and-price at each node and pricing round: a
      * non-zero return ends the solve as its time limit would (status FEASIBLE or
      * NO_SOLUTION, never OPTIMAL unless proven). */

@@ -10,10 +10,11 @@
  * frontier of (time, profit) is built item by item (Nemhauser-Ullmann), points that cannot
  * lead to v < 0 are dropped, and the two frontiers are merged on the stop time
  * M = max(W(L), W(R)): v = min_M offset + M - P_L(M) - P_R(M). With cuts a point also
- * carries the cuts it holds exactly once that a later item still belongs to; it dominates
- * later points by its profit less the penalties of those cuts.
- * Penalties are charged within an arm: a cut whose items lie on both arms is charged only
- * for two items on one arm, and v is then a lower bound, not exact.
+ * carries the cuts it holds exactly once that a later item, or the other arm, still belongs
+ * to; it dominates later points by its profit less the penalties of those cuts. A cut with
+ * items on both arms (cross-arm) is charged within an arm for two items there, and in the
+ * merge for one item on each arm: then every pair of the two frontiers is tried, since the
+ * penalty depends on both points. v is exact either way.
  */
 #ifndef HV_MILP_PRICING_H
 #define HV_MILP_PRICING_H
@@ -49,6 +50,13 @@ typedef struct hv_front_ref {
     uint64_t one, two;
 } hv_front_ref_t;
 
+/* One arm's points grouped by their cross-arm cuts, for the merge (milp_pricing.c). */
+typedef struct hv_cross_scratch {
+    uint64_t *mask;
+    uint32_t *idx;
+    size_t mask_cap, idx_cap;
+} hv_cross_scratch_t;
+
 /* Work space, reused across calls (grows as needed). */
 typedef struct hv_pricer {
     hv_front_pt_t *arena;
@@ -61,14 +69,17 @@ typedef struct hv_pricer {
     size_t pw_cap;
     size_t *parg;   /* per first-arm point: the point attaining the suffix minimum */
     int32_t *pidx;  /* first-arm points' arena indices */
-    size_t parg_cap, pidx_cap;
+    hv_front_ref_t *pref; /* ... and the points themselves (their cut states) */
+    size_t parg_cap, pidx_cap, pref_cap;
     double rec_v;   /* the best whole pattern met while building the second arm ... */
-    int32_t rec_a, rec_b; /* ... and its two arena points (-1: none) */
+    int32_t rec_a, rec_b; /* ... its two arena points (-1: none) ... */
+    double rec_pen;       /* ... and the cross-arm penalty that pair pays */
     unsigned long long calls, points; /* statistics: pricings, frontier points made */
     hv_price_item_t *sorted; /* both sides' items, sorted by profit density */
     size_t sorted_cap;
     double *brk; /* (breakpoint, slope change) pairs of the bound's weight (best_weight) */
     size_t brk_cap;
+    hv_cross_scratch_t cross[2]; /* per arm, for the merge with cross-arm cuts */
 } hv_pricer_t;
 
 void hv_pricer_init(hv_pricer_t *pr);

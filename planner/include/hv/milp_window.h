@@ -25,16 +25,21 @@ typedef struct hv_window_stats {
     long proven;    /* of which were solved to proven optimality */
 } hv_window_stats_t;
 
+/* Called after each window that improved the plan, with the whole plan and its makespan,
+ * so that a caller can use it at once: a pass over a row of 17 stops takes seconds. */
+typedef void (*hv_window_better_fn)(void *ctx, const hv_assignment_t *plan, double t_s);
+
 /* Improve `plan` (a complete plan of `inst`, makespan *t_s) window by window, `width`
  * stops each, until a pass improves nothing or the clock (CLOCK_MONOTONIC, s) reaches
  * t_deadline_s; each sub-solve gets at most window_limit_s. `opt` is copied for the
  * sub-solves with their own limit, no progress output and no window re-optimisation of
- * their own. *t_s is updated with the plan. stats may be NULL.
+ * their own. *t_s is updated with the plan. stats and better (with its ctx) may be NULL.
  * Returns HV_OK, or the first error of a sub-solve (HV_ERR_PLAN_NOMEM, GLPK failure);
  * the plan is left valid either way. */
 hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t *opt,
                               unsigned width, double window_limit_s, double t_deadline_s,
-                              hv_assignment_t *plan, double *t_s, hv_window_stats_t *stats);
+                              hv_assignment_t *plan, double *t_s, hv_window_stats_t *stats,
+                              hv_window_better_fn better, void *better_ctx);
 
 #ifdef __cplusplus
 }
