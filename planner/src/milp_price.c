@@ -1260,9 +1260,9 @@ static void pseudocost_record(bp_t *b, int32_t k)
     b->pc_all_n[d]++;
 }
 
-/* The fruit whose stop is split most evenly by the master point (with opt->pseudocost: the
- * split of the largest product of the two children's estimated bound rises, mass times
- * pseudocost): branch there at the stop that halves its mass. score 0 when no fruit is
+/* The fruit whose stop is split most evenly by the master point, at the stop that halves
+ * its mass (with opt->pseudocost: the fruit and stop of the largest product of the two
+ * children's estimated bound rises, mass times pseudocost). score 0 when no fruit is
  * split. */
 static hv_status_t choose_split(bp_t *b, const double *x, split_t *best)
 {
@@ -1758,7 +1758,7 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
                 *sp = fs;
             }
         }
-        if (st == HV_OK && (b->nodes[k].depth <= 2 || b->n_nodes % 8 == 0)) {
+        if (st == HV_OK && (b->nodes[k].depth <= 2 || b->n_nodes % 8 == 0) && !must_stop(b)) {
             st = round_and_improve(b, x);
         }
         free(x);
@@ -2022,7 +2022,11 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
     if (b.helper != NULL) { /* its last plan, then stop it (also after an error) */
         hv_status_t sth = st == HV_OK ? take_helper_plan(&b) : HV_OK;
         hv_window_stats_t ws;
+        double tj = hv_milp_now_s();
         hv_status_t stj = hv_helper_stop(b.helper, &ws);
+        if (opt->verbose >= 1) {
+            fprintf(stderr, "price: helper thread joined in %.3f s\n", hv_milp_now_s() - tj);
+        }
         b.helper = NULL;
         b.windows += ws.windows;
         b.windows_better += ws.improved;

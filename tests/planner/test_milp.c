@@ -312,7 +312,8 @@ static void test_window_improve(void **state)
         assert_int_equal(res.status, HV_SOLVE_OPTIMAL);
         assert_true(t >= res.objective_s - 1e-6);
         /* a window as wide as the plan is the whole problem: nothing to do */
-        assert_int_equal(hv_window_improve(&in, &o, 1000, 5.0, 1e12, &a, &t, &ws, NULL, NULL), HV_OK);
+        assert_int_equal(hv_window_improve(&in, &o, 1000, 5.0, 1e12, &a, &t, &ws, NULL, NULL),
+                         HV_OK);
         assert_int_equal(ws.windows, 0);
         hv_assignment_free(&a);
         hv_assignment_free(&opt_a);

@@ -13,8 +13,9 @@
  * carries the cuts it holds exactly once that a later item, or the other arm, still belongs
  * to; it dominates later points by its profit less the penalties of those cuts. A cut with
  * items on both arms (cross-arm) is charged within an arm for two items there, and in the
- * merge for one item on each arm: then every pair of the two frontiers is tried, since the
- * penalty depends on both points. v is exact either way.
+ * merge for one item on each arm: then the frontiers are merged class by class of the
+ * cross-arm cuts their points hold once, since the penalty depends on both points. v is
+ * exact either way.
  */
 #ifndef HV_MILP_PRICING_H
 #define HV_MILP_PRICING_H
