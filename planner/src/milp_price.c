@@ -492,9 +492,6 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
     for (int d = 0; d < 2; ++d) {
         b->pc_sum[d] = calloc(nf + 1, sizeof *b->pc_sum[d]);
         b->pc_n[d] = calloc(nf + 1, sizeof *b->pc_n[d]);
-        if (b->pc_sum[d] == NULL || b->pc_n[d] == NULL) {
-            return HV_ERR_PLAN_NOMEM;
-        }
     }
     b->hi = malloc((nf + 1) * sizeof *b->hi);
     b->itl = malloc((nf + 1) * sizeof *b->itl);
@@ -530,6 +527,7 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
         b->warm_pair == NULL || b->warm_n == NULL || b->pair_at == NULL ||
         b->pair_dead == NULL || b->root_pi == NULL || b->src_row == NULL ||
         b->src_hit == NULL || b->src_bit == NULL || hv_src_init(&b->src, nf) != HV_OK ||
+        b->pc_sum[0] == NULL || b->pc_sum[1] == NULL || b->pc_n[0] == NULL || b->pc_n[1] == NULL ||
         b->ind == NULL || b->val == NULL || b->best == NULL || b->sigma_stop == NULL || !hash_rebuild(b, 1024)) {
         return HV_ERR_PLAN_NOMEM;
     }
@@ -1290,6 +1288,8 @@ static hv_status_t choose_split(bp_t *b, const double *x, split_t *best)
             tot += m[e++].x;
         }
         double cum = 0.0;
+        double pc_lo = b->opt->pseudocost ? pseudocost(b, m[i].fruit, 0) : 0.0;
+        double pc_hi = b->opt->pseudocost ? pseudocost(b, m[i].fruit, 1) : 0.0;
         for (size_t k = i + 1; k < e && k < n; ++k) {
             cum += m[k - 1].x;
             if (m[k].stop == m[k - 1].stop) {
@@ -1299,9 +1299,7 @@ static hv_status_t choose_split(bp_t *b, const double *x, split_t *best)
             /* prefer balanced splits, then splits between distant stops */
             double score = s + 1e-4 * (double)(m[e - 1].stop - m[i].stop);
             if (b->opt->pseudocost && s > LAMBDA_EPS) {
-                double gd = (tot - cum) * pseudocost(b, m[i].fruit, 0);
-                double gu = cum * pseudocost(b, m[i].fruit, 1);
-                score = fmax(gd, 1e-6) * fmax(gu, 1e-6);
+                score = fmax((tot - cum) * pc_lo, 1e-6) * fmax(cum * pc_hi, 1e-6);
             }
             if (s > LAMBDA_EPS && score > best->score) {
                 *best = (split_t){KIND_FRUIT, m[i].fruit, m[k - 1].stop, 0, 0, 0, score,

@@ -23,7 +23,6 @@ void hv_pricer_free(hv_pricer_t *pr)
     free(pr->brk);
     free(pr->pw);
     free(pr->parg);
-    free(pr->pidx);
     free(pr->pref);
     for (int a = 0; a < 2; ++a) {
         free(pr->cross[a].mask);
@@ -72,8 +71,7 @@ typedef struct front_bound {
     double other0, other_mid, other1;
     const double *pw, *pp, *psuf; /* partner frontier: time, profit, suffix min of w - p */
     const size_t *parg;           /* the partner point attaining psuf[i] */
-    const int32_t *pidx;          /* partner points' arena indices */
-    const hv_front_ref_t *pref;   /* partner points, for the cross-arm cuts they hold once */
+    const hv_front_ref_t *pref;   /* partner points (arena index, cross-arm cuts held once) */
     size_t pn;                    /* 0: no partner */
 } front_bound_t;
 
@@ -138,7 +136,7 @@ static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
         pr->cur[ncur++] = (hv_front_ref_t){0.0, 0.0, e, 0, 0};
         if (fb->pn > 0 && offset + g0 < thr) {
             thr = offset + g0;
-            pr->rec_a = fb->pidx[arg];
+            pr->rec_a = fb->pref[arg].idx;
             pr->rec_b = e;
         }
     }
@@ -208,15 +206,15 @@ static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
                 return 0;
             }
             /* thr is a pattern's exact v: with the cross-arm cuts this pair holds once each */
-            double vp = offset + g - p;
+            double vp = offset + g - p, vpen = 0.0;
             if (fb->pn > 0 && cross != 0 && vp < thr) {
-                vp += cut_penalty(pen, fb->pref[arg].one & one);
+                vpen = cut_penalty(pen, fb->pref[arg].one & one);
             }
-            if (fb->pn > 0 && vp < thr) {
-                thr = vp;
-                pr->rec_a = fb->pidx[arg];
+            if (fb->pn > 0 && vp + vpen < thr) {
+                thr = vp + vpen;
+                pr->rec_a = fb->pref[arg].idx;
                 pr->rec_b = idx;
-                pr->rec_pen = cross != 0 ? cut_penalty(pen, fb->pref[arg].one & one) : 0.0;
+                pr->rec_pen = vpen;
             }
             pr->next[nn++] = (hv_front_ref_t){w, p, idx, one, two};
         }
@@ -480,10 +478,7 @@ hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t 
     }
     memcpy(pr->left_front, pr->cur, n_a * sizeof *pr->cur);
     if (!hv_grow((void **)&pr->parg, &pr->parg_cap, n_a, sizeof *pr->parg) ||
-        !hv_grow((void **)&pr->pidx, &pr->pidx_cap, n_a, sizeof *pr->pidx)) {
-        return HV_ERR_PLAN_NOMEM;
-    }
-    if (!hv_grow((void **)&pr->pref, &pr->pref_cap, n_a, sizeof *pr->pref)) {
+        !hv_grow((void **)&pr->pref, &pr->pref_cap, n_a, sizeof *pr->pref)) {
         return HV_ERR_PLAN_NOMEM;
     }
     /* the partner bound g needs profit rising with time: with cross-arm cuts the frontier
@@ -496,7 +491,6 @@ hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t 
         }
         pw[n_g] = pr->left_front[i].w;
         pp[n_g] = pr->left_front[i].p;
-        pr->pidx[n_g] = pr->left_front[i].idx;
         pr->pref[n_g++] = pr->left_front[i];
     }
     for (size_t i = n_g; i-- > 0;) {
@@ -508,7 +502,6 @@ hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t 
     fb.pp = pp;
     fb.psuf = psuf;
     fb.parg = pr->parg;
-    fb.pidx = pr->pidx;
     fb.pref = pr->pref;
     fb.pn = n_g;
     pr->rec_v = 0.0;

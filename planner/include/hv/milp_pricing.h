@@ -69,9 +69,8 @@ typedef struct hv_pricer {
     double *pw; /* that frontier's times, profits and suffix minima of time - profit */
     size_t pw_cap;
     size_t *parg;   /* per first-arm point: the point attaining the suffix minimum */
-    int32_t *pidx;  /* first-arm points' arena indices */
-    hv_front_ref_t *pref; /* ... and the points themselves (their cut states) */
-    size_t parg_cap, pidx_cap, pref_cap;
+    hv_front_ref_t *pref; /* first-arm points (arena index, cut states) that bound g */
+    size_t parg_cap, pref_cap;
     double rec_v;   /* the best whole pattern met while building the second arm ... */
     int32_t rec_a, rec_b; /* ... its two arena points (-1: none) ... */
     double rec_pen;       /* ... and the cross-arm penalty that pair pays */
