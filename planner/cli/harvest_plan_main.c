@@ -39,8 +39,9 @@ static const char k_usage[] =
     "                   both makespans (the plan written is the horizon's)\n"
     "  --row-length M   row length, m (default: row.length of the config)\n"
     "  --export-lp FILE milp: write the model in CPLEX LP format\n"
-    "  --threads N      milp, price: 2 (default) re-plans row windows of the best plan on a\n"
-    "                   second thread while the search runs; 1 keeps to one thread\n"
+    "  --threads N      milp, price: 2 (default) uses a second thread, which re-plans row\n"
+    "                   windows of the best plan and, once that plan is within 0.2 % of\n"
+    "                   the bound, searches the tree beside the first; 1 keeps to one\n"
     "  --algorithm A    milp: price (branch-and-price over stop patterns, default) or\n"
     "                   compact (GLPK's branch-and-cut on the paper's model); both exact\n"
     "  --quiet          no progress lines on stderr (errors are still printed)\n"
@@ -408,6 +409,7 @@ static int run_plan(const args_t *a)
     }
     if (a->threads != 0) {
         mopt.helper_thread = a->threads == 2;
+        mopt.tree_threads = a->threads;
     }
 
     if (rc == 0) {

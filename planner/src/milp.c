@@ -42,6 +42,7 @@ void hv_milp_options_default(hv_milp_options_t *opt)
     opt->cover_rows = 2;
     opt->sr_cross = 0;
     opt->pseudocost = 1;
+    opt->tree_threads = 2;
     opt->window_width = 4;
     opt->helper_thread = 1;
     opt->stop = NULL;
@@ -385,6 +386,7 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
             if (st == HV_OK && sr.status != HV_SOLVE_ERROR && isfinite(sr.bound_s)) {
                 mo.side_floor_s[sd] = sr.bound_s - sub.travel_time_s;
                 res->nodes += sr.nodes;
+                res->worker_nodes += sr.worker_nodes;
             }
             hv_assignment_free(&sa);
             hv_instance_free(&sub);
@@ -667,6 +669,7 @@ static hv_status_t solve_segments(const hv_instance_t *inst, const hv_milp_optio
         }
         if (st == HV_OK) {
             res->nodes += r.nodes;
+            res->worker_nodes += r.worker_nodes;
             res->incumbent_taken |= r.incumbent_taken;
             if (r.status == HV_SOLVE_OPTIMAL || r.status == HV_SOLVE_FEASIBLE) {
                 obj += r.objective_s - sub.travel_time_s;

@@ -5,6 +5,7 @@
 #include <limits.h>
 #include <glpk.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,6 +18,7 @@
 #include "hv/milp_model.h"
 #include "hv/milp_status.h"
 #include "hv/milp_helper.h"
+#include "hv/milp_share.h"
 #include "hv/milp_srcuts.h"
 #include "hv/milp_window.h"
 #include "hv/plan_eval.h"
@@ -35,6 +37,7 @@
                                 more than 0.2 % (SOLVER.md) */
 #define POLISH_MAX_KICKS 1000 /* ~0.15 s at 60 fruits */
 #define POLISH_CHUNK 50       /* kicks between two readings of the clock */
+#define WORKER_GAP 2e-3 /* the incumbent's gap from which the second core searches the tree */
 #define DIVE_EVERY 64     /* nodes between dives (search()) */
 #define WINDOW_SHARE 0.25 /* of the time left after the root, at most, for row windows */
 #define WINDOW_LIMIT_S 0.5 /* per window */
@@ -98,6 +101,8 @@ typedef struct cand {
     double rc, cost;
     uint32_t first, n; /* fruits cf[first .. first + n) */
 } cand_t;
+
+typedef struct worker worker_t;
 
 typedef struct bp {
     const hv_instance_t *inst;
@@ -193,12 +198,22 @@ typedef struct bp {
      * of (child bound - parent bound) / frac and the count, and over all fruits */
     double *pc_sum[2], pc_all[2];
     long *pc_n[2], pc_all_n[2];
+    /* two tree workers (milp_share.h): the main search holds the second in `worker` */
+    hv_share_t *share;   /* NULL while one worker searches */
+    struct worker *worker; /* the second worker, NULL none */
+    int is_worker;         /* this is the second worker: no progress lines */
+    long nodes_done;       /* the second worker's nodes */
+    long given, taken;     /* nodes passed to and taken from the other worker */
+    hv_share_step_t *path; /* scratch: a node's path from the root */
+    size_t path_cap;
 } bp_t;
 
 /* The time limit is reached or the caller asked to stop. */
 static int must_stop(const bp_t *b)
 {
-    return hv_milp_now_s() >= b->t_deadline || (b->opt->stop != NULL && b->opt->stop(b->opt->stop_ctx));
+    return hv_milp_now_s() >= b->t_deadline ||
+           (b->opt->stop != NULL && b->opt->stop(b->opt->stop_ctx)) ||
+           (b->share != NULL && hv_share_failed(b->share)); /* the other worker's error */
 }
 
 static int prunable(const bp_t *b, double lb_ms)
@@ -469,6 +484,7 @@ static void bp_free(bp_t *b)
     free(b->crow);
     free(b->sigma_stop);
     free(b->best);
+    free(b->path);
 }
 
 static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_options_t *opt)
@@ -1161,6 +1177,21 @@ static hv_status_t lp_solve(bp_t *b, int first)
     return HV_OK;
 }
 
+/* Plan `a` (makespan t_s) is the incumbent, and the helper and the other tree worker hear
+ * of it: a worker prunes by its own incumbent, so the plan it prunes by must reach the
+ * result. */
+static void set_incumbent(bp_t *b, const hv_assignment_t *a, double t_s)
+{
+    b->ub_ms = 1000.0 * t_s;
+    memcpy(b->best, a->fruit_stop, b->nf * sizeof *b->best);
+    if (b->helper != NULL) {
+        hv_helper_offer(b->helper, a, t_s);
+    }
+    if (b->share != NULL) {
+        hv_share_offer(b->share, b->best, b->ub_ms);
+    }
+}
+
 /* A master solution in which every column is 0 or 1 as an assignment, into b->best when it
  * is better. Returns 1 when the master point was integral. */
 static int take_integral(bp_t *b, const double *x)
@@ -1194,8 +1225,7 @@ static int take_integral(bp_t *b, const double *x)
     }
     double t;
     if (hv_assignment_makespan(b->inst, &a, &t) == HV_OK && 1000.0 * t < b->ub_ms) {
-        b->ub_ms = 1000.0 * t;
-        memcpy(b->best, a.fruit_stop, b->nf * sizeof *b->best);
+        set_incumbent(b, &a, t);
     }
     hv_assignment_free(&a);
     return 1;
@@ -1317,12 +1347,8 @@ static hv_status_t choose_split(bp_t *b, const double *x, split_t *best)
 static hv_status_t offer_plan(bp_t *b, const hv_assignment_t *a, double t_s)
 {
     if (1000.0 * t_s < b->ub_ms - 1e-6) {
-        b->ub_ms = 1000.0 * t_s;
         b->heur_wins++;
-        memcpy(b->best, a->fruit_stop, b->nf * sizeof *b->best);
-        if (b->helper != NULL) {
-            hv_helper_offer(b->helper, a, t_s);
-        }
+        set_incumbent(b, a, t_s);
         if (add_assignment_columns(b, b->best) < 0) {
             return HV_ERR_PLAN_NOMEM;
         }
@@ -1609,7 +1635,7 @@ typedef enum node_end { NODE_PRUNED, NODE_INTEGRAL, NODE_BRANCH, NODE_TIMEOUT } 
 static void progress(bp_t *b, double lb_ms, int force)
 {
     double t = hv_milp_now_s();
-    if (b->opt->verbose < 1 || (!force && t - b->t_print < 1.0)) {
+    if (b->opt->verbose < 1 || b->is_worker || (!force && t - b->t_print < 1.0)) {
         return;
     }
     b->t_print = t;
@@ -1620,31 +1646,35 @@ static void progress(bp_t *b, double lb_ms, int force)
             lb_ms / 1000.0, g);
 }
 
-/* Column generation at node k until the master is optimal, the node is pruned, or time is
- * up. On NODE_BRANCH `sp` says where. */
-/* The helper's better plan, if it has one, becomes the incumbent. */
-static hv_status_t take_helper_plan(bp_t *b)
+/* The helper's (from_helper) or else the other tree worker's better plan, if there is one,
+ * becomes the incumbent. */
+static hv_status_t take_plan(bp_t *b, int from_helper)
 {
     hv_assignment_t a;
     if (hv_assignment_alloc(&a, b->nf) != HV_OK) {
         return HV_ERR_PLAN_NOMEM;
     }
-    double t;
-    hv_status_t st = HV_OK;
-    if (hv_helper_take(b->helper, b->ub_ms / 1000.0, &a, &t)) {
-        b->helper_plans++;
-        st = offer_plan(b, &a, t);
+    double t = 0.0, ub_ms = 0.0;
+    int got = from_helper ? hv_helper_take(b->helper, b->ub_ms / 1000.0, &a, &t)
+                          : hv_share_take(b->share, b->ub_ms - 1e-6, a.fruit_stop, &ub_ms);
+    if (from_helper) {
+        b->helper_plans += got;
+    } else {
+        t = ub_ms / 1000.0;
     }
+    hv_status_t st = got ? offer_plan(b, &a, t) : HV_OK;
     hv_assignment_free(&a);
     return st;
 }
 
+/* Column generation at node k until the master is optimal, the node is pruned, or time is
+ * up. On NODE_BRANCH `sp` says where. */
 static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp)
 {
-    if (b->helper != NULL) {
-        hv_status_t sth = take_helper_plan(b);
-        if (sth != HV_OK) {
-            return sth;
+    if (b->helper != NULL || b->share != NULL) {
+        hv_status_t stp = take_plan(b, b->helper != NULL);
+        if (stp != HV_OK) {
+            return stp;
         }
     }
     if (isfinite(b->root_lag) && b->ub_ms < b->fixed_ub - 0.5) {
@@ -1676,7 +1706,7 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
             *end = NODE_TIMEOUT;
             return HV_OK;
         }
-        if (round > 0 && b->helper != NULL && (st = take_helper_plan(b)) != HV_OK) {
+        if (round > 0 && b->helper != NULL && (st = take_plan(b, 1)) != HV_OK) {
             return st; /* the root can take seconds: take better plans as they come */
         }
         double lag;
@@ -1882,12 +1912,338 @@ static hv_status_t window_reopt(bp_t *b)
 
 /* ---- the search --------------------------------------------------------------------------- */
 
+/* Node k ended in NODE_BRANCH at `sp`: its two children are made and queued, except the one
+ * a dive goes on with (*dive, when `diving`; else *dive = -1). */
+static hv_status_t branch(bp_t *b, int32_t k, const split_t *sp, int diving, int32_t *dive)
+{
+    uint32_t f = sp->fruit;
+    double lb = b->nodes[k].lb_ms;
+    int32_t c1, c2;
+    if (sp->kind == KIND_FRUIT) {
+        c1 = node_new(b, k, KIND_FRUIT, f, b->lo[f], sp->stop, 0, lb);
+        c2 = node_new(b, k, KIND_FRUIT, f, sp->stop + 1, b->hi[f], 1, lb); /* rhs: up */
+        if (c1 >= 0 && c2 >= 0) {
+            b->nodes[c1].frac = sp->mass_hi;
+            b->nodes[c2].frac = sp->mass_lo;
+        }
+    } else {
+        c1 = node_new(b, k, KIND_COUNT_LE, 0, sp->lo, sp->hi, sp->rhs, lb);
+        c2 = node_new(b, k, KIND_COUNT_GE, 0, sp->lo, sp->hi, sp->rhs + 1, lb);
+    }
+    if (c1 < 0 || c2 < 0) {
+        return HV_ERR_PLAN_NOMEM;
+    }
+    b->nodes[c1].basis = b->nodes[c2].basis = basis_save(b);
+    *dive = diving ? (sp->up ? c2 : c1) : -1;
+    if ((*dive != c1 && !heap_push(b, c1)) || (*dive != c2 && !heap_push(b, c2))) {
+        return HV_ERR_PLAN_NOMEM;
+    }
+    return HV_OK;
+}
+
+/* When the other worker waits for a node: this worker's best open one goes to it, as its
+ * path of restrictions from the root (node 0 of both workers, which restricts nothing). */
+static hv_status_t give_if_hungry(bp_t *b)
+{
+    while (b->share != NULL && b->heap_len > 0 && hv_share_hungry(b->share)) {
+        int32_t k = heap_pop(b);
+        if (prunable(b, b->nodes[k].lb_ms)) {
+            continue;
+        }
+        size_t n = 0;
+        for (int32_t q = k; b->nodes[q].parent >= 0; q = b->nodes[q].parent) {
+            n++;
+        }
+        if (!hv_grow((void **)&b->path, &b->path_cap, n + 1, sizeof *b->path)) {
+            return HV_ERR_PLAN_NOMEM;
+        }
+        size_t i = n;
+        for (int32_t q = k; b->nodes[q].parent >= 0; q = b->nodes[q].parent) {
+            const node_t *d = &b->nodes[q];
+            b->path[--i] = (hv_share_step_t){(int)d->kind, d->fruit, d->lo, d->hi, d->rhs};
+        }
+        b->given++;
+        return hv_share_give(b->share, b->nodes[k].lb_ms, b->path, n);
+    }
+    return HV_OK;
+}
+
+/* This worker has no open node: one from the other worker, made a node here (*k; no basis
+ * and no pseudocost learning: its parent's bound is not known here). Returns 1 with a
+ * node, 0 when the search is over or time is up, -1 when out of memory. */
+static int next_shared(bp_t *b, int32_t *k)
+{
+    for (;;) {
+        if (must_stop(b)) {
+            return 0;
+        }
+        size_t n;
+        double lb;
+        int r = hv_share_wait(b->share, &b->path, &b->path_cap, &n, &lb);
+        if (r == 0 || r == -2) {
+            return r == 0 ? 0 : -1;
+        }
+        if (r == 1) {
+            int32_t q = 0;
+            for (size_t i = 0; i < n && q >= 0; ++i) {
+                const hv_share_step_t *st = &b->path[i];
+                q = node_new(b, q, (node_kind_t)st->kind, st->fruit, st->lo, st->hi, st->rhs, lb);
+            }
+            b->taken++;
+            *k = q;
+            return q >= 0 ? 1 : -1;
+        }
+    }
+}
+
+/* The second worker's search: best bound first over the nodes it is given and their
+ * subtrees, no dives (the main search dives). */
+static hv_status_t worker_search(bp_t *w)
+{
+    for (;;) {
+        int32_t k;
+        if (w->heap_len > 0) {
+            k = heap_pop(w);
+        } else {
+            int r = next_shared(w, &k);
+            if (r <= 0) {
+                return r == 0 ? HV_OK : HV_ERR_PLAN_NOMEM;
+            }
+        }
+        if (prunable(w, w->nodes[k].lb_ms)) {
+            continue;
+        }
+        node_end_t end;
+        split_t sp = {KIND_FRUIT, 0, 0, 0, 0, 0, 0.0, 0, 0.0, 0.0};
+        hv_status_t st = node_process(w, k, &end, &sp);
+        if (st != HV_OK) {
+            return st;
+        }
+        w->nodes_done++;
+        if (end == NODE_TIMEOUT) {
+            return heap_push(w, k) ? HV_OK : HV_ERR_PLAN_NOMEM; /* still open */
+        }
+        pseudocost_record(w, k);
+        int32_t none;
+        if (end == NODE_BRANCH && ((st = branch(w, k, &sp, 0, &none)) != HV_OK ||
+                                   (st = give_if_hungry(w)) != HV_OK)) {
+            return st;
+        }
+    }
+}
+
+/* w (from bp_init) becomes a copy of b's state after the root: its master (same rows and
+ * columns in the same order), pattern pool, cuts, count rows, fixed pairs, incumbent and
+ * pseudocosts. Returns HV_OK or an error. */
+static hv_status_t bp_clone(bp_t *w, const bp_t *b)
+{
+    size_t nf = b->nf, np = b->inst->n_pairs;
+    glp_erase_prob(w->lp);
+    glp_copy_prob(w->lp, b->lp, GLP_OFF);
+    glp_set_obj_dir(w->lp, GLP_MIN);
+    if (!hv_grow((void **)&w->pat, &w->pat_cap, b->n_pat + 1, sizeof *w->pat) ||
+        !hv_grow((void **)&w->pf, &w->pf_cap, b->pf_len + 1, sizeof *w->pf) ||
+        !hv_grow((void **)&w->pat_open, &w->open_cap, b->n_pat + 1, 1) ||
+        !hv_grow((void **)&w->pat_dead, &w->dead_cap, b->n_pat + 1, 1) ||
+        !hv_grow((void **)&w->crow, &w->crow_cap, b->n_crow + 1, sizeof *w->crow) ||
+        !iv_reserve(w, b->iv_cap)) {
+        return HV_ERR_PLAN_NOMEM;
+    }
+    w->n_pat = b->n_pat;
+    w->pf_len = b->pf_len;
+    memcpy(w->pat, b->pat, b->n_pat * sizeof *w->pat);
+    memcpy(w->pf, b->pf, b->pf_len * sizeof *w->pf);
+    memcpy(w->pat_open, b->pat_open, b->n_pat);
+    memcpy(w->pat_dead, b->pat_dead, b->n_pat);
+    w->n_crow = b->n_crow;
+    memcpy(w->crow, b->crow, b->n_crow * sizeof *w->crow);
+    if (!hash_rebuild(w, b->hcap)) {
+        return HV_ERR_PLAN_NOMEM;
+    }
+    hv_status_t st = hv_src_copy(&w->src, &b->src);
+    if (st != HV_OK) {
+        return st;
+    }
+    memcpy(w->src_row, b->src_row, SR_MAX * sizeof *w->src_row);
+    w->sr_rounds = b->sr_rounds;
+    w->sr_lb0 = b->sr_lb0;
+    memcpy(w->pair_dead, b->pair_dead, np);
+    memcpy(w->root_pi, b->root_pi, n_pi(b) * sizeof *w->root_pi);
+    w->root_lag = b->root_lag;
+    w->fixed_ub = b->fixed_ub;
+    memcpy(w->best, b->best, nf * sizeof *w->best);
+    w->ub_ms = b->ub_ms;
+    for (int d = 0; d < 2; ++d) {
+        memcpy(w->pc_sum[d], b->pc_sum[d], nf * sizeof *w->pc_sum[d]);
+        memcpy(w->pc_n[d], b->pc_n[d], nf * sizeof *w->pc_n[d]);
+        w->pc_all[d] = b->pc_all[d];
+        w->pc_all_n[d] = b->pc_all_n[d];
+    }
+    memcpy(w->warm_pair, b->warm_pair, np * sizeof *w->warm_pair);
+    memcpy(w->warm_n, b->warm_n, b->ns * sizeof *w->warm_n);
+    w->t_deadline = b->t_deadline;
+    w->t_start = w->t_print = b->t_start;
+    w->is_worker = 1;
+    return HV_OK;
+}
+
+/* The second tree worker's thread: it makes its own master and pool as a copy of the main
+ * search's (which waits meanwhile), searches, and leaves its results in `worker_t`. All
+ * its GLPK objects live and die in this thread (GLPK's memory is per thread). */
+struct worker {
+    const bp_t *main;
+    hv_share_t *share;
+    pthread_t thread;
+    pthread_mutex_t mu; /* guards copied */
+    pthread_cond_t cv;
+    int copied;
+    hv_status_t st_copy; /* the copy's status */
+    /* written by the worker before it ends, read after the join */
+    hv_status_t st;
+    long nodes;
+    int inexact;
+    double open_lb; /* of its nodes still open (INFINITY none), n_open of them */
+    size_t n_open;
+};
+
+static void *worker_main(void *arg)
+{
+    worker_t *wk = arg;
+    bp_t w;
+    hv_status_t st = bp_init(&w, wk->main->inst, wk->main->opt);
+    if (st == HV_OK) {
+        st = bp_clone(&w, wk->main);
+    }
+    if (st == HV_OK && node_new(&w, -1, KIND_ROOT, 0, 0, 0, 0, wk->main->nodes[0].lb_ms) != 0) {
+        st = HV_ERR_PLAN_NOMEM;
+    }
+    w.share = wk->share;
+    pthread_mutex_lock(&wk->mu);
+    wk->st_copy = st;
+    wk->copied = 1;
+    pthread_cond_signal(&wk->cv);
+    pthread_mutex_unlock(&wk->mu);
+    if (st == HV_OK) {
+        st = worker_search(&w);
+        if (st != HV_OK) {
+            hv_share_fail(wk->share);
+        }
+        double ub;
+        if (hv_share_take(wk->share, w.ub_ms, w.best, &ub)) {
+            w.ub_ms = ub; /* prune what it leaves open by the best plan known */
+        }
+        wk->open_lb = INFINITY;
+        for (size_t i = 0; i < w.heap_len; ++i) {
+            double lb = w.nodes[w.heap[i]].lb_ms;
+            if (!prunable(&w, lb)) {
+                wk->open_lb = fmin(wk->open_lb, lb);
+                wk->n_open++;
+            }
+        }
+        wk->st = st;
+        wk->nodes = w.nodes_done;
+        wk->inexact = w.inexact;
+    }
+    bp_free(&w);
+    glp_free_env(); /* this thread's GLPK environment */
+    return NULL;
+}
+
+static void worker_free(worker_t *wk)
+{
+    pthread_cond_destroy(&wk->cv);
+    pthread_mutex_destroy(&wk->mu);
+    hv_share_destroy(wk->share);
+    free(wk);
+}
+
+/* The second tree worker starts from a copy of the main search after its root. When its
+ * thread cannot start the main search goes on alone. */
+static hv_status_t worker_start(bp_t *b)
+{
+    worker_t *wk = calloc(1, sizeof *wk);
+    if (wk == NULL || hv_share_create(2, b->nf, &wk->share) != HV_OK) {
+        free(wk);
+        return HV_ERR_PLAN_NOMEM;
+    }
+    wk->main = b;
+    pthread_mutex_init(&wk->mu, NULL);
+    pthread_cond_init(&wk->cv, NULL);
+    hv_share_offer(wk->share, b->best, b->ub_ms);
+    if (pthread_create(&wk->thread, NULL, worker_main, wk) != 0) {
+        if (b->opt->verbose >= 1) {
+            fprintf(stderr, "price: the second tree worker did not start: one worker\n");
+        }
+        worker_free(wk);
+        return HV_OK;
+    }
+    pthread_mutex_lock(&wk->mu);
+    while (!wk->copied) {
+        pthread_cond_wait(&wk->cv, &wk->mu);
+    }
+    pthread_mutex_unlock(&wk->mu);
+    hv_status_t st = wk->st_copy;
+    if (st != HV_OK) {
+        pthread_join(wk->thread, NULL);
+        worker_free(wk);
+        return st;
+    }
+    b->share = wk->share;
+    b->worker = wk;
+    return HV_OK;
+}
+
+/* Stop (after an error: `failed`) and join the second worker. Its nodes, incumbent and
+ * open bound come back: *open_lb the least bound of the nodes it or the queue still hold
+ * (INFINITY none), *n_open their number. Returns the worker's status. */
+static hv_status_t worker_join(bp_t *b, int failed, double *open_lb, size_t *n_open)
+{
+    worker_t *wk = b->worker;
+    if (failed) {
+        hv_share_fail(wk->share);
+    }
+    pthread_join(wk->thread, NULL);
+    double ub;
+    if (hv_share_take(wk->share, b->ub_ms, b->best, &ub)) {
+        b->ub_ms = ub;
+    }
+    *open_lb = fmin(hv_share_open_lb(wk->share, n_open), wk->open_lb);
+    *n_open += wk->n_open;
+    if (prunable(b, *open_lb)) {
+        *n_open = 0; /* every node left open is pruned by the final incumbent */
+    }
+    b->inexact |= wk->inexact;
+    b->nodes_done = wk->nodes;
+    hv_status_t st = wk->st;
+    b->share = NULL;
+    b->worker = NULL;
+    worker_free(wk);
+    return st;
+}
+
+/* The helper's last plan (with `take`), then stop it. */
+static hv_status_t helper_finish(bp_t *b, int take)
+{
+    hv_status_t sth = take ? take_plan(b, 1) : HV_OK;
+    hv_window_stats_t ws;
+    double tj = hv_milp_now_s();
+    hv_status_t stj = hv_helper_stop(b->helper, &ws);
+    if (b->opt->verbose >= 1) {
+        fprintf(stderr, "price: helper thread joined after %.2f s in %.3f s\n",
+                tj - b->t_start, hv_milp_now_s() - tj);
+    }
+    b->helper = NULL;
+    b->windows += ws.windows;
+    b->windows_better += ws.improved;
+    return sth != HV_OK ? sth : stj;
+}
+
 static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
 {
     /* a centre set before the root is a proven bound already */
     int32_t root = node_new(b, -1, KIND_ROOT, 0, 0, 0, 0,
                             b->root_centre ? b->center_lag : -INFINITY);
-    if (root < 0 || !heap_push(b, root)) {
+    if (root != 0 || !heap_push(b, root)) { /* node 0: the root of shared paths too */
         return HV_ERR_PLAN_NOMEM;
     }
     *root_lb = -INFINITY;
@@ -1905,13 +2261,25 @@ static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
     /* Best bound first, interrupted by dives: from the root and then every DIVE_EVERY
      * nodes, follow the child holding more of the master's mass until the dive is pruned
      * or ends in a plan. Dives find plans (the bound rarely closes before the incumbent is
-     * optimal); best bound first proves them. */
+     * optimal); best bound first proves them. With a second worker, a worker out of nodes
+     * takes one of the other's. */
     int32_t dive = -1;
     int diving = 1;
     long since_dive = 0;
-    while (dive >= 0 || b->heap_len > 0) {
-        int32_t k = dive >= 0 ? dive : heap_pop(b);
-        dive = -1;
+    for (;;) {
+        int32_t k = dive;
+        if (k >= 0) {
+            dive = -1;
+        } else if (b->heap_len > 0) {
+            k = heap_pop(b);
+        } else if (b->share == NULL) {
+            break;
+        } else {
+            int r = next_shared(b, &k);
+            if (r <= 0) {
+                return r == 0 ? HV_OK : HV_ERR_PLAN_NOMEM;
+            }
+        }
         if (prunable(b, b->nodes[k].lb_ms)) {
             diving = 0;
             continue;
@@ -1926,12 +2294,10 @@ static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
         if (k == root) {
             *root_lb = b->nodes[k].lb_ms;
         }
-        if (end != NODE_TIMEOUT) {
-            pseudocost_record(b, k);
-        }
         if (end == NODE_TIMEOUT) {
             return heap_push(b, k) ? HV_OK : HV_ERR_PLAN_NOMEM; /* still open */
         }
+        pseudocost_record(b, k);
         if (end != NODE_BRANCH) {
             diving = 0;
             continue;
@@ -1940,32 +2306,10 @@ static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
             diving = 1;
             since_dive = 0;
         }
-        uint32_t f = sp.fruit;
+        if ((st = branch(b, k, &sp, diving, &dive)) != HV_OK) {
+            return st;
+        }
         double lb = b->nodes[k].lb_ms;
-        int32_t c1, c2;
-        if (sp.kind == KIND_FRUIT) {
-            c1 = node_new(b, k, KIND_FRUIT, f, b->lo[f], sp.stop, 0, lb);
-            c2 = node_new(b, k, KIND_FRUIT, f, sp.stop + 1, b->hi[f], 1, lb); /* rhs: up */
-            if (c1 >= 0 && c2 >= 0) {
-                b->nodes[c1].frac = sp.mass_hi;
-                b->nodes[c2].frac = sp.mass_lo;
-            }
-        } else {
-            c1 = node_new(b, k, KIND_COUNT_LE, 0, sp.lo, sp.hi, sp.rhs, lb);
-            c2 = node_new(b, k, KIND_COUNT_GE, 0, sp.lo, sp.hi, sp.rhs + 1, lb);
-        }
-        if (c1 >= 0 && c2 >= 0) {
-            b->nodes[c1].basis = b->nodes[c2].basis = basis_save(b);
-        }
-        if (c1 < 0 || c2 < 0) {
-            return HV_ERR_PLAN_NOMEM;
-        }
-        if (diving) {
-            dive = sp.up ? c2 : c1;
-        }
-        if ((dive != c1 && !heap_push(b, c1)) || (dive != c2 && !heap_push(b, c2))) {
-            return HV_ERR_PLAN_NOMEM;
-        }
         /* the root's plan may be far from optimal: a column-fixing dive finds better
          * ones than the branch dive (SOLVER.md) */
         if (k == root &&
@@ -1986,6 +2330,18 @@ static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
             if (st != HV_OK) {
                 return st;
             }
+        }
+        /* The second core searches the tree too once the incumbent is near the bound: the
+         * helper then stops (it rarely improves such a plan, and more nodes prove it). */
+        if (b->opt->tree_threads > 1 && b->worker == NULL && b->heap_len > 0 &&
+            b->ub_ms - b->nodes[b->heap[0]].lb_ms <= WORKER_GAP * b->ub_ms) {
+            if ((b->helper != NULL && (st = helper_finish(b, 1)) != HV_OK) ||
+                (st = worker_start(b)) != HV_OK) {
+                return st;
+            }
+        }
+        if ((st = give_if_hungry(b)) != HV_OK) {
+            return st;
         }
     }
     return HV_OK;
@@ -2017,21 +2373,19 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
     if (st == HV_OK) {
         st = search(&b, &root_lb, &nodes);
     }
-    if (b.helper != NULL) { /* its last plan, then stop it (also after an error) */
-        hv_status_t sth = st == HV_OK ? take_helper_plan(&b) : HV_OK;
-        hv_window_stats_t ws;
-        double tj = hv_milp_now_s();
-        hv_status_t stj = hv_helper_stop(b.helper, &ws);
-        if (opt->verbose >= 1) {
-            fprintf(stderr, "price: helper thread joined in %.3f s\n", hv_milp_now_s() - tj);
-        }
-        b.helper = NULL;
-        b.windows += ws.windows;
-        b.windows_better += ws.improved;
-        st = st != HV_OK ? st : (sth != HV_OK ? sth : stj);
+    double open_lb = INFINITY; /* of the nodes the second worker left open */
+    size_t n_open = 0;
+    if (b.worker != NULL) {
+        hv_status_t stw = worker_join(&b, st != HV_OK, &open_lb, &n_open);
+        st = st != HV_OK ? st : stw;
+        nodes += b.nodes_done;
+    }
+    if (b.helper != NULL) { /* also after an error */
+        hv_status_t sth = helper_finish(&b, st == HV_OK);
+        st = st != HV_OK ? st : sth;
     }
     if (st == HV_OK) {
-        double lb = b.ub_ms;
+        double lb = fmin(b.ub_ms, open_lb);
         for (size_t i = 0; i < b.heap_len; ++i) {
             lb = fmin(lb, b.nodes[b.heap[i]].lb_ms);
         }
@@ -2044,7 +2398,8 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
                     "in %.2f s, %ld plans from the helper thread, %ld of %zu pairs fixed in "
                     "%.2f s, "
                     "%zu subset-row cuts in %d rounds (%ld dropped; %.1f with a negative dual "
-                    "per priced stop, %ld stops over 64)\n",
+                    "per priced stop, %ld stops over 64), second tree worker %ld nodes (%ld "
+                    "nodes passed between the workers)\n",
                     b.cg_iters, b.t_lp, glp_get_it_cnt(b.lp), b.lp_restarts, b.lp_stalls,
                     b.t_price, b.pricer.calls,
                     (double)b.pricer.points / (double)(b.pricer.calls ? b.pricer.calls : 1),
@@ -2052,9 +2407,10 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
                     b.windows_better, b.t_window, b.helper_plans, b.pairs_fixed,
                     inst->n_pairs, b.t_fix, b.src.n, b.sr_rounds, b.sr_dropped,
                     (double)b.src_bits / (double)(b.src_stops ? b.src_stops : 1),
-                    b.src_overflow);
+                    b.src_overflow, b.nodes_done, b.given + b.taken);
         }
         res->nodes = nodes;
+        res->worker_nodes = b.nodes_done;
         res->columns = (long)b.n_pat;
         res->cuts = (long)b.src.n;
         res->root_bound_s = root_lb / 1000.0;
@@ -2065,7 +2421,8 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
             res->objective_s = b.ub_ms / 1000.0;
             res->bound_s = fmin(lb, b.ub_ms) / 1000.0;
             res->gap = (res->objective_s - res->bound_s) / fmax(res->objective_s, DBL_EPSILON);
-            res->status = b.heap_len == 0 && !b.inexact ? HV_SOLVE_OPTIMAL : HV_SOLVE_FEASIBLE;
+            res->status = b.heap_len == 0 && n_open == 0 && !b.inexact ? HV_SOLVE_OPTIMAL
+                                                                       : HV_SOLVE_FEASIBLE;
             if (res->status == HV_SOLVE_OPTIMAL) {
                 res->bound_s = res->objective_s; /* every open node was pruned */
                 res->gap = 0.0;

@@ -61,6 +61,18 @@ static int index_cuts(hv_src_t *s)
     return 1;
 }
 
+hv_status_t hv_src_copy(hv_src_t *dst, const hv_src_t *src)
+{
+    if (dst->nf != src->nf ||
+        !hv_grow((void **)&dst->tri, &dst->cap, src->n + 1, sizeof *dst->tri)) {
+        return dst->nf != src->nf ? HV_ERR_ARG : HV_ERR_PLAN_NOMEM;
+    }
+    memcpy(dst->tri, src->tri, src->n * sizeof *dst->tri);
+    dst->n = src->n;
+    dst->cross_sides = src->cross_sides;
+    return index_cuts(dst) ? HV_OK : HV_ERR_PLAN_NOMEM;
+}
+
 size_t hv_src_hits(hv_src_t *s, const uint32_t *f, size_t n, uint32_t *out)
 {
     size_t m = 0;

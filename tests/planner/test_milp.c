@@ -200,6 +200,14 @@ static void solve_to_optimum(const hv_instance_t *in, const hv_milp_options_t *o
     }
 }
 
+/* The options of the tests that prove optima: the defaults, one row segment, and time. */
+static void exact_options(hv_milp_options_t *o)
+{
+    hv_milp_options_default(o);
+    o->decompose = 0;
+    o->time_limit_s = 120;
+}
+
 /* Branch-and-price against GLPK's branch-and-cut on the paper's model, on instances too big
  * for enumeration where the pricing root is fractional, so the branching (stop count and
  * fruit intervals) and the count rows are exercised; both must prove the same optimum. */
@@ -213,9 +221,7 @@ static void test_price_matches_compact(void **state)
         hv_assignment_t out;
         assert_int_equal(hv_assignment_alloc(&out, in.n_fruits), HV_OK);
         hv_milp_options_t o;
-        hv_milp_options_default(&o);
-        o.decompose = 0;
-        o.time_limit_s = 120;
+        exact_options(&o);
         hv_milp_result_t rp;
         assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &rp), HV_OK);
         assert_int_equal(rp.status, HV_SOLVE_OPTIMAL);
@@ -252,6 +258,44 @@ static void test_price_matches_compact(void **state)
     print_message("subset-row cuts kept on %d of 30 instances, %d of them branched\n", cut_runs,
                   cut_branched);
     assert_true(cut_runs >= 3 && cut_branched >= 1); /* precondition: cuts were exercised */
+}
+
+/* Two tree workers (milp_share.h) against one: the same proven optimum, the plan returned
+ * is the one of that makespan (a worker's plan must reach the result), and the second
+ * worker really searched on some of them. */
+static void test_two_tree_workers(void **state)
+{
+    (void)state;
+    long worker_nodes = 0;
+    int with_worker = 0;
+    for (uint64_t seed = 300; seed < 324; ++seed) {
+        hv_instance_t in;
+        make_instance(&in, 30 + seed % 12, 40, 10, 0, seed);
+        hv_assignment_t out;
+        assert_int_equal(hv_assignment_alloc(&out, in.n_fruits), HV_OK);
+        hv_milp_options_t o;
+        exact_options(&o);
+        o.tree_threads = 1;
+        hv_milp_result_t r1, r2;
+        assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &r1), HV_OK);
+        assert_int_equal(r1.status, HV_SOLVE_OPTIMAL);
+        assert_int_equal(r1.worker_nodes, 0);
+        o.tree_threads = 2;
+        solve_to_optimum(&in, &o, &out, r1.objective_s, seed, "two tree workers", &r2);
+        double t;
+        assert_int_equal(hv_assignment_makespan(&in, &out, &t), HV_OK);
+        assert_true(fabs(t - r2.objective_s) < 1e-6);
+        assert_true(r2.worker_nodes >= 0 && r2.worker_nodes < r2.nodes);
+        print_message("seed %llu: %ld nodes, %ld by the second worker (one worker: %ld)\n",
+                      (unsigned long long)seed, r2.nodes, r2.worker_nodes, r1.nodes);
+        worker_nodes += r2.worker_nodes;
+        with_worker += r2.worker_nodes > 0;
+        hv_assignment_free(&out);
+        hv_instance_free(&in);
+    }
+    print_message("the second worker solved %ld nodes on %d of 24 instances\n", worker_nodes,
+                  with_worker);
+    assert_true(with_worker >= 2); /* precondition: the second worker searched */
 }
 
 /* What test_window_improve's callback saw: every reported plan is a plan, with the makespan
@@ -676,6 +720,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_matches_brute_force),
         cmocka_unit_test(test_price_matches_compact),
+        cmocka_unit_test(test_two_tree_workers),
         cmocka_unit_test(test_window_improve),
         cmocka_unit_test(test_helper_thread),
         cmocka_unit_test(test_stop_callback),

@@ -68,6 +68,9 @@ typedef struct hv_milp_options {
                                 one side only */
     int pseudocost;          /* price: 1 fruit splits are chosen by pseudocosts (the bound
                                 rises seen per unit of mass moved), 0 the most balanced */
+    int tree_threads;        /* price: 2 a second thread searches the tree too while the
+                                helper thread is not running (milp_share.h); 1 one thread.
+                                opt->stop is then also called from that thread */
     double sr_keep_gain;     /* price: the cuts stay in the tree only when they raised the
                                 root's bound by this share (they slow every master LP);
                                 0 keeps them always */
@@ -106,6 +109,7 @@ typedef struct hv_milp_result {
     long cuts;            /* compact: stop-pattern cuts added; price: subset-row cuts kept
                              in the tree */
     long columns;         /* stop-pattern columns generated (branch-and-price) */
+    long worker_nodes;    /* price: of `nodes`, those the second tree worker solved */
 } hv_milp_result_t;
 
 /* Defaults: 60 s limit, gap 1e-6, quiet, no export, the choices SOLVER.md keeps. */

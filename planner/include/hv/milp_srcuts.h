@@ -53,6 +53,10 @@ hv_status_t hv_src_separate(hv_src_t *s, const hv_instance_t *inst, const hv_src
                             size_t n, size_t max_new, size_t per_fruit, double min_viol,
                             size_t *added);
 
+/* dst (from hv_src_init, same number of fruits) holds src's cuts, in src's order.
+ * Returns HV_OK, HV_ERR_ARG or HV_ERR_PLAN_NOMEM. */
+hv_status_t hv_src_copy(hv_src_t *dst, const hv_src_t *src);
+
 /* Forgets every cut (the caller deletes their rows). */
 void hv_src_clear(hv_src_t *s);
 

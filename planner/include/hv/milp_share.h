@@ -1,0 +1,68 @@
+/* Work sharing between the tree workers of the branch-and-price (internal; milp_price.c).
+ *
+ * DESIGN §10 counts 2 cores. When the helper thread (milp_helper.h) is not running, a
+ * second worker searches the tree beside the first, each with its own master LP. An open
+ * node travels between them as the path of restrictions from the root to it: the two
+ * masters number their columns differently once they have split, so nothing else of a
+ * node is portable. A worker takes a node only when it has none of its own; the other
+ * gives its best one at its next node. The incumbent is shared, so either prunes by it.
+ *
+ * All calls are thread-safe. Bounds and makespans are in ms, times in s (CLOCK_MONOTONIC).
+ */
+#ifndef HV_MILP_SHARE_H
+#define HV_MILP_SHARE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "hv/status.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* One restriction on the path to a node: milp_price.c's node kind and its fields. */
+typedef struct hv_share_step {
+    int kind;
+    uint32_t fruit, lo, hi;
+    int32_t rhs;
+} hv_share_step_t;
+
+typedef struct hv_share hv_share_t;
+
+/* For n_workers workers over plans of n_fruits fruits. Returns HV_OK or HV_ERR_PLAN_NOMEM. */
+hv_status_t hv_share_create(size_t n_workers, size_t n_fruits, hv_share_t **out);
+void hv_share_destroy(hv_share_t *s);
+
+/* A worker's plan (the stop per fruit) of makespan ub_ms: kept when it beats the shared one. */
+void hv_share_offer(hv_share_t *s, const uint32_t *fruit_stop, double ub_ms);
+
+/* 1 when the shared plan beats ub_ms: copied into fruit_stop, its makespan into *ub_out. */
+int hv_share_take(hv_share_t *s, double ub_ms, uint32_t *fruit_stop, double *ub_out);
+
+/* 1 when a worker waits for a node. */
+int hv_share_hungry(hv_share_t *s);
+
+/* Queue an open node: its path from the root (n steps) and its bound. Returns HV_OK or
+ * HV_ERR_PLAN_NOMEM. */
+hv_status_t hv_share_give(hv_share_t *s, double lb_ms, const hv_share_step_t *path, size_t n);
+
+/* A worker without nodes of its own asks for one and waits up to 20 ms. Returns 1 with a
+ * node (its path into *path, grown as needed, of *n steps, capacity *cap; its bound in
+ * *lb_ms), 0 when the search is over (every worker waits and none is queued, or a worker
+ * failed), -1 when nothing came yet (the caller checks its clock and asks again), or -2
+ * when out of memory. */
+int hv_share_wait(hv_share_t *s, hv_share_step_t **path, size_t *cap, size_t *n,
+                  double *lb_ms);
+
+/* A worker stopped on an error: the others stop too (hv_share_failed). */
+void hv_share_fail(hv_share_t *s);
+int hv_share_failed(hv_share_t *s);
+
+/* The least bound of the nodes still queued (INFINITY when none); their number in *n. */
+double hv_share_open_lb(hv_share_t *s, size_t *n);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* HV_MILP_SHARE_H */

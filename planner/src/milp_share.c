@@ -1,0 +1,177 @@
+/* Work sharing between the tree workers of the branch-and-price (milp_share.h). */
+#ifndef _POSIX_C_SOURCE
+#define _POSIX_C_SOURCE 200809L /* clock_gettime, pthread_cond_timedwait */
+#endif
+
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "hv/grow_array.h"
+#include "hv/milp_share.h"
+#include "hv/plan_status.h"
+
+#define WAIT_SLICE_NS 20000000L /* a waiting worker looks at its clock this often */
+
+typedef struct queued {
+    double lb_ms;
+    size_t first, n; /* its steps: steps[first .. first + n) */
+} queued_t;
+
+struct hv_share {
+    pthread_mutex_t mu; /* guards everything below */
+    pthread_cond_t cv;  /* a node was queued, the search ended, or a worker failed */
+    size_t n_workers, waiting;
+    int done, failed;
+    size_t nf;
+    uint32_t *best;
+    double best_ms;
+    queued_t *q;
+    size_t n_q, q_cap;
+    hv_share_step_t *steps; /* of the queued nodes; reset when the queue empties */
+    size_t n_steps, steps_cap;
+};
+
+hv_status_t hv_share_create(size_t n_workers, size_t n_fruits, hv_share_t **out)
+{
+    hv_share_t *s = calloc(1, sizeof *s);
+    if (s == NULL || (s->best = malloc((n_fruits + 1) * sizeof *s->best)) == NULL) {
+        free(s);
+        return HV_ERR_PLAN_NOMEM;
+    }
+    pthread_mutex_init(&s->mu, NULL);
+    pthread_cond_init(&s->cv, NULL);
+    s->n_workers = n_workers;
+    s->nf = n_fruits;
+    s->best_ms = INFINITY;
+    *out = s;
+    return HV_OK;
+}
+
+void hv_share_destroy(hv_share_t *s)
+{
+    if (s == NULL) {
+        return;
+    }
+    pthread_cond_destroy(&s->cv);
+    pthread_mutex_destroy(&s->mu);
+    free(s->best);
+    free(s->q);
+    free(s->steps);
+    free(s);
+}
+
+void hv_share_offer(hv_share_t *s, const uint32_t *fruit_stop, double ub_ms)
+{
+    pthread_mutex_lock(&s->mu);
+    if (ub_ms < s->best_ms) {
+        memcpy(s->best, fruit_stop, s->nf * sizeof *s->best);
+        s->best_ms = ub_ms;
+    }
+    pthread_mutex_unlock(&s->mu);
+}
+
+int hv_share_take(hv_share_t *s, double ub_ms, uint32_t *fruit_stop, double *ub_out)
+{
+    pthread_mutex_lock(&s->mu);
+    int better = s->best_ms < ub_ms;
+    if (better) {
+        memcpy(fruit_stop, s->best, s->nf * sizeof *s->best);
+        *ub_out = s->best_ms;
+    }
+    pthread_mutex_unlock(&s->mu);
+    return better;
+}
+
+int hv_share_hungry(hv_share_t *s)
+{
+    pthread_mutex_lock(&s->mu);
+    int h = s->waiting > s->n_q;
+    pthread_mutex_unlock(&s->mu);
+    return h;
+}
+
+hv_status_t hv_share_give(hv_share_t *s, double lb_ms, const hv_share_step_t *path, size_t n)
+{
+    pthread_mutex_lock(&s->mu);
+    hv_status_t st = HV_ERR_PLAN_NOMEM;
+    if (hv_grow((void **)&s->q, &s->q_cap, s->n_q + 1, sizeof *s->q) &&
+        hv_grow((void **)&s->steps, &s->steps_cap, s->n_steps + n + 1, sizeof *s->steps)) {
+        memcpy(s->steps + s->n_steps, path, n * sizeof *path);
+        s->q[s->n_q++] = (queued_t){lb_ms, s->n_steps, n};
+        s->n_steps += n;
+        pthread_cond_broadcast(&s->cv);
+        st = HV_OK;
+    }
+    pthread_mutex_unlock(&s->mu);
+    return st;
+}
+
+int hv_share_wait(hv_share_t *s, hv_share_step_t **path, size_t *cap, size_t *n,
+                  double *lb_ms)
+{
+    pthread_mutex_lock(&s->mu);
+    s->waiting++;
+    if (s->n_q == 0 && s->waiting == s->n_workers) {
+        s->done = 1; /* nobody holds a node, so nobody can make one */
+        pthread_cond_broadcast(&s->cv);
+    }
+    if (s->n_q == 0 && !s->done && !s->failed) {
+        struct timespec ts;
+        clock_gettime(CLOCK_REALTIME, &ts); /* the condition variable's default clock */
+        ts.tv_nsec += WAIT_SLICE_NS;
+        if (ts.tv_nsec >= 1000000000L) {
+            ts.tv_sec++;
+            ts.tv_nsec -= 1000000000L;
+        }
+        pthread_cond_timedwait(&s->cv, &s->mu, &ts);
+    }
+    int r = s->done || s->failed ? 0 : -1;
+    if (r != 0 && s->n_q > 0) {
+        const queued_t *t = &s->q[--s->n_q]; /* the newest: the giver's best at the time */
+        r = hv_grow((void **)path, cap, t->n + 1, sizeof **path) ? 1 : -2;
+        if (r == 1) {
+            memcpy(*path, s->steps + t->first, t->n * sizeof **path);
+            *n = t->n;
+            *lb_ms = t->lb_ms;
+        }
+        if (s->n_q == 0) {
+            s->n_steps = 0;
+        }
+    }
+    if (r != 0) {
+        s->waiting--; /* it works again (or asks again) */
+    }
+    pthread_mutex_unlock(&s->mu);
+    return r;
+}
+
+void hv_share_fail(hv_share_t *s)
+{
+    pthread_mutex_lock(&s->mu);
+    s->failed = 1;
+    pthread_cond_broadcast(&s->cv);
+    pthread_mutex_unlock(&s->mu);
+}
+
+int hv_share_failed(hv_share_t *s)
+{
+    pthread_mutex_lock(&s->mu);
+    int f = s->failed;
+    pthread_mutex_unlock(&s->mu);
+    return f;
+}
+
+double hv_share_open_lb(hv_share_t *s, size_t *n)
+{
+    pthread_mutex_lock(&s->mu);
+    double lb = INFINITY;
+    for (size_t i = 0; i < s->n_q; ++i) {
+        lb = fmin(lb, s->q[i].lb_ms);
+    }
+    *n = s->n_q;
+    pthread_mutex_unlock(&s->mu);
+    return lb;
+}

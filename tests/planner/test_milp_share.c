@@ -1,0 +1,133 @@
+/* The tree workers' work sharing (milp_share.h): a node's path and bound arrive intact, a
+ * hungry worker is seen, the search ends when every worker waits with nothing queued, a
+ * failure ends every wait, and only a better plan is handed over. */
+#define _POSIX_C_SOURCE 200809L /* nanosleep */
+#include <math.h>
+#include <pthread.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <time.h>
+
+#include <cmocka.h>
+
+#include "hv/milp_share.h"
+
+/* A second worker that waits until it gets a node or the search ends. */
+typedef struct waiter {
+    hv_share_t *s;
+    int got; /* 1 a node, 0 the end */
+    hv_share_step_t *path;
+    size_t cap, n;
+    double lb;
+} waiter_t;
+
+static void *wait_for_node(void *arg)
+{
+    waiter_t *w = arg;
+    int r;
+    while ((r = hv_share_wait(w->s, &w->path, &w->cap, &w->n, &w->lb)) == -1) {
+    }
+    w->got = r;
+    return NULL;
+}
+
+static void test_node_travels_and_search_ends(void **state)
+{
+    (void)state;
+    hv_share_t *s;
+    assert_int_equal(hv_share_create(2, 4, &s), HV_OK);
+    assert_false(hv_share_hungry(s));
+    waiter_t w = {s, -1, NULL, 0, 0, 0.0};
+    pthread_t t;
+    assert_int_equal(pthread_create(&t, NULL, wait_for_node, &w), 0);
+    while (!hv_share_hungry(s)) { /* the waiter is seen as soon as it asks */
+        struct timespec ms = {0, 1000000};
+        nanosleep(&ms, NULL);
+    }
+    hv_share_step_t path[3] = {{1, 7, 0, 40, 0}, {2, 0, 10, 20, 3}, {1, 2, 41, 60, 1}};
+    assert_int_equal(hv_share_give(s, 1234.5, path, 3), HV_OK);
+    assert_int_equal(pthread_join(t, NULL), 0);
+    assert_int_equal(w.got, 1);
+    assert_int_equal(w.n, 3);
+    assert_true(w.lb == 1234.5);
+    for (size_t i = 0; i < 3; ++i) {
+        assert_int_equal(w.path[i].kind, path[i].kind);
+        assert_int_equal(w.path[i].fruit, path[i].fruit);
+        assert_int_equal(w.path[i].lo, path[i].lo);
+        assert_int_equal(w.path[i].hi, path[i].hi);
+        assert_int_equal(w.path[i].rhs, path[i].rhs);
+    }
+    size_t n_open;
+    assert_true(isinf(hv_share_open_lb(s, &n_open)) && n_open == 0);
+    /* both out of nodes: the waiter and then this worker see the end */
+    w.got = -1;
+    assert_int_equal(pthread_create(&t, NULL, wait_for_node, &w), 0);
+    int r;
+    hv_share_step_t *mine = NULL;
+    size_t cap = 0, n;
+    double lb;
+    while ((r = hv_share_wait(s, &mine, &cap, &n, &lb)) == -1) {
+    }
+    assert_int_equal(r, 0);
+    assert_int_equal(pthread_join(t, NULL), 0);
+    assert_int_equal(w.got, 0);
+    free(mine);
+    free(w.path);
+    hv_share_destroy(s);
+}
+
+static void test_queue_bound_and_failure(void **state)
+{
+    (void)state;
+    hv_share_t *s;
+    assert_int_equal(hv_share_create(2, 4, &s), HV_OK);
+    hv_share_step_t step = {1, 0, 0, 5, 0};
+    assert_int_equal(hv_share_give(s, 900.0, &step, 1), HV_OK);
+    assert_int_equal(hv_share_give(s, 800.0, &step, 1), HV_OK);
+    size_t n_open;
+    assert_true(hv_share_open_lb(s, &n_open) == 800.0);
+    assert_int_equal(n_open, 2);
+    /* a worker that asks while nodes are queued gets one at once, not the end */
+    hv_share_step_t *p = NULL;
+    size_t cap = 0, n;
+    double lb;
+    assert_int_equal(hv_share_wait(s, &p, &cap, &n, &lb), 1);
+    assert_int_equal(n, 1);
+    assert_false(hv_share_failed(s));
+    hv_share_fail(s);
+    assert_true(hv_share_failed(s));
+    assert_int_equal(hv_share_wait(s, &p, &cap, &n, &lb), 0);
+    free(p);
+    hv_share_destroy(s);
+}
+
+static void test_only_better_plans(void **state)
+{
+    (void)state;
+    hv_share_t *s;
+    assert_int_equal(hv_share_create(2, 3, &s), HV_OK);
+    uint32_t got[3], a[3] = {4, 5, 6}, b[3] = {7, 8, 9};
+    double ub;
+    assert_false(hv_share_take(s, 1e9, got, &ub)); /* nothing offered yet */
+    hv_share_offer(s, a, 500.0);
+    hv_share_offer(s, b, 600.0); /* worse: ignored */
+    assert_false(hv_share_take(s, 500.0, got, &ub));
+    assert_true(hv_share_take(s, 550.0, got, &ub));
+    assert_true(ub == 500.0);
+    assert_int_equal(got[0], 4);
+    assert_int_equal(got[2], 6);
+    hv_share_destroy(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_node_travels_and_search_ends),
+        cmocka_unit_test(test_queue_bound_and_failure),
+        cmocka_unit_test(test_only_better_plans),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
