@@ -196,9 +196,9 @@ static hv_status_t check_assignment(const hv_instance_t *inst, const hv_assignme
                                     double *t)
 {
     if (a == NULL || a->fruit_stop == NULL || a->n_fruits != inst->n_fruits) {
-        return (hv_status_t)HV_ERR_MILP_INCUMBENT;
+        return HV_ERR_MILP_INCUMBENT;
     }
-    return hv_assignment_makespan(inst, a, t) == HV_OK ? HV_OK : (hv_status_t)HV_ERR_MILP_INCUMBENT;
+    return hv_assignment_makespan(inst, a, t) == HV_OK ? HV_OK : HV_ERR_MILP_INCUMBENT;
 }
 
 static void set_trivial(const hv_instance_t *inst, hv_assignment_t *out, hv_milp_result_t *res)
@@ -403,7 +403,7 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
     }
     if (opt->export_lp_path != NULL && glp_write_lp(m.lp, NULL, opt->export_lp_path) != 0) {
         hv_milp_model_free(&m);
-        return (hv_status_t)HV_ERR_MILP_EXPORT;
+        return HV_ERR_MILP_EXPORT;
     }
     if (price) { /* the paper's model was wanted for the file only */
         hv_milp_model_free(&m);

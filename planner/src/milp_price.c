@@ -1172,7 +1172,7 @@ static hv_status_t lp_solve(bp_t *b, int first)
             fprintf(stderr, "price: master LP failed: glp_simplex %d, status %d\n", r,
                     glp_get_status(b->lp));
         }
-        return (hv_status_t)HV_ERR_MILP_GLPK;
+        return HV_ERR_MILP_GLPK;
     }
     return HV_OK;
 }
@@ -1477,10 +1477,14 @@ static hv_status_t fix_pairs(bp_t *b)
         size_t n_sel;
         hv_status_t st = hv_pricer_best(&b->pricer, b->itl, nl, b->itr, nr, b->tau_ms, pen, 0.0,
                                         &vp, b->sel, &n_sel, &time);
+        if (st == HV_ERR_MILP_DEADLINE) {
+            stopped = 1;
+            break;
+        }
         if (st != HV_OK) {
             return st;
         }
-        for (size_t q = b->stop_begin[p]; q < b->stop_begin[p + 1]; ++q) {
+        for (size_t q = b->stop_begin[p]; q < b->stop_begin[p + 1] && !stopped; ++q) {
             size_t k = b->stop_pair[q];
             uint32_t f = in->pairs[k].fruit;
             if (b->pair_dead[k]) {
@@ -1502,6 +1506,10 @@ static hv_status_t fix_pairs(bp_t *b)
                 st = hv_pricer_best(&b->pricer, b->itl, nl, b->itr, nr, b->tau_ms, NULL,
                                     fmin(0.0, thr - big + 1e-6), &v, b->sel, &n_sel, &time);
                 it->profit -= big;
+                if (st == HV_ERR_MILP_DEADLINE) {
+                    stopped = 1;
+                    break;
+                }
                 if (st != HV_OK) {
                     return st;
                 }
@@ -1714,6 +1722,10 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
         double tp = hv_milp_now_s();
         st = price_round(b, round == 0, &lag, &added);
         b->t_price += hv_milp_now_s() - tp;
+        if (st == HV_ERR_MILP_DEADLINE) {
+            *end = NODE_TIMEOUT; /* this round's bound is unfinished: the node stays open */
+            return HV_OK;
+        }
         if (st != HV_OK) {
             return st;
         }
@@ -2081,7 +2093,7 @@ static hv_status_t bp_clone(bp_t *w, const bp_t *b)
     }
     memcpy(w->warm_pair, b->warm_pair, np * sizeof *w->warm_pair);
     memcpy(w->warm_n, b->warm_n, b->ns * sizeof *w->warm_n);
-    w->t_deadline = b->t_deadline;
+    w->t_deadline = w->pricer.t_deadline_s = b->t_deadline;
     w->t_start = w->t_print = b->t_start;
     w->is_worker = 1;
     return HV_OK;
@@ -2353,7 +2365,7 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
 {
     bp_t b;
     hv_status_t st = bp_init(&b, inst, opt);
-    b.t_deadline = t_deadline_s;
+    b.t_deadline = b.pricer.t_deadline_s = t_deadline_s;
     b.t_start = b.t_print = hv_milp_now_s();
     if (st == HV_OK && inc != NULL) {
         memcpy(b.best, inc->fruit_stop, b.nf * sizeof *b.best);

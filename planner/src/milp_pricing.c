@@ -5,8 +5,11 @@
 #include <string.h>
 
 #include "hv/grow_array.h"
+#include "hv/milp_clock.h"
 #include "hv/milp_pricing.h"
-#include "hv/plan_status.h"
+#include "hv/milp_status.h"
+
+#define CLOCK_EVERY_POINTS 4096u /* points made between two readings of the clock */
 
 void hv_pricer_init(hv_pricer_t *pr)
 {
@@ -31,9 +34,15 @@ void hv_pricer_free(hv_pricer_t *pr)
     memset(pr, 0, sizeof *pr);
 }
 
+/* Appends a frontier point; 0 when out of memory or past the deadline (pr->timed_out). */
 static int push_pt(hv_pricer_t *pr, double w, double p, int32_t item, int32_t parent,
                    int32_t *idx)
 {
+    if (pr->t_deadline_s > 0.0 && (pr->points % CLOCK_EVERY_POINTS) == 0 &&
+        hv_milp_now_s() >= pr->t_deadline_s) {
+        pr->timed_out = 1;
+        return 0;
+    }
     if (!hv_grow((void **)&pr->arena, &pr->arena_cap, pr->arena_len + 1, sizeof *pr->arena)) {
         return 0;
     }
@@ -429,6 +438,7 @@ hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t 
     *n_sel = 0;
     *time_ms = -1.0;
     pr->calls++;
+    pr->timed_out = 0;
     /* arm A, the one with fewer items, first: its small frontier then bounds arm B's */
     const hv_price_item_t *ia = nl <= nr ? left : right, *ib = nl <= nr ? right : left;
     size_t na = nl <= nr ? nl : nr, nb = nl <= nr ? nr : nl;
@@ -467,7 +477,7 @@ hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t 
     pr->arena_len = 0;
     size_t n_a = 0, n_b = 0;
     if (!build_front(pr, sa, na, pen_ms, cross, &fa, off_p, &n_a)) {
-        return HV_ERR_PLAN_NOMEM;
+        return pr->timed_out ? HV_ERR_MILP_DEADLINE : HV_ERR_PLAN_NOMEM;
     }
     if (n_a == 0) {
         return HV_OK; /* no point of arm A can be part of a pattern with v < 0 */
@@ -508,7 +518,7 @@ hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t 
     pr->rec_a = pr->rec_b = -1;
     pr->rec_pen = 0.0;
     if (!build_front(pr, sb, nb, pen_ms, cross, &fb, off_p, &n_b)) {
-        return HV_ERR_PLAN_NOMEM;
+        return pr->timed_out ? HV_ERR_MILP_DEADLINE : HV_ERR_PLAN_NOMEM;
     }
     const hv_front_ref_t *fa_pts = pr->left_front, *fb_pts = pr->cur;
     double best = v_bound, best_pen = 0.0;

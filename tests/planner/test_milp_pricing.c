@@ -18,8 +18,9 @@
 
 #include <cmocka.h>
 
+#include "hv/milp_clock.h"
 #include "hv/milp_pricing.h"
-#include "hv/plan_status.h"
+#include "hv/milp_status.h"
 
 #define MAXN 40      /* items per side */
 #define BRUTE_SIDE 16 /* brute force subset tables per side */
@@ -452,6 +453,30 @@ static void test_workspace_reuse(void **state)
 }
 
 /* Each test gets its own pricer, freed even when the test fails. */
+/* A deadline already passed stops a call that must build frontiers, and says so; with
+ * none (or a later one) the same call prices the stop exactly. */
+static void test_deadline(void **state)
+{
+    hv_pricer_t *pr = *state;
+    uint64_t s = 0x452821e638d01377ull;
+    inst_t in;
+    do {
+        gen(&s, &in, 7, 7, 1);
+    } while (brute(&in) >= -1.0); /* a stop worth pricing */
+    res_t r;
+    pr->t_deadline_s = hv_milp_now_s() - 1.0;
+    run(pr, &in, 0.0, &r);
+    assert_int_equal(r.st, HV_ERR_MILP_DEADLINE);
+    pr->t_deadline_s = hv_milp_now_s() + 3600.0;
+    run(pr, &in, 0.0, &r);
+    assert_int_equal(r.st, HV_OK);
+    assert_true(fabs(r.v - brute(&in)) < 1e-6);
+    pr->t_deadline_s = 0.0;
+    run(pr, &in, 0.0, &r);
+    assert_int_equal(r.st, HV_OK);
+    assert_true(fabs(r.v - brute(&in)) < 1e-6);
+}
+
 static int setup(void **state)
 {
     hv_pricer_t *pr = *state = malloc(sizeof *pr);
@@ -475,6 +500,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_cuts_vs_brute_force, setup, teardown),
         cmocka_unit_test_setup_teardown(test_hand_cases, setup, teardown),
         cmocka_unit_test_setup_teardown(test_workspace_reuse, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_deadline, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -80,6 +80,10 @@ typedef struct hv_pricer {
     double *brk; /* (breakpoint, slope change) pairs of the bound's weight (best_weight) */
     size_t brk_cap;
     hv_cross_scratch_t cross[2]; /* per arm, for the merge with cross-arm cuts */
+    double t_deadline_s; /* 0: none; else a call still building frontiers then (the clock,
+                            CLOCK_MONOTONIC s, is read every 4096 points) stops with
+                            HV_ERR_MILP_DEADLINE: bad duals can make frontiers huge */
+    int timed_out;       /* scratch: the current call passed the deadline */
 } hv_pricer_t;
 
 void hv_pricer_init(hv_pricer_t *pr);
@@ -92,7 +96,7 @@ void hv_pricer_free(hv_pricer_t *pr);
  * for the empty pattern),
  * *n_sel, and *time_ms = max(W(L), W(R)) >= 0. Otherwise *v_out = v_bound, *n_sel = 0 and
  * *time_ms = -1 (v >= v_bound for every pattern). Items are not modified.
- * Returns HV_OK or HV_ERR_PLAN_NOMEM. */
+ * Returns HV_OK, HV_ERR_MILP_DEADLINE (the outputs then say nothing) or HV_ERR_PLAN_NOMEM. */
 hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t nl,
                            const hv_price_item_t *right, size_t nr, double offset_ms,
                            const double *pen_ms, double v_bound, double *v_out, uint32_t *sel,

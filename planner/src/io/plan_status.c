@@ -33,6 +33,7 @@ const char *hv_plan_status_name(int status)
     case HV_ERR_MILP_GLPK: return "HV_ERR_MILP_GLPK";
     case HV_ERR_MILP_EXPORT: return "HV_ERR_MILP_EXPORT";
     case HV_ERR_MILP_INCUMBENT: return "HV_ERR_MILP_INCUMBENT";
+    case HV_ERR_MILP_DEADLINE: return "HV_ERR_MILP_DEADLINE";
     default: return hv_status_name(status);
     }
 }
