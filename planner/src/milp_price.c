@@ -195,9 +195,9 @@ typedef struct bp {
     long heur_runs, heur_wins;
     int inexact; /* a numerically doubtful node was closed: do not claim optimality */
     /* pseudocosts of fruit splits, [0] the child "<= stop", [1] "> stop": per fruit the sum
-     * of (child bound - parent bound) / frac and the count, and over all fruits */
-    double *pc_sum[2], pc_all[2];
-    long *pc_n[2], pc_all_n[2];
+     * of (child bound - parent bound) / frac and the count, and over all fruits; with two
+     * workers read from and added to the pool they share (milp_share.h) */
+    hv_share_pc_t pc;
     /* two tree workers (milp_share.h): the main search holds the second in `worker` */
     hv_share_t *share;   /* NULL while one worker searches */
     struct worker *worker; /* the second worker, NULL none */
@@ -454,8 +454,8 @@ static void bp_free(bp_t *b)
     free(b->heap);
     free(b->lo);
     for (int d = 0; d < 2; ++d) {
-        free(b->pc_sum[d]);
-        free(b->pc_n[d]);
+        free(b->pc.sum[d]);
+        free(b->pc.n[d]);
     }
     free(b->hi);
     hv_pricer_free(&b->pricer);
@@ -506,8 +506,8 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
     b->fixed_pat = malloc((ns + 1) * sizeof *b->fixed_pat);
     b->lo = malloc((nf + 1) * sizeof *b->lo);
     for (int d = 0; d < 2; ++d) {
-        b->pc_sum[d] = calloc(nf + 1, sizeof *b->pc_sum[d]);
-        b->pc_n[d] = calloc(nf + 1, sizeof *b->pc_n[d]);
+        b->pc.sum[d] = calloc(nf + 1, sizeof *b->pc.sum[d]);
+        b->pc.n[d] = calloc(nf + 1, sizeof *b->pc.n[d]);
     }
     b->hi = malloc((nf + 1) * sizeof *b->hi);
     b->itl = malloc((nf + 1) * sizeof *b->itl);
@@ -543,7 +543,7 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
         b->warm_pair == NULL || b->warm_n == NULL || b->pair_at == NULL ||
         b->pair_dead == NULL || b->root_pi == NULL || b->src_row == NULL ||
         b->src_hit == NULL || b->src_bit == NULL || hv_src_init(&b->src, nf) != HV_OK ||
-        b->pc_sum[0] == NULL || b->pc_sum[1] == NULL || b->pc_n[0] == NULL || b->pc_n[1] == NULL ||
+        b->pc.sum[0] == NULL || b->pc.sum[1] == NULL || b->pc.n[0] == NULL || b->pc.n[1] == NULL ||
         b->ind == NULL || b->val == NULL || b->best == NULL || b->sigma_stop == NULL || !hash_rebuild(b, 1024)) {
         return HV_ERR_PLAN_NOMEM;
     }
@@ -1261,10 +1261,10 @@ static int by_fruit_stop(const void *a, const void *c)
  * own when it was branched on in that direction, else the average over all fruits, else 1. */
 static double pseudocost(const bp_t *b, uint32_t f, int d)
 {
-    if (b->pc_n[d][f] > 0) {
-        return b->pc_sum[d][f] / (double)b->pc_n[d][f];
+    if (b->pc.n[d][f] > 0) {
+        return b->pc.sum[d][f] / (double)b->pc.n[d][f];
     }
-    return b->pc_all_n[d] > 0 ? b->pc_all[d] / (double)b->pc_all_n[d] : 1.0;
+    return b->pc.all_n[d] > 0 ? b->pc.all[d] / (double)b->pc.all_n[d] : 1.0;
 }
 
 /* Child k of a fruit split is solved: its bound rise over its parent's, per unit of mass
@@ -1282,10 +1282,14 @@ static void pseudocost_record(bp_t *b, int32_t k)
     }
     int d = c->rhs == 1; /* the "> stop" child */
     double g = fmax(0.0, lb - plb) / c->frac;
-    b->pc_sum[d][c->fruit] += g;
-    b->pc_n[d][c->fruit]++;
-    b->pc_all[d] += g;
-    b->pc_all_n[d]++;
+    if (b->share != NULL) {
+        hv_share_pc_add(b->share, c->fruit, d, g); /* both workers learn from it */
+        return;
+    }
+    b->pc.sum[d][c->fruit] += g;
+    b->pc.n[d][c->fruit]++;
+    b->pc.all[d] += g;
+    b->pc.all_n[d]++;
 }
 
 /* The fruit whose stop is split most evenly by the master point, at the stop that halves
@@ -1310,6 +1314,9 @@ static hv_status_t choose_split(bp_t *b, const double *x, split_t *best)
         }
     }
     qsort(m, n, sizeof *m, by_fruit_stop);
+    if (b->share != NULL && b->opt->pseudocost) {
+        hv_share_pc_get(b->share, &b->pc); /* what both workers learnt */
+    }
     best->score = 0.0;
     for (size_t i = 0; i < n;) {
         size_t e = i;
@@ -2085,12 +2092,6 @@ static hv_status_t bp_clone(bp_t *w, const bp_t *b)
     w->fixed_ub = b->fixed_ub;
     memcpy(w->best, b->best, nf * sizeof *w->best);
     w->ub_ms = b->ub_ms;
-    for (int d = 0; d < 2; ++d) {
-        memcpy(w->pc_sum[d], b->pc_sum[d], nf * sizeof *w->pc_sum[d]);
-        memcpy(w->pc_n[d], b->pc_n[d], nf * sizeof *w->pc_n[d]);
-        w->pc_all[d] = b->pc_all[d];
-        w->pc_all_n[d] = b->pc_all_n[d];
-    }
     memcpy(w->warm_pair, b->warm_pair, np * sizeof *w->warm_pair);
     memcpy(w->warm_n, b->warm_n, b->ns * sizeof *w->warm_n);
     w->t_deadline = w->pricer.t_deadline_s = b->t_deadline;
@@ -2182,6 +2183,7 @@ static hv_status_t worker_start(bp_t *b)
     pthread_mutex_init(&wk->mu, NULL);
     pthread_cond_init(&wk->cv, NULL);
     hv_share_offer(wk->share, b->best, b->ub_ms);
+    hv_share_pc_set(wk->share, &b->pc);
     if (pthread_create(&wk->thread, NULL, worker_main, wk) != 0) {
         if (b->opt->verbose >= 1) {
             fprintf(stderr, "price: the second tree worker did not start: one worker\n");

@@ -32,17 +32,28 @@ struct hv_share {
     size_t n_q, q_cap;
     hv_share_step_t *steps; /* of the queued nodes; reset when the queue empties */
     size_t n_steps, steps_cap;
+    hv_share_pc_t pc;
 };
 
 hv_status_t hv_share_create(size_t n_workers, size_t n_fruits, hv_share_t **out)
 {
     hv_share_t *s = calloc(1, sizeof *s);
-    if (s == NULL || (s->best = malloc((n_fruits + 1) * sizeof *s->best)) == NULL) {
-        free(s);
+    if (s == NULL) {
         return HV_ERR_PLAN_NOMEM;
     }
     pthread_mutex_init(&s->mu, NULL);
     pthread_cond_init(&s->cv, NULL);
+    s->best = malloc((n_fruits + 1) * sizeof *s->best);
+    int ok = s->best != NULL;
+    for (int d = 0; d < 2; ++d) {
+        s->pc.sum[d] = calloc(n_fruits + 1, sizeof *s->pc.sum[d]);
+        s->pc.n[d] = calloc(n_fruits + 1, sizeof *s->pc.n[d]);
+        ok &= s->pc.sum[d] != NULL && s->pc.n[d] != NULL;
+    }
+    if (!ok) {
+        hv_share_destroy(s);
+        return HV_ERR_PLAN_NOMEM;
+    }
     s->n_workers = n_workers;
     s->nf = n_fruits;
     s->best_ms = INFINITY;
@@ -57,6 +68,10 @@ void hv_share_destroy(hv_share_t *s)
     }
     pthread_cond_destroy(&s->cv);
     pthread_mutex_destroy(&s->mu);
+    for (int d = 0; d < 2; ++d) {
+        free(s->pc.sum[d]);
+        free(s->pc.n[d]);
+    }
     free(s->best);
     free(s->q);
     free(s->steps);
@@ -162,6 +177,41 @@ int hv_share_failed(hv_share_t *s)
     int f = s->failed;
     pthread_mutex_unlock(&s->mu);
     return f;
+}
+
+/* dst's arrays (nf entries) and totals become src's. */
+static void pc_copy(hv_share_pc_t *dst, const hv_share_pc_t *src, size_t nf)
+{
+    for (int d = 0; d < 2; ++d) {
+        memcpy(dst->sum[d], src->sum[d], nf * sizeof *dst->sum[d]);
+        memcpy(dst->n[d], src->n[d], nf * sizeof *dst->n[d]);
+        dst->all[d] = src->all[d];
+        dst->all_n[d] = src->all_n[d];
+    }
+}
+
+void hv_share_pc_set(hv_share_t *s, const hv_share_pc_t *pc)
+{
+    pthread_mutex_lock(&s->mu);
+    pc_copy(&s->pc, pc, s->nf);
+    pthread_mutex_unlock(&s->mu);
+}
+
+void hv_share_pc_add(hv_share_t *s, uint32_t fruit, int d, double g)
+{
+    pthread_mutex_lock(&s->mu);
+    s->pc.sum[d][fruit] += g;
+    s->pc.n[d][fruit]++;
+    s->pc.all[d] += g;
+    s->pc.all_n[d]++;
+    pthread_mutex_unlock(&s->mu);
+}
+
+void hv_share_pc_get(hv_share_t *s, hv_share_pc_t *pc)
+{
+    pthread_mutex_lock(&s->mu);
+    pc_copy(pc, &s->pc, s->nf);
+    pthread_mutex_unlock(&s->mu);
 }
 
 double hv_share_open_lb(hv_share_t *s, size_t *n)

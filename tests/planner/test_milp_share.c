@@ -1,6 +1,6 @@
 /* The tree workers' work sharing (milp_share.h): a node's path and bound arrive intact, a
  * hungry worker is seen, the search ends when every worker waits with nothing queued, a
- * failure ends every wait, and only a better plan is handed over. */
+ * failure ends every wait, only a better plan is handed over, and pseudocosts pool. */
 #define _POSIX_C_SOURCE 200809L /* nanosleep */
 #include <math.h>
 #include <pthread.h>
@@ -122,12 +122,35 @@ static void test_only_better_plans(void **state)
     hv_share_destroy(s);
 }
 
+static void test_pseudocosts_pooled(void **state)
+{
+    (void)state;
+    hv_share_t *s;
+    assert_int_equal(hv_share_create(2, 3, &s), HV_OK);
+    double sum0[3] = {1.0, 2.0, 3.0}, sum1[3] = {0.5, 0.0, 0.0};
+    long n0[3] = {1, 1, 1}, n1[3] = {1, 0, 0};
+    hv_share_pc_t mine = {{sum0, sum1}, {n0, n1}, {6.0, 0.5}, {3, 1}};
+    hv_share_pc_set(s, &mine);
+    hv_share_pc_add(s, 1, 1, 4.0); /* the other worker learns */
+    hv_share_pc_add(s, 1, 1, 2.0);
+    double g0[3], g1[3];
+    long m0[3], m1[3];
+    hv_share_pc_t got = {{g0, g1}, {m0, m1}, {0.0, 0.0}, {0, 0}};
+    hv_share_pc_get(s, &got);
+    assert_true(g0[2] == 3.0 && m0[2] == 1);
+    assert_true(g1[1] == 6.0 && m1[1] == 2);
+    assert_true(got.all[1] == 6.5 && got.all_n[1] == 3);
+    assert_true(got.all[0] == 6.0 && got.all_n[0] == 3);
+    hv_share_destroy(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_node_travels_and_search_ends),
         cmocka_unit_test(test_queue_bound_and_failure),
         cmocka_unit_test(test_only_better_plans),
+        cmocka_unit_test(test_pseudocosts_pooled),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

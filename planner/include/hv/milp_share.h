@@ -5,7 +5,8 @@
  * node travels between them as the path of restrictions from the root to it: the two
  * masters number their columns differently once they have split, so nothing else of a
  * node is portable. A worker takes a node only when it has none of its own; the other
- * gives its best one at its next node. The incumbent is shared, so either prunes by it.
+ * gives its best one at its next node. The incumbent is shared, so either prunes by it, and
+ * so are the pseudocosts of fruit splits, so either branches on what both learnt.
  *
  * All calls are thread-safe. Bounds and makespans are in ms, times in s (CLOCK_MONOTONIC).
  */
@@ -58,6 +59,25 @@ int hv_share_wait(hv_share_t *s, hv_share_step_t **path, size_t *cap, size_t *n,
 /* A worker stopped on an error: the others stop too (hv_share_failed). */
 void hv_share_fail(hv_share_t *s);
 int hv_share_failed(hv_share_t *s);
+
+/* Pseudocosts of fruit splits pooled over the workers: per direction d (0 the "<= stop"
+ * child, 1 the "> stop" one) and fruit, the sum of the bound rises per unit of mass moved
+ * and their number, and both over all fruits (all[d], all_n[d]). */
+typedef struct hv_share_pc {
+    double *sum[2];
+    long *n[2];
+    double all[2];
+    long all_n[2];
+} hv_share_pc_t;
+
+/* The pool becomes a copy of pc (the first worker's, when the second starts). */
+void hv_share_pc_set(hv_share_t *s, const hv_share_pc_t *pc);
+
+/* One observation: rise g of fruit's child in direction d. */
+void hv_share_pc_add(hv_share_t *s, uint32_t fruit, int d, double g);
+
+/* pc (arrays of n_fruits entries) becomes a copy of the pool. */
+void hv_share_pc_get(hv_share_t *s, hv_share_pc_t *pc);
 
 /* The least bound of the nodes still queued (INFINITY when none); their number in *n. */
 double hv_share_open_lb(hv_share_t *s, size_t *n);
