@@ -2075,7 +2075,9 @@ static hv_status_t bp_clone(bp_t *w, const bp_t *b)
     memcpy(w->pat_open, b->pat_open, b->n_pat);
     memcpy(w->pat_dead, b->pat_dead, b->n_pat);
     w->n_crow = b->n_crow;
-    memcpy(w->crow, b->crow, b->n_crow * sizeof *w->crow);
+    if (b->n_crow > 0) { /* b->crow is NULL until the first count row */
+        memcpy(w->crow, b->crow, b->n_crow * sizeof *w->crow);
+    }
     if (!hash_rebuild(w, b->hcap)) {
         return HV_ERR_PLAN_NOMEM;
     }

@@ -67,7 +67,9 @@ hv_status_t hv_src_copy(hv_src_t *dst, const hv_src_t *src)
         !hv_grow((void **)&dst->tri, &dst->cap, src->n + 1, sizeof *dst->tri)) {
         return dst->nf != src->nf ? HV_ERR_ARG : HV_ERR_PLAN_NOMEM;
     }
-    memcpy(dst->tri, src->tri, src->n * sizeof *dst->tri);
+    if (src->n > 0) { /* src->tri is NULL until the first cut */
+        memcpy(dst->tri, src->tri, src->n * sizeof *dst->tri);
+    }
     dst->n = src->n;
     dst->cross_sides = src->cross_sides;
     return index_cuts(dst) ? HV_OK : HV_ERR_PLAN_NOMEM;
