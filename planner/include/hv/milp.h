@@ -68,9 +68,10 @@ typedef struct hv_milp_options {
                                 one side only */
     int pseudocost;          /* price: 1 fruit splits are chosen by pseudocosts (the bound
                                 rises seen per unit of mass moved), 0 the most balanced */
-    int tree_threads;        /* price: 2 a second thread searches the tree too while the
-                                helper thread is not running (milp_share.h); 1 one thread.
-                                opt->stop is then also called from that thread */
+    int tree_threads;        /* price: 2 (default) a second thread searches the tree too
+                                once the incumbent is within 0.2 % of the bound, the
+                                helper thread stopping then (milp_share.h); 1 one thread.
+                                With 2, opt->stop is also called from that thread */
     double sr_keep_gain;     /* price: the cuts stay in the tree only when they raised the
                                 root's bound by this share (they slow every master LP);
                                 0 keeps them always */
