@@ -2052,8 +2052,8 @@ static hv_status_t worker_search(bp_t *w)
 }
 
 /* w (from bp_init) becomes a copy of b's state after the root: its master (same rows and
- * columns in the same order), pattern pool, cuts, count rows, fixed pairs, incumbent and
- * pseudocosts. Returns HV_OK or an error. */
+ * columns in the same order), pattern pool, cuts, count rows, fixed pairs and incumbent
+ * (the pseudocosts come from the shared pool). Returns HV_OK or an error. */
 static hv_status_t bp_clone(bp_t *w, const bp_t *b)
 {
     size_t nf = b->nf, np = b->inst->n_pairs;
