@@ -111,6 +111,8 @@ hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t
         so.export_lp_path = NULL;
         so.window_width = 0; /* no windows within windows */
         so.polish_work = 0;  /* a long local search would not see opt->stop */
+        so.tree_threads = 1; /* a window runs on its caller's thread: the helper's, or the
+                                search's own; a worker of its own would take a third core */
         int again = 1;
         while (again && st == HV_OK && hv_milp_now_s() < t_deadline_s &&
                !(opt->stop != NULL && opt->stop(opt->stop_ctx))) {
