@@ -2015,41 +2015,7 @@ static int next_shared(bp_t *b, int32_t *k)
     }
 }
 
-/* The second worker's search: best bound first over the nodes it is given and their
- * subtrees, no dives (the main search dives). */
-static hv_status_t worker_search(bp_t *w)
-{
-    for (;;) {
-        int32_t k;
-        if (w->heap_len > 0) {
-            k = heap_pop(w);
-        } else {
-            int r = next_shared(w, &k);
-            if (r <= 0) {
-                return r == 0 ? HV_OK : HV_ERR_PLAN_NOMEM;
-            }
-        }
-        if (prunable(w, w->nodes[k].lb_ms)) {
-            continue;
-        }
-        node_end_t end;
-        split_t sp = {KIND_FRUIT, 0, 0, 0, 0, 0, 0.0, 0, 0.0, 0.0};
-        hv_status_t st = node_process(w, k, &end, &sp);
-        if (st != HV_OK) {
-            return st;
-        }
-        w->nodes_done++;
-        if (end == NODE_TIMEOUT) {
-            return heap_push(w, k) ? HV_OK : HV_ERR_PLAN_NOMEM; /* still open */
-        }
-        pseudocost_record(w, k);
-        int32_t none;
-        if (end == NODE_BRANCH && ((st = branch(w, k, &sp, 0, &none)) != HV_OK ||
-                                   (st = give_if_hungry(w)) != HV_OK)) {
-            return st;
-        }
-    }
-}
+static hv_status_t tree_search(bp_t *b, double *root_lb, long *nodes_done);
 
 /* w (from bp_init) becomes a copy of b's state after the root: its master (same rows and
  * columns in the same order), pattern pool, cuts, count rows, fixed pairs and incumbent
@@ -2139,7 +2105,8 @@ static void *worker_main(void *arg)
     pthread_cond_signal(&wk->cv);
     pthread_mutex_unlock(&wk->mu);
     if (st == HV_OK) {
-        st = worker_search(&w);
+        double root_lb; /* the main search's */
+        st = tree_search(&w, &root_lb, &w.nodes_done);
         if (st != HV_OK) {
             hv_share_fail(wk->share);
         }
@@ -2274,13 +2241,19 @@ static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
             return st;
         }
     }
-    /* Best bound first, interrupted by dives: from the root and then every DIVE_EVERY
-     * nodes, follow the child holding more of the master's mass until the dive is pruned
-     * or ends in a plan. Dives find plans (the bound rarely closes before the incumbent is
-     * optimal); best bound first proves them. With a second worker, a worker out of nodes
-     * takes one of the other's. */
+    return tree_search(b, root_lb, nodes_done);
+}
+
+/* Best bound first, interrupted by dives: from the root and then every DIVE_EVERY nodes,
+ * follow the child holding more of the master's mass until the dive is pruned or ends in
+ * a plan. Dives find plans (the bound rarely closes before the incumbent is optimal); best
+ * bound first proves them. With a second worker, a worker out of nodes takes one of the
+ * other's; the second worker does not dive, and the root (node 0) is the main search's. */
+static hv_status_t tree_search(bp_t *b, double *root_lb, long *nodes_done)
+{
+    const int32_t root = b->is_worker ? -1 : 0;
     int32_t dive = -1;
-    int diving = 1;
+    int diving = !b->is_worker;
     long since_dive = 0;
     for (;;) {
         int32_t k = dive;
@@ -2318,7 +2291,7 @@ static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
             diving = 0;
             continue;
         }
-        if (!diving && ++since_dive >= DIVE_EVERY) {
+        if (!diving && !b->is_worker && ++since_dive >= DIVE_EVERY) {
             diving = 1;
             since_dive = 0;
         }
@@ -2349,7 +2322,7 @@ static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
         }
         /* The second core searches the tree too once the incumbent is near the bound: the
          * helper then stops (it rarely improves such a plan, and more nodes prove it). */
-        if (b->opt->tree_threads > 1 && b->worker == NULL && b->heap_len > 0 &&
+        if (b->opt->tree_threads > 1 && !b->is_worker && b->worker == NULL && b->heap_len > 0 &&
             b->ub_ms - b->nodes[b->heap[0]].lb_ms <= WORKER_GAP * b->ub_ms) {
             if ((b->helper != NULL && (st = helper_finish(b, 1)) != HV_OK) ||
                 (st = worker_start(b)) != HV_OK) {

@@ -63,9 +63,11 @@ static int index_cuts(hv_src_t *s)
 
 hv_status_t hv_src_copy(hv_src_t *dst, const hv_src_t *src)
 {
-    if (dst->nf != src->nf ||
-        !hv_grow((void **)&dst->tri, &dst->cap, src->n + 1, sizeof *dst->tri)) {
-        return dst->nf != src->nf ? HV_ERR_ARG : HV_ERR_PLAN_NOMEM;
+    if (dst->nf != src->nf) {
+        return HV_ERR_ARG;
+    }
+    if (!hv_grow((void **)&dst->tri, &dst->cap, src->n + 1, sizeof *dst->tri)) {
+        return HV_ERR_PLAN_NOMEM;
     }
     if (src->n > 0) { /* src->tri is NULL until the first cut */
         memcpy(dst->tri, src->tri, src->n * sizeof *dst->tri);
