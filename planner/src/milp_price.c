@@ -30,9 +30,9 @@
 #define SMOOTHING 0.8      /* Wentges dual smoothing weight of the centre (SOLVER.md) */
 #define CAND_WINDOW 5      /* a stop's column enters when its reduced cost is the least
                               within +-CAND_WINDOW stops */
-#define CENTRE_MIN_PAIRS 9000 /* from this many pairs the root starts from the paper's LP
-                                 duals (SOLVER.md: alpha 4 needs it, alpha <= 2.5 does not),
-                                 and cover_rows 2 makes the fruit rows ">= 1" */
+#define CENTRE_MIN_PAIRS 9000 /* from this many pairs, without ascent_steps, the root starts
+                                 from the paper's LP duals (SOLVER.md), and cover_rows 2
+                                 makes the fruit rows ">= 1" */
 #define PRIMAL_ROOT_GAP 2e-3 /* polish, column dive and row windows when the root leaves
                                 more than 0.2 % (SOLVER.md) */
 #define POLISH_MAX_KICKS 1000 /* ~0.15 s at 60 fruits */
@@ -556,6 +556,10 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
     }
     for (size_t c = 0; c < SR_MAX; ++c) {
         b->src_bit[c] = -1;
+    }
+    for (size_t f = 0; f < nf; ++f) { /* the root's intervals: the centre is priced before it */
+        b->lo[f] = 0;
+        b->hi[f] = (uint32_t)(ns - 1);
     }
     for (size_t p = 0; p < ns; ++p) {
         b->stop_begin[p + 1] += b->stop_begin[p];
@@ -1864,6 +1868,91 @@ static void compact_centre(bp_t *b, double limit_s)
     }
 }
 
+/* The root's first stabilisation centre by subgradient ascent on the Lagrangian of the
+ * fruit rows, from zero duals: a step prices every stop (about 2 ms at alpha 4, against
+ * about 8 ms for a round of the master LP), so `steps` steps bring the bound near the root
+ * LP's before the master's first solve, and the column generation only has to finish
+ * from there (SOLVER.md). Polyak steps towards the incumbent, halved after 4 steps without
+ * a better bound; the duals stay >= 0, so every step's value is a valid bound. The best
+ * pattern of every stop in the second half of the steps joins the master. */
+static hv_status_t ascent_centre(bp_t *b, int steps)
+{
+    size_t nf = b->nf;
+    double *pi = calloc(nf + 1, sizeof *pi), *g = malloc((nf + 1) * sizeof *g),
+           *pi_best = calloc(nf + 1, sizeof *pi_best);
+    hv_status_t st = pi != NULL && g != NULL && pi_best != NULL ? HV_OK : HV_ERR_PLAN_NOMEM;
+    double best = -INFINITY, theta = 1.0, t0 = hv_milp_now_s();
+    int since = 0, it = 0;
+    long added = 0;
+    for (; st == HV_OK && it < steps && !must_stop(b); ++it) {
+        double lag = b->travel_ms;
+        for (size_t f = 0; f < nf; ++f) {
+            lag += pi[f];
+            g[f] = b->row_of_fruit[f] ? 1.0 : 0.0; /* 1 - the times f is covered */
+        }
+        for (size_t p = 0; p < b->ns && st == HV_OK; ++p) {
+            if (b->row_of_stop[p] == 0) {
+                continue;
+            }
+            size_t nl, nr, n_sel;
+            double v, time;
+            stop_items(b, p, pi, 1, &nl, &nr);
+            st = hv_pricer_best(&b->pricer, b->itl, nl, b->itr, nr, b->tau_ms, NULL, 0.0, &v,
+                                b->sel, &n_sel, &time);
+            if (st != HV_OK || time < 0.0) {
+                continue; /* time < 0: no pattern below 0, the stop stays closed */
+            }
+            lag += v;
+            for (size_t q = 0; q < n_sel; ++q) {
+                g[b->sel[q]] -= 1.0;
+            }
+            int r = 2 * it >= steps ? pattern_add(b, (uint32_t)p, b->sel, (uint32_t)n_sel,
+                                                  b->tau_ms + time)
+                                    : 0;
+            st = r < 0 ? HV_ERR_PLAN_NOMEM : HV_OK;
+            added += r;
+        }
+        if (st != HV_OK) {
+            break;
+        }
+        if (lag > best) {
+            best = lag;
+            memcpy(pi_best, pi, nf * sizeof *pi);
+            since = 0;
+        } else if (++since >= 4) {
+            theta *= 0.5;
+            since = 0;
+        }
+        double norm = 0.0;
+        for (size_t f = 0; f < nf; ++f) {
+            norm += g[f] * g[f];
+        }
+        if (norm == 0.0 || !isfinite(b->ub_ms)) {
+            break; /* every fruit covered once: these duals are optimal */
+        }
+        double step = theta * (b->ub_ms - lag) / norm;
+        for (size_t f = 0; f < nf; ++f) {
+            pi[f] = fmax(0.0, pi[f] + step * g[f]);
+        }
+    }
+    if (st == HV_ERR_MILP_DEADLINE) {
+        st = HV_OK; /* the search sees the deadline */
+    }
+    if (st == HV_OK && isfinite(best)) {
+        memcpy(b->pi_c, pi_best, nf * sizeof *pi_best);
+        b->center_lag = best;
+        b->root_centre = 1;
+    }
+    if (b->opt->verbose >= 1) {
+        fprintf(stderr, "price: centre by %d ascent steps, bound %.3f s in %.2f s, %ld columns\n",
+                it, best / 1000.0, hv_milp_now_s() - t0, added);
+    }
+    free(pi);
+    free(g);
+    free(pi_best);
+    return st;
+}
+
 /* A primal dive by column fixing: from node `from` (just solved), repeatedly fix the master's
  * heaviest fractional pattern (its column at 1; its stop and its fruits in no other column)
  * and re-solve by column generation, until the master point is a plan or the dive's bound
@@ -2270,6 +2359,9 @@ static hv_status_t tree_search(bp_t *b, double *root_lb, long *nodes_done)
             }
         }
         if (prunable(b, b->nodes[k].lb_ms)) {
+            if (k == root) {
+                *root_lb = b->nodes[k].lb_ms; /* closed by the ascent's bound, unsolved */
+            }
             diving = 0;
             continue;
         }
@@ -2356,7 +2448,9 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
     }
     double root_lb = -INFINITY;
     long nodes = 0;
-    if (st == HV_OK && inst->n_pairs >= CENTRE_MIN_PAIRS) {
+    if (st == HV_OK && opt->ascent_steps > 0) {
+        st = ascent_centre(&b, opt->ascent_steps);
+    } else if (st == HV_OK && inst->n_pairs >= CENTRE_MIN_PAIRS) {
         compact_centre(&b, 0.25 * (t_deadline_s - hv_milp_now_s()));
     }
     if (st == HV_OK) {

@@ -285,7 +285,9 @@ static void test_two_tree_workers(void **state)
         double t;
         assert_int_equal(hv_assignment_makespan(&in, &out, &t), HV_OK);
         assert_true(fabs(t - r2.objective_s) < 1e-6);
-        assert_true(r2.worker_nodes >= 0 && r2.worker_nodes < r2.nodes);
+        /* no node at all when the ascent before the root already proves the plan */
+        assert_true(r2.worker_nodes >= 0 &&
+                    (r2.worker_nodes < r2.nodes || (r2.nodes == 0 && r2.worker_nodes == 0)));
         print_message("seed %llu: %ld nodes, %ld by the second worker (one worker: %ld)\n",
                       (unsigned long long)seed, r2.nodes, r2.worker_nodes, r1.nodes);
         worker_nodes += r2.worker_nodes;
@@ -296,6 +298,39 @@ static void test_two_tree_workers(void **state)
     print_message("the second worker solved %ld nodes on %d of 24 instances\n", worker_nodes,
                   with_worker);
     assert_true(with_worker >= 2); /* precondition: the second worker searched */
+}
+
+/* The ascent before the root (ascent_steps): its bound is a proven one, so with it or
+ * without (and with many steps, whose bound comes closest) the same optimum is proven, and
+ * the root's bound never exceeds it; on some instances the ascent alone closes the root. */
+static void test_ascent_centre(void **state)
+{
+    (void)state;
+    int closed_by_ascent = 0;
+    for (uint64_t seed = 400; seed < 416; ++seed) {
+        hv_instance_t in;
+        make_instance(&in, 20 + seed % 10, 30, 10, 0, seed);
+        hv_assignment_t out;
+        assert_int_equal(hv_assignment_alloc(&out, in.n_fruits), HV_OK);
+        hv_milp_options_t o;
+        exact_options(&o);
+        o.tree_threads = 1;
+        o.helper_thread = 0;
+        o.ascent_steps = 0;
+        hv_milp_result_t r0, r;
+        assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &r0), HV_OK);
+        assert_int_equal(r0.status, HV_SOLVE_OPTIMAL);
+        for (int steps = 100; steps <= 1000; steps += 900) {
+            o.ascent_steps = steps;
+            solve_to_optimum(&in, &o, &out, r0.objective_s, seed, "with the ascent", &r);
+            assert_true(r.root_bound_s <= r.objective_s + 1e-6);
+            closed_by_ascent += r.nodes == 0;
+        }
+        hv_assignment_free(&out);
+        hv_instance_free(&in);
+    }
+    print_message("the ascent closed the root on its own in %d of 32 solves\n", closed_by_ascent);
+    assert_true(closed_by_ascent >= 1); /* precondition: its bound decided some proofs */
 }
 
 /* What test_window_improve's callback saw: every reported plan is a plan, with the makespan
@@ -721,6 +756,7 @@ int main(void)
         cmocka_unit_test(test_matches_brute_force),
         cmocka_unit_test(test_price_matches_compact),
         cmocka_unit_test(test_two_tree_workers),
+        cmocka_unit_test(test_ascent_centre),
         cmocka_unit_test(test_window_improve),
         cmocka_unit_test(test_helper_thread),
         cmocka_unit_test(test_stop_callback),

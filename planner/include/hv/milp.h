@@ -72,6 +72,10 @@ typedef struct hv_milp_options {
                                 once the incumbent is within 0.2 % of the bound, the
                                 helper thread stopping then (milp_share.h); 1 one thread.
                                 With 2, opt->stop is also called from that thread */
+    int ascent_steps;        /* price: subgradient steps on the fruit rows' Lagrangian
+                                before the root (its first stabilisation centre and
+                                columns); 0 none, the centre then comes from the paper's
+                                LP on instances of 9,000+ pairs */
     double sr_keep_gain;     /* price: the cuts stay in the tree only when they raised the
                                 root's bound by this share (they slow every master LP);
                                 0 keeps them always */
