@@ -12,6 +12,7 @@
 #define HELPER_WINDOW_LIMIT_S 0.5 /* per window sub-solve */
 #define HELPER_KICKS 200          /* local-search kicks after a round of widths found nothing */
 #define HELPER_KICKS_CHUNK 20     /* ... run this many at a time (~10-30 ms) */
+#define POLISH_CHUNK 50           /* the first polish's kicks between two looks at the clock */
 
 static const unsigned widths[] = {4, 3, 5, 6, 2};
 #define N_WIDTHS (sizeof widths / sizeof widths[0])
@@ -20,6 +21,7 @@ struct hv_helper {
     const hv_instance_t *inst;
     hv_milp_options_t opt; /* for the window sub-solves: polls stop_requested() */
     double t_deadline;
+    unsigned polish_kicks;
     pthread_t thread;
     pthread_mutex_t mu; /* guards everything below */
     int stop;
@@ -57,6 +59,31 @@ static void publish_window(void *ctx, const hv_assignment_t *a, double t)
     publish(ctx, a, t, 1);
 }
 
+/* The first polish: a long local search from the starting plan, in chunks between which
+ * the clock and the stop flag are read (the local search polls neither); each chunk's
+ * plan is published, so the search has it at its next pricing round. */
+static hv_status_t polish(hv_helper_t *h, hv_assignment_t *a)
+{
+    pthread_mutex_lock(&h->mu);
+    memcpy(a->fruit_stop, h->best.fruit_stop, h->inst->n_fruits * sizeof *a->fruit_stop);
+    double t = h->best_t;
+    pthread_mutex_unlock(&h->mu);
+    hv_ls_options_t lo;
+    hv_ls_options_default(&lo);
+    hv_status_t st = HV_OK;
+    for (unsigned done = 0; done < h->polish_kicks && st == HV_OK && !stop_requested(h) &&
+                            hv_milp_now_s() < h->t_deadline;
+         done += POLISH_CHUNK) {
+        lo.kicks = h->polish_kicks - done < POLISH_CHUNK ? h->polish_kicks - done : POLISH_CHUNK;
+        lo.seed = 0x9e3779b97f4a7c15ull * (uint64_t)(done + 1u);
+        st = hv_local_search(h->inst, &lo, a, &t);
+        if (st == HV_OK) {
+            publish(h, a, t, 1);
+        }
+    }
+    return st;
+}
+
 static void *helper_main(void *arg)
 {
     hv_helper_t *h = arg;
@@ -65,6 +92,9 @@ static void *helper_main(void *arg)
     hv_status_t st = hv_assignment_alloc(&a, nf);
     int have_a = st == HV_OK;
     unsigned round = 0, idle = 0; /* widths tried since the last improvement */
+    if (st == HV_OK) {
+        st = polish(h, &a);
+    }
     while (st == HV_OK && !stop_requested(h) && hv_milp_now_s() < h->t_deadline) {
         pthread_mutex_lock(&h->mu);
         memcpy(a.fruit_stop, h->best.fruit_stop, nf * sizeof *a.fruit_stop);
@@ -107,7 +137,7 @@ static void *helper_main(void *arg)
 
 hv_status_t hv_helper_start(const hv_instance_t *inst, const hv_milp_options_t *opt,
                             const hv_assignment_t *plan, double t_s, double t_deadline_s,
-                            hv_helper_t **out)
+                            unsigned polish_kicks, hv_helper_t **out)
 {
     *out = NULL;
     hv_helper_t *h = calloc(1, sizeof *h);
@@ -126,6 +156,7 @@ hv_status_t hv_helper_start(const hv_instance_t *inst, const hv_milp_options_t *
     h->opt.stop = stop_requested;
     h->opt.stop_ctx = h;
     h->t_deadline = t_deadline_s;
+    h->polish_kicks = polish_kicks;
     if (pthread_mutex_init(&h->mu, NULL) != 0) {
         hv_assignment_free(&h->best);
         free(h);

@@ -1415,29 +1415,39 @@ static hv_status_t round_and_improve(bp_t *b, const double *x)
     return st;
 }
 
-/* When the root leaves more than PRIMAL_ROOT_GAP: a long local search from the incumbent,
- * polish_work * 100 / n^2 kicks (a descent costs ~n^2), at most POLISH_MAX_KICKS. Before the
- * pair fixing, which a better incumbent makes stronger. */
+/* The polish's length: polish_work * 100 / n^2 kicks (a descent costs ~n^2), at least
+ * POLISH_CHUNK, at most POLISH_MAX_KICKS; 0 when polish_work is 0. */
+static unsigned polish_kicks(const bp_t *b)
+{
+    if (b->opt->polish_work <= 0) {
+        return 0;
+    }
+    size_t n = b->nf ? b->nf : 1;
+    size_t kicks = (size_t)b->opt->polish_work * 100u / (n * n);
+    return (unsigned)(kicks < POLISH_CHUNK ? POLISH_CHUNK
+                                           : (kicks > POLISH_MAX_KICKS ? POLISH_MAX_KICKS : kicks));
+}
+
+/* Without a helper thread (which polishes from the start of the solve), when the root
+ * leaves more than PRIMAL_ROOT_GAP: a long local search from the incumbent, before the pair
+ * fixing, which a better incumbent makes stronger. */
 static hv_status_t polish_incumbent(bp_t *b)
 {
-    if (b->opt->polish_work <= 0 || !isfinite(b->ub_ms)) {
+    unsigned kicks = polish_kicks(b);
+    if (kicks == 0 || !isfinite(b->ub_ms)) {
         return HV_OK;
     }
     double t0 = hv_milp_now_s();
-    size_t n = b->nf ? b->nf : 1;
-    size_t kicks = (size_t)b->opt->polish_work * 100u / (n * n);
     hv_assignment_t a;
     if (hv_assignment_alloc(&a, b->nf) != HV_OK) {
         return HV_ERR_PLAN_NOMEM;
     }
     memcpy(a.fruit_stop, b->best, b->nf * sizeof *b->best);
-    kicks = kicks < 50 ? 50 : (kicks > POLISH_MAX_KICKS ? POLISH_MAX_KICKS : kicks);
     hv_status_t st = HV_OK;
     /* in chunks, between which the clock is read: the local search does not poll it, and
      * at alpha 4 (250 fruits) 1000 kicks took 0.8 s, past a 10 s limit */
-    for (size_t done = 0; done < kicks && st == HV_OK && !must_stop(b); done += POLISH_CHUNK) {
-        st = improve_plan(b, &a, (unsigned)(kicks - done < POLISH_CHUNK ? kicks - done
-                                                                        : POLISH_CHUNK));
+    for (unsigned done = 0; done < kicks && st == HV_OK && !must_stop(b); done += POLISH_CHUNK) {
+        st = improve_plan(b, &a, kicks - done < POLISH_CHUNK ? kicks - done : POLISH_CHUNK);
     }
     hv_assignment_free(&a);
     b->t_heur += hv_milp_now_s() - t0;
@@ -1779,7 +1789,7 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
             /* the root is solved: its best duals fix pairs for the whole tree */
             memcpy(b->root_pi, b->pi_c, n_pi(b) * sizeof *b->root_pi);
             b->root_lag = b->center_lag;
-            if (b->ub_ms - b->root_lag > PRIMAL_ROOT_GAP * b->ub_ms &&
+            if (b->ub_ms - b->root_lag > PRIMAL_ROOT_GAP * b->ub_ms && b->helper == NULL &&
                 (st = polish_incumbent(b)) != HV_OK) {
                 return st;
             }
@@ -2327,12 +2337,11 @@ static hv_status_t search(bp_t *b, double *root_lb, long *nodes_done)
     }
     *root_lb = -INFINITY;
     *nodes_done = 0;
-    if (b->opt->window_width > 0 && b->opt->helper_thread && isfinite(b->ub_ms) &&
-        b->inst->n_pairs >= CENTRE_MIN_PAIRS) {
-        /* a root of seconds: the second core improves the plan meanwhile */
+    if (b->opt->window_width > 0 && b->opt->helper_thread && isfinite(b->ub_ms)) {
+        /* the second core polishes the plan and re-plans its windows during the root */
         hv_assignment_t a = {b->nf, b->best};
         hv_status_t st = hv_helper_start(b->inst, b->opt, &a, b->ub_ms / 1000.0, b->t_deadline,
-                                         &b->helper);
+                                         polish_kicks(b), &b->helper);
         if (st != HV_OK) {
             return st;
         }
@@ -2411,7 +2420,7 @@ static hv_status_t tree_search(bp_t *b, double *root_lb, long *nodes_done)
             if (b->opt->helper_thread) {
                 hv_assignment_t a = {b->nf, b->best};
                 st = hv_helper_start(b->inst, b->opt, &a, b->ub_ms / 1000.0, b->t_deadline,
-                                     &b->helper);
+                                     0, &b->helper); /* this thread has polished */
             } else {
                 st = window_reopt(b);
             }

@@ -46,7 +46,8 @@ typedef struct hv_milp_options {
                                 block_stops stops when > 0), branched on first */
     int block_stops;
     int polish_work;         /* > 0: run the local search from the best plan with
-                                polish_work * 100 / n_fruits^2 kicks (1500 at 100 fruits)
+                                polish_work * 100 / n_fruits^2 kicks (at most 1000) on the
+                                helper thread from the start (price, helper_thread), else
                                 when the root does not close the gap (price) or when the
                                 root gap is > 0.2 % and phase 1 of the tree (20 % of the
                                 limit) does not prove optimality (compact) */
@@ -58,10 +59,10 @@ typedef struct hv_milp_options {
     int window_width;        /* price: when the root leaves > 0.2 %, re-plan windows of this
                                 many consecutive stops of the incumbent exactly
                                 (milp_window.h) for up to a quarter of the limit; 0 never */
-    int helper_thread;       /* price, with window_width > 0: 1 re-plans windows in a
-                                second thread for the rest of the solve instead, cycling
-                                through widths 4, 3, 5, 6, 2 (milp_helper.h); on instances
-                                of 9,000+ pairs from the start of the solve */
+    int helper_thread;       /* price, with window_width > 0: 1 a second thread, from the
+                                start of the solve, first runs the polish (polish_work)
+                                and then re-plans windows for the rest of the solve,
+                                cycling through widths 4, 3, 5, 6, 2 (milp_helper.h) */
     int sr_cuts;             /* price: rounds of subset-row cuts on fruit triples at the root
                                 (milp_srcuts.h); 0 none */
     int sr_cross;            /* price: 1 the cuts' triples may hold fruits of both sides, 0

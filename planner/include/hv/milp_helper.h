@@ -1,8 +1,10 @@
 /* A helper thread that improves the search's incumbent on the second core (internal to the
  * branch-and-price; milp_price.h). DESIGN §10 counts 2 cores; the tree search uses one.
  *
- * The helper re-plans row windows of the best plan it knows (milp_window.h), with widths
- * 4, 3, 5, 6, 2 in turn, until it is stopped or its deadline passes. The search offers it
+ * The helper first polishes its starting plan by a long local search (the polish the
+ * search would otherwise run in its own thread after the root), then re-plans row windows
+ * of the best plan it knows (milp_window.h), with widths 4, 3, 5, 6, 2 in turn, until it
+ * is stopped or its deadline passes. The search offers it
  * every better plan it finds and takes the helper's better plans at each pricing round. Each
  * thread has its own GLPK environment (GLPK keeps it thread-local).
  */
@@ -20,11 +22,12 @@ extern "C" {
 typedef struct hv_helper hv_helper_t;
 
 /* Start the helper from `plan` (makespan t_s) of `inst`, which must outlive it; it works
- * until hv_helper_stop or the clock (CLOCK_MONOTONIC, s) reaches t_deadline_s. `opt` is
- * copied. Returns HV_OK, HV_ERR_PLAN_NOMEM, or HV_ERR_ARG when the thread cannot start. */
+ * until hv_helper_stop or the clock (CLOCK_MONOTONIC, s) reaches t_deadline_s, beginning
+ * with `polish_kicks` local-search kicks (0: none). `opt` is copied. Returns HV_OK,
+ * HV_ERR_PLAN_NOMEM, or HV_ERR_ARG when the thread cannot start. */
 hv_status_t hv_helper_start(const hv_instance_t *inst, const hv_milp_options_t *opt,
                             const hv_assignment_t *plan, double t_s, double t_deadline_s,
-                            hv_helper_t **out);
+                            unsigned polish_kicks, hv_helper_t **out);
 
 /* The search's better plan: the helper continues from it when it beats its own. */
 void hv_helper_offer(hv_helper_t *h, const hv_assignment_t *plan, double t_s);
