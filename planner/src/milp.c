@@ -44,6 +44,7 @@ void hv_milp_options_default(hv_milp_options_t *opt)
     opt->pseudocost = 1;
     opt->tree_threads = 2;
     opt->ascent_steps = 100;
+    opt->auto_smoothing = 1;
     opt->window_width = 4;
     opt->helper_thread = 1;
     opt->stop = NULL;

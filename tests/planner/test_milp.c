@@ -300,6 +300,21 @@ static void test_two_tree_workers(void **state)
     assert_true(with_worker >= 2); /* precondition: the second worker searched */
 }
 
+/* exact_options on one thread, no helper: deterministic, for comparing two settings */
+static void one_thread_options(hv_milp_options_t *o)
+{
+    exact_options(o);
+    o->tree_threads = 1;
+    o->helper_thread = 0;
+}
+
+static void solve_optimal(const hv_instance_t *in, const hv_milp_options_t *o,
+                          hv_assignment_t *out, hv_milp_result_t *r)
+{
+    assert_int_equal(hv_milp_solve(in, o, NULL, out, r), HV_OK);
+    assert_int_equal(r->status, HV_SOLVE_OPTIMAL);
+}
+
 /* The ascent before the root (ascent_steps): its bound is a proven one, so with it or
  * without (and with many steps, whose bound comes closest) the same optimum is proven, and
  * the root's bound never exceeds it; on some instances the ascent alone closes the root. */
@@ -313,13 +328,10 @@ static void test_ascent_centre(void **state)
         hv_assignment_t out;
         assert_int_equal(hv_assignment_alloc(&out, in.n_fruits), HV_OK);
         hv_milp_options_t o;
-        exact_options(&o);
-        o.tree_threads = 1;
-        o.helper_thread = 0;
+        one_thread_options(&o);
         o.ascent_steps = 0;
         hv_milp_result_t r0, r;
-        assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &r0), HV_OK);
-        assert_int_equal(r0.status, HV_SOLVE_OPTIMAL);
+        solve_optimal(&in, &o, &out, &r0);
         for (int steps = 100; steps <= 1000; steps += 900) {
             o.ascent_steps = steps;
             solve_to_optimum(&in, &o, &out, r0.objective_s, seed, "with the ascent", &r);
@@ -331,6 +343,35 @@ static void test_ascent_centre(void **state)
     }
     print_message("the ascent closed the root on its own in %d of 32 solves\n", closed_by_ascent);
     assert_true(closed_by_ascent >= 1); /* precondition: its bound decided some proofs */
+}
+
+/* The adaptive smoothing weight (auto_smoothing) changes the duals priced at, never the
+ * optimum: with it or with the fixed weight the same optimum is proven on instances that
+ * branch. */
+static void test_auto_smoothing(void **state)
+{
+    (void)state;
+    int differ = 0, branched = 0;
+    for (uint64_t seed = 500; seed < 512; ++seed) {
+        hv_instance_t in;
+        make_instance(&in, 14 + seed % 9, 20 + seed % 7, 8, 0, seed);
+        hv_assignment_t out;
+        assert_int_equal(hv_assignment_alloc(&out, in.n_fruits), HV_OK);
+        hv_milp_options_t o;
+        one_thread_options(&o);
+        o.auto_smoothing = 0;
+        hv_milp_result_t r0, r1;
+        solve_optimal(&in, &o, &out, &r0);
+        o.auto_smoothing = 1;
+        solve_to_optimum(&in, &o, &out, r0.objective_s, seed, "adaptive smoothing", &r1);
+        differ += r0.nodes != r1.nodes;
+        branched += r1.nodes > 1;
+        hv_assignment_free(&out);
+        hv_instance_free(&in);
+    }
+    print_message("adaptive smoothing: %d of 12 branched, %d with other node counts\n", branched,
+                  differ);
+    assert_true(branched >= 2); /* precondition: the tree was searched */
 }
 
 /* What test_window_improve's callback saw: every reported plan is a plan, with the makespan
@@ -763,6 +804,7 @@ int main(void)
         cmocka_unit_test(test_price_matches_compact),
         cmocka_unit_test(test_two_tree_workers),
         cmocka_unit_test(test_ascent_centre),
+        cmocka_unit_test(test_auto_smoothing),
         cmocka_unit_test(test_window_improve),
         cmocka_unit_test(test_helper_thread),
         cmocka_unit_test(test_stop_callback),

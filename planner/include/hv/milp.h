@@ -73,6 +73,8 @@ typedef struct hv_milp_options {
                                 once the incumbent is within 0.2 % of the bound, the
                                 helper thread stopping then (milp_share.h); 1 one thread.
                                 With 2, opt->stop is also called from that thread */
+    int auto_smoothing;      /* price: 1 the dual smoothing weight adapts each round to the
+                                pricing's subgradient (from 0.8 at each node); 0 fixed 0.8 */
     int ascent_steps;        /* price: subgradient steps on the fruit rows' Lagrangian
                                 before the root (its first stabilisation centre and
                                 columns); 0 none, the centre then comes from the paper's
