@@ -260,6 +260,21 @@ static void test_price_matches_compact(void **state)
     assert_true(cut_runs >= 3 && cut_branched >= 1); /* precondition: cuts were exercised */
 }
 
+/* exact_options on one thread, no helper: deterministic, for comparing two settings */
+static void one_thread_options(hv_milp_options_t *o)
+{
+    exact_options(o);
+    o->tree_threads = 1;
+    o->helper_thread = 0;
+}
+
+static void solve_optimal(const hv_instance_t *in, const hv_milp_options_t *o,
+                          hv_assignment_t *out, hv_milp_result_t *r)
+{
+    assert_int_equal(hv_milp_solve(in, o, NULL, out, r), HV_OK);
+    assert_int_equal(r->status, HV_SOLVE_OPTIMAL);
+}
+
 /* Two tree workers (milp_share.h) against one: the same proven optimum, the plan returned
  * is the one of that makespan (a worker's plan must reach the result), and the second
  * worker really searched on some of them. */
@@ -277,8 +292,7 @@ static void test_two_tree_workers(void **state)
         exact_options(&o);
         o.tree_threads = 1;
         hv_milp_result_t r1, r2;
-        assert_int_equal(hv_milp_solve(&in, &o, NULL, &out, &r1), HV_OK);
-        assert_int_equal(r1.status, HV_SOLVE_OPTIMAL);
+        solve_optimal(&in, &o, &out, &r1);
         assert_int_equal(r1.worker_nodes, 0);
         o.tree_threads = 2;
         solve_to_optimum(&in, &o, &out, r1.objective_s, seed, "two tree workers", &r2);
@@ -298,21 +312,6 @@ static void test_two_tree_workers(void **state)
     print_message("the second worker solved %ld nodes on %d of 24 instances\n", worker_nodes,
                   with_worker);
     assert_true(with_worker >= 2); /* precondition: the second worker searched */
-}
-
-/* exact_options on one thread, no helper: deterministic, for comparing two settings */
-static void one_thread_options(hv_milp_options_t *o)
-{
-    exact_options(o);
-    o->tree_threads = 1;
-    o->helper_thread = 0;
-}
-
-static void solve_optimal(const hv_instance_t *in, const hv_milp_options_t *o,
-                          hv_assignment_t *out, hv_milp_result_t *r)
-{
-    assert_int_equal(hv_milp_solve(in, o, NULL, out, r), HV_OK);
-    assert_int_equal(r->status, HV_SOLVE_OPTIMAL);
 }
 
 /* The ascent before the root (ascent_steps): its bound is a proven one, so with it or
