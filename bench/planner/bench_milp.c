@@ -45,6 +45,7 @@ static void usage(FILE *f)
             "                       window_width (stops per re-planned window, 0 off),\n"
             "                       helper_thread (1: windows on a second thread),\n"
             "                       sr_cuts (rounds of subset-row cuts at the root, 0 off),\n"
+            "                       sr_cuts_large (the same from 9000 pairs),\n"
             "                       sr_keep_gain (the root gain that keeps them, 0: always),\n"
             "                       cover_rows (fruit rows: 1 >= 1, 0 = 1,\n"
             "                       2 >= 1 from 9000 pairs),\n"
@@ -93,6 +94,7 @@ static int set_option(hv_milp_options_t *o, const char *kv)
         {"algorithm", &o->algorithm},
         {"column_dive", &o->column_dive},
         {"sr_cuts", &o->sr_cuts},
+        {"sr_cuts_large", &o->sr_cuts_large},
         {"cover_rows", &o->cover_rows},
         {"sr_cross", &o->sr_cross},
         {"pseudocost", &o->pseudocost},
@@ -250,11 +252,11 @@ int main(int argc, char **argv)
     }
     printf("# MILP options: algorithm=%s disaggregated=%d heuristic=%d stops_first=%d "
            "side_bounds=%d ms=%d decompose=%d cuts=%d pcost=%d limit=%.0fs; price: "
-           "sr_cuts=%d sr_cross=%d cover_rows=%d pseudocost=%d tree_threads=%d helper_thread=%d "
+           "sr_cuts=%d/%d sr_cross=%d cover_rows=%d pseudocost=%d tree_threads=%d helper_thread=%d "
            "ascent_steps=%d auto_smoothing=%d\n",
            mo.algorithm == HV_MILP_ALG_PRICE ? "price" : "compact", mo.link_disaggregated,
            mo.heuristic_incumbent, mo.branch_stops_first, mo.side_bounds, mo.ms_granularity,
-           mo.decompose, mo.glpk_cuts, mo.pcost_branching, mo.time_limit_s, mo.sr_cuts,
+           mo.decompose, mo.glpk_cuts, mo.pcost_branching, mo.time_limit_s, mo.sr_cuts, mo.sr_cuts_large,
            mo.sr_cross, mo.cover_rows, mo.pseudocost, mo.tree_threads, mo.helper_thread,
            mo.ascent_steps, mo.auto_smoothing);
     printf("%-5s %-4s %4s %6s | %-9s %9s %9s %8s %7s %7s %5s | %9s %9s | %-9s %8s %7s | %9s %5s | %9s\n",
@@ -363,14 +365,24 @@ int main(int argc, char **argv)
         }
         size_t np = r->n_plain;
         double pmed = median(r->t_plain, np);
-        printf("%-5g | %7.3f %7.3f %3zu/%-3zu %8.2e %8.2e | %5.2f %8.4f | %5.2f %8.4f %+8.1f%% | "
-               "%9.4f %4.2fx | %2zu/%-3zu %7.2f %9.2e\n",
+        /* the baselines' and the plain model's columns read "-" when they were not run */
+        char fov[64] = "    -        -         -", serial[64] = "        -     -",
+             plain[64] = " -          -         -";
+        if (r->thr_fov > 0) {
+            snprintf(fov, sizeof fov, "%5.2f %8.4f %+8.1f%%", r->stops_fov / n, r->thr_fov / n,
+                     100.0 * (r->thr_milp / r->thr_fov - 1.0));
+        }
+        if (r->n_serial > 0) {
+            snprintf(serial, sizeof serial, "%9.4f %4.2fx",
+                     r->thr_serial / (double)r->n_serial, r->thr_milp / r->thr_serial);
+        }
+        if (np > 0) {
+            snprintf(plain, sizeof plain, "%2zu/%-3zu %7.2f %9.2e", r->n_plain_opt, np, pmed,
+                     r->plain_gap_max);
+        }
+        printf("%-5g | %7.3f %7.3f %3zu/%-3zu %8.2e %8.2e | %5.2f %8.4f | %s | %s | %s\n",
                alphas[ai], median(r->t_milp, r->n), tmax, r->n_opt, r->n, r->gap_sum / n, r->gap_max,
-               r->stops_milp / n, r->thr_milp / n, r->stops_fov / n, r->thr_fov / n,
-               r->thr_fov > 0 ? 100.0 * (r->thr_milp / r->thr_fov - 1.0) : NAN,
-               r->n_serial ? r->thr_serial / (double)r->n_serial : NAN,
-               r->thr_serial > 0 ? r->thr_milp / r->thr_serial : NAN, r->n_plain_opt, np, pmed,
-               r->plain_gap_max);
+               r->stops_milp / n, r->thr_milp / n, fov, serial, plain);
     }
     bench_tables_free(&tabs);
     return failures ? 1 : 0;

@@ -34,8 +34,9 @@
 #define CAND_WINDOW 5      /* a stop's column enters when its reduced cost is the least
                               within +-CAND_WINDOW stops */
 #define CENTRE_MIN_PAIRS 9000 /* from this many pairs, without ascent_steps, the root starts
-                                 from the paper's LP duals (SOLVER.md), and cover_rows 2
-                                 makes the fruit rows ">= 1" */
+                                 from the paper's LP duals (SOLVER.md), cover_rows 2
+                                 makes the fruit rows ">= 1", and the root separates
+                                 sr_cuts_large rounds of cuts */
 #define PRIMAL_ROOT_GAP 2e-3 /* polish, column dive and row windows when the root leaves
                                 more than 0.2 % (SOLVER.md) */
 #define POLISH_MAX_KICKS 1000 /* ~0.15 s at 60 fruits */
@@ -155,6 +156,7 @@ typedef struct bp {
     int32_t *src_bit;   /* per cut: its bit in the stop being priced, -1 none */
     double pen[64];     /* the penalties of those bits */
     int sr_rounds;      /* separation rounds done at the root */
+    int sr_max;         /* ... and to do: opt->sr_cuts, or sr_cuts_large from CENTRE_MIN_PAIRS */
     double sr_lb0;      /* the root's bound before the first cut */
     int lp_dual_next;   /* rows were added: the next master solve is a dual one */
     long src_overflow;  /* stops priced with more than 64 cuts (the rest left out) */
@@ -587,6 +589,7 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
      * stop (<= 1), and an artificial column per fruit row */
     int cover = opt->cover_rows == 1 ||
                 (opt->cover_rows == 2 && inst->n_pairs >= CENTRE_MIN_PAIRS);
+    b->sr_max = inst->n_pairs >= CENTRE_MIN_PAIRS ? opt->sr_cuts_large : opt->sr_cuts;
     b->lp = glp_create_prob();
     glp_set_obj_dir(b->lp, GLP_MIN);
     int rows = 0;
@@ -1690,7 +1693,7 @@ static hv_status_t drop_cuts(bp_t *b)
     glp_del_rows(b->lp, (int)b->src.n, num);
     b->sr_dropped += (long)b->src.n;
     hv_src_clear(&b->src);
-    b->sr_rounds = b->opt->sr_cuts;
+    b->sr_rounds = b->sr_max;
     b->center_lag = -INFINITY; /* the centre's bound counted the cuts' duals */
     return HV_OK;
 }
@@ -1800,7 +1803,7 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
             continue;
         }
         /* the master is optimal over all columns of this node */
-        if (b->nodes[k].parent < 0 && !isfinite(b->root_lag) && b->sr_rounds < b->opt->sr_cuts) {
+        if (b->nodes[k].parent < 0 && !isfinite(b->root_lag) && b->sr_rounds < b->sr_max) {
             size_t n_cuts;
             if (b->sr_rounds == 0) {
                 b->sr_lb0 = b->nodes[k].lb_ms;
@@ -1810,6 +1813,10 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
             }
             if (n_cuts > 0) {
                 b->lp_dual_next = 1; /* the point violates the new rows: repair by the dual */
+                /* the centre stays valid (its cut duals 0) while the new duals of the cuts
+                 * can be extreme: priced unsmoothed they blew the pricing up (alpha 4 seed
+                 * 5: 200,000 frontier points a round, SOLVER.md) */
+                b->smooth = SMOOTHING;
                 continue;
             }
         }

@@ -65,6 +65,8 @@ typedef struct hv_milp_options {
                                 cycling through widths 4, 3, 5, 6, 2 (milp_helper.h) */
     int sr_cuts;             /* price: rounds of subset-row cuts on fruit triples at the root
                                 (milp_srcuts.h); 0 none */
+    int sr_cuts_large;       /* price: the same on instances of 9,000+ pairs (alpha 4), where
+                                each of the first five rounds raised the root's bound */
     int sr_cross;            /* price: 1 the cuts' triples may hold fruits of both sides, 0
                                 one side only */
     int pseudocost;          /* price: 1 fruit splits are chosen by pseudocosts (the bound
