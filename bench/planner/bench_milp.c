@@ -46,6 +46,7 @@ static void usage(FILE *f)
             "                       helper_thread (1: windows on a second thread),\n"
             "                       sr_cuts (rounds of subset-row cuts at the root, 0 off),\n"
             "                       sr_cuts_large (the same from 9000 pairs),\n"
+            "                       sr_purge (1: the root's slack cuts deleted),\n"
             "                       sr_keep_gain (the root gain that keeps them, 0: always),\n"
             "                       cover_rows (fruit rows: 1 >= 1, 0 = 1,\n"
             "                       2 >= 1 from 9000 pairs),\n"
@@ -95,6 +96,7 @@ static int set_option(hv_milp_options_t *o, const char *kv)
         {"column_dive", &o->column_dive},
         {"sr_cuts", &o->sr_cuts},
         {"sr_cuts_large", &o->sr_cuts_large},
+        {"sr_purge", &o->sr_purge},
         {"cover_rows", &o->cover_rows},
         {"sr_cross", &o->sr_cross},
         {"pseudocost", &o->pseudocost},
@@ -252,11 +254,11 @@ int main(int argc, char **argv)
     }
     printf("# MILP options: algorithm=%s disaggregated=%d heuristic=%d stops_first=%d "
            "side_bounds=%d ms=%d decompose=%d cuts=%d pcost=%d limit=%.0fs; price: "
-           "sr_cuts=%d/%d sr_cross=%d cover_rows=%d pseudocost=%d tree_threads=%d helper_thread=%d "
+           "sr_cuts=%d/%d sr_purge=%d sr_cross=%d cover_rows=%d pseudocost=%d tree_threads=%d helper_thread=%d "
            "ascent_steps=%d auto_smoothing=%d\n",
            mo.algorithm == HV_MILP_ALG_PRICE ? "price" : "compact", mo.link_disaggregated,
            mo.heuristic_incumbent, mo.branch_stops_first, mo.side_bounds, mo.ms_granularity,
-           mo.decompose, mo.glpk_cuts, mo.pcost_branching, mo.time_limit_s, mo.sr_cuts, mo.sr_cuts_large,
+           mo.decompose, mo.glpk_cuts, mo.pcost_branching, mo.time_limit_s, mo.sr_cuts, mo.sr_cuts_large, mo.sr_purge,
            mo.sr_cross, mo.cover_rows, mo.pseudocost, mo.tree_threads, mo.helper_thread,
            mo.ascent_steps, mo.auto_smoothing);
     printf("%-5s %-4s %4s %6s | %-9s %9s %9s %8s %7s %7s %5s | %9s %9s | %-9s %8s %7s | %9s %5s | %9s\n",

@@ -39,6 +39,7 @@ void hv_milp_options_default(hv_milp_options_t *opt)
     opt->column_dive = 1;
     opt->sr_cuts = 1;
     opt->sr_cuts_large = 5;
+    opt->sr_purge = 1;
     opt->sr_keep_gain = 0.0;
     opt->cover_rows = 2;
     opt->sr_cross = 0;

@@ -1698,6 +1698,50 @@ static hv_status_t drop_cuts(bp_t *b)
     return HV_OK;
 }
 
+/* Deletes the cut rows that are slack at the solved root (basic, a zero dual in the
+ * master and in the centre): they cut nothing there, while every cut row makes each
+ * master solve dearer in the tree (SOLVER.md). The centre and its bound stay as they are,
+ * the basis stays valid (only basic rows go). *n_dropped: how many went. */
+static hv_status_t purge_slack_cuts(bp_t *b, size_t *n_dropped)
+{
+    size_t n = b->src.n, nf = b->nf, m = 0, d = 0;
+    unsigned char *keep = malloc(n + 1);
+    if (keep == NULL || !iv_reserve(b, n + 1)) {
+        free(keep);
+        return HV_ERR_PLAN_NOMEM;
+    }
+    for (size_t c = 0; c < n; ++c) {
+        keep[c] = glp_get_row_stat(b->lp, b->src_row[c]) != GLP_BS ||
+                  b->pi_lp[nf + c] < -RC_EPS_MS || b->pi_c[nf + c] < -RC_EPS_MS;
+        if (!keep[c]) {
+            b->ind[++d] = b->src_row[c];
+        }
+    }
+    *n_dropped = d;
+    if (d == 0) {
+        free(keep);
+        return HV_OK;
+    }
+    glp_del_rows(b->lp, (int)d, b->ind);
+    for (size_t c = 0; c < n; ++c) {
+        if (keep[c]) {
+            int below = 0; /* GLPK renumbers the rows after a deleted one */
+            for (size_t q = 1; q <= d; ++q) {
+                below += b->ind[q] < b->src_row[c];
+            }
+            b->src_row[m] = b->src_row[c] - below;
+            b->pi_c[nf + m] = b->pi_c[nf + c];
+            b->pi_lp[nf + m] = b->pi_lp[nf + c];
+            b->pi_sep[nf + m] = b->pi_sep[nf + c];
+            ++m;
+        }
+    }
+    hv_status_t st = hv_src_keep(&b->src, keep);
+    free(keep);
+    b->sr_dropped += (long)d;
+    return st;
+}
+
 typedef enum node_end { NODE_PRUNED, NODE_INTEGRAL, NODE_BRANCH, NODE_TIMEOUT } node_end_t;
 
 static void progress(bp_t *b, double lb_ms, int force)
@@ -1826,6 +1870,16 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
                 return st;
             }
             continue; /* the root keeps its bound; the master converges without them */
+        }
+        if (b->nodes[k].parent < 0 && !isfinite(b->root_lag) && b->src.n > 0 &&
+            b->opt->sr_purge) {
+            size_t n_dropped;
+            if ((st = purge_slack_cuts(b, &n_dropped)) != HV_OK) {
+                return st;
+            }
+            if (n_dropped > 0) {
+                continue; /* the same point and duals: one master solve restores them */
+            }
         }
         if (b->nodes[k].parent < 0 && !isfinite(b->root_lag)) {
             /* the root is solved: its best duals fix pairs for the whole tree */

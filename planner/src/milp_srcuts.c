@@ -61,6 +61,18 @@ static int index_cuts(hv_src_t *s)
     return 1;
 }
 
+hv_status_t hv_src_keep(hv_src_t *s, const unsigned char *keep)
+{
+    size_t m = 0;
+    for (size_t c = 0; c < s->n; ++c) {
+        if (keep[c]) {
+            memmove(s->tri[m++], s->tri[c], sizeof s->tri[c]);
+        }
+    }
+    s->n = m;
+    return index_cuts(s) ? HV_OK : HV_ERR_PLAN_NOMEM;
+}
+
 hv_status_t hv_src_copy(hv_src_t *dst, const hv_src_t *src)
 {
     if (dst->nf != src->nf) {

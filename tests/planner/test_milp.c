@@ -276,6 +276,37 @@ static void solve_optimal(const hv_instance_t *in, const hv_milp_options_t *o,
     assert_int_equal(r->status, HV_SOLVE_OPTIMAL);
 }
 
+/* The root's slack cuts deleted before the tree (sr_purge) against all kept: the same
+ * proven optimum, never more cuts in the tree, and fewer on some instances (one thread:
+ * both runs are the same up to the purge). */
+static void test_slack_cut_purge(void **state)
+{
+    (void)state;
+    long kept = 0, purged = 0;
+    for (uint64_t seed = 100; seed < 130; ++seed) {
+        hv_instance_t in;
+        make_instance(&in, 12 + seed % 9, 18 + seed % 7, 8, 0, seed);
+        hv_assignment_t out;
+        assert_int_equal(hv_assignment_alloc(&out, in.n_fruits), HV_OK);
+        hv_milp_options_t o;
+        one_thread_options(&o);
+        o.sr_cuts = 5;
+        hv_milp_result_t rk, rp;
+        o.sr_purge = 0;
+        solve_optimal(&in, &o, &out, &rk);
+        o.sr_purge = 1;
+        solve_optimal(&in, &o, &out, &rp);
+        assert_true(fabs(rk.objective_s - rp.objective_s) < 1e-6);
+        assert_true(rp.cuts <= rk.cuts);
+        kept += rk.cuts;
+        purged += rp.cuts;
+        hv_assignment_free(&out);
+        hv_instance_free(&in);
+    }
+    print_message("cuts in the tree: %ld kept, %ld after the purge\n", kept, purged);
+    assert_true(purged < kept);
+}
+
 /* Two tree workers (milp_share.h) against one: the same proven optimum, the plan returned
  * is the one of that makespan (a worker's plan must reach the result), and the second
  * worker really searched on some of them. */
@@ -802,6 +833,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_matches_brute_force),
         cmocka_unit_test(test_price_matches_compact),
+        cmocka_unit_test(test_slack_cut_purge),
         cmocka_unit_test(test_two_tree_workers),
         cmocka_unit_test(test_ascent_centre),
         cmocka_unit_test(test_auto_smoothing),

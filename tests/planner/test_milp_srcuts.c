@@ -172,6 +172,34 @@ static void test_hits(void **state)
     assert_int_equal(hv_src_hits(s, p2, 3, out), 1); /* scratch counters were reset */
 }
 
+/* keep: the cuts left keep their order, and hits and separation see only them. */
+static void test_keep(void **state)
+{
+    fixture_t *x = *state;
+    hv_src_t *s = &x->s;
+    const hv_instance_t *in = &x->in;
+    static const uint32_t t1[] = {0, 1, 2}, t2[] = {5, 6, 7};
+    cycles_t cy;
+    two_cycles(&cy, t1, 0.5, t2, 0.5);
+    size_t added;
+    assert_int_equal(hv_src_separate(s, in, cy.col, 6, 10, 10, 0.05, &added), HV_OK);
+    assert_int_equal(added, 2);
+    const unsigned char keep[] = {s->tri[0][0] == 5, s->tri[1][0] == 5}; /* {5, 6, 7} */
+    assert_int_equal(hv_src_keep(s, keep), HV_OK);
+    assert_int_equal(s->n, 1);
+    assert_int_equal(s->tri[0][0], 5);
+    assert_int_equal(s->tri[0][2], 7);
+    uint32_t out[2];
+    static const uint32_t gone[] = {0, 1}, left[] = {6, 7};
+    assert_int_equal(hv_src_hits(s, gone, 2, out), 0);
+    assert_int_equal(hv_src_hits(s, left, 2, out), 1);
+    assert_int_equal(out[0], 0);
+    /* the deleted triple is no longer known: the same point cuts it again */
+    assert_int_equal(hv_src_separate(s, in, cy.col, 6, 10, 10, 0.05, &added), HV_OK);
+    assert_int_equal(added, 1);
+    assert_int_equal(s->tri[1][0], 0);
+}
+
 /* A whole row's fruits (50,000): separation follows the fractional columns, not the
  * square of the fruit count (20 GB as a dense pair table). */
 static void test_many_fruits(void **state)
@@ -208,6 +236,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_no_cut_where_none_holds, setup, teardown),
         cmocka_unit_test_setup_teardown(test_per_fruit_limit, setup, teardown),
         cmocka_unit_test_setup_teardown(test_hits, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_keep, setup, teardown),
         cmocka_unit_test(test_many_fruits),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

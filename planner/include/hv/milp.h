@@ -67,6 +67,9 @@ typedef struct hv_milp_options {
                                 (milp_srcuts.h); 0 none */
     int sr_cuts_large;       /* price: the same on instances of 9,000+ pairs (alpha 4), where
                                 each of the first five rounds raised the root's bound */
+    int sr_purge;            /* price: 1 the cuts slack at the solved root (basic, zero duals)
+                                are deleted before the tree, whose master solves each cut
+                                row makes dearer; 0 they stay */
     int sr_cross;            /* price: 1 the cuts' triples may hold fruits of both sides, 0
                                 one side only */
     int pseudocost;          /* price: 1 fruit splits are chosen by pseudocosts (the bound

@@ -60,6 +60,10 @@ hv_status_t hv_src_copy(hv_src_t *dst, const hv_src_t *src);
 /* Forgets every cut (the caller deletes their rows). */
 void hv_src_clear(hv_src_t *s);
 
+/* Keeps the cuts c with keep[c] != 0, in their order (the caller deletes the others'
+ * rows). Returns HV_OK or HV_ERR_PLAN_NOMEM. */
+hv_status_t hv_src_keep(hv_src_t *s, const unsigned char *keep);
+
 /* The cuts holding two or more of the fruits f[0 .. n) (distinct), into out (room for
  * s->n); returns their number. */
 size_t hv_src_hits(hv_src_t *s, const uint32_t *f, size_t n, uint32_t *out);
