@@ -276,6 +276,20 @@ static void solve_optimal(const hv_instance_t *in, const hv_milp_options_t *o,
     assert_int_equal(r->status, HV_SOLVE_OPTIMAL);
 }
 
+/* `in` solved with *option = 0 into r0, then with 1 into r1: both proven, the same optimum. */
+static void solve_option_both_ways(const hv_instance_t *in, hv_milp_options_t *o, int *option,
+                                   uint64_t seed, const char *what, hv_milp_result_t *r0,
+                                   hv_milp_result_t *r1)
+{
+    hv_assignment_t out;
+    assert_int_equal(hv_assignment_alloc(&out, in->n_fruits), HV_OK);
+    *option = 0;
+    solve_optimal(in, o, &out, r0);
+    *option = 1;
+    solve_to_optimum(in, o, &out, r0->objective_s, seed, what, r1);
+    hv_assignment_free(&out);
+}
+
 /* The root's slack cuts deleted before the tree (sr_purge) against all kept: the same
  * proven optimum, never more cuts in the tree, and fewer on some instances (one thread:
  * both runs are the same up to the purge). */
@@ -286,21 +300,14 @@ static void test_slack_cut_purge(void **state)
     for (uint64_t seed = 100; seed < 130; ++seed) {
         hv_instance_t in;
         make_instance(&in, 12 + seed % 9, 18 + seed % 7, 8, 0, seed);
-        hv_assignment_t out;
-        assert_int_equal(hv_assignment_alloc(&out, in.n_fruits), HV_OK);
         hv_milp_options_t o;
         one_thread_options(&o);
         o.sr_cuts = 5;
         hv_milp_result_t rk, rp;
-        o.sr_purge = 0;
-        solve_optimal(&in, &o, &out, &rk);
-        o.sr_purge = 1;
-        solve_optimal(&in, &o, &out, &rp);
-        assert_true(fabs(rk.objective_s - rp.objective_s) < 1e-6);
+        solve_option_both_ways(&in, &o, &o.sr_purge, seed, "slack cuts purged", &rk, &rp);
         assert_true(rp.cuts <= rk.cuts);
         kept += rk.cuts;
         purged += rp.cuts;
-        hv_assignment_free(&out);
         hv_instance_free(&in);
     }
     print_message("cuts in the tree: %ld kept, %ld after the purge\n", kept, purged);
@@ -386,18 +393,13 @@ static void test_auto_smoothing(void **state)
     for (uint64_t seed = 500; seed < 512; ++seed) {
         hv_instance_t in;
         make_instance(&in, 14 + seed % 9, 20 + seed % 7, 8, 0, seed);
-        hv_assignment_t out;
-        assert_int_equal(hv_assignment_alloc(&out, in.n_fruits), HV_OK);
         hv_milp_options_t o;
         one_thread_options(&o);
-        o.auto_smoothing = 0;
         hv_milp_result_t r0, r1;
-        solve_optimal(&in, &o, &out, &r0);
-        o.auto_smoothing = 1;
-        solve_to_optimum(&in, &o, &out, r0.objective_s, seed, "adaptive smoothing", &r1);
+        solve_option_both_ways(&in, &o, &o.auto_smoothing, seed, "adaptive smoothing", &r0,
+                               &r1);
         differ += r0.nodes != r1.nodes;
         branched += r1.nodes > 1;
-        hv_assignment_free(&out);
         hv_instance_free(&in);
     }
     print_message("adaptive smoothing: %d of 12 branched, %d with other node counts\n", branched,

@@ -129,24 +129,31 @@ static void two_cycles(cycles_t *c, const uint32_t *t1, double x1, const uint32_
     }
 }
 
+/* Separates the fixture's cuts from the two odd cycles t1 at x1 and t2 at x2 (at most
+ * per_fruit new cuts per fruit); returns how many were added. */
+static size_t separate_cycles(fixture_t *x, const uint32_t *t1, double x1, const uint32_t *t2,
+                              double x2, size_t per_fruit)
+{
+    cycles_t cy;
+    two_cycles(&cy, t1, x1, t2, x2);
+    size_t added;
+    assert_int_equal(hv_src_separate(&x->s, &x->in, cy.col, 6, 10, per_fruit, 0.05, &added),
+                     HV_OK);
+    return added;
+}
+
 /* Two odd cycles sharing fruit 0: with one new cut per fruit only the more violated one
  * enters. */
 static void test_per_fruit_limit(void **state)
 {
     fixture_t *x = *state;
     hv_src_t *s = &x->s;
-    const hv_instance_t *in = &x->in;
     static const uint32_t t1[] = {0, 1, 2}, t2[] = {0, 3, 4};
-    cycles_t cy;
-    two_cycles(&cy, t1, 0.5, t2, 0.4);
-    size_t added;
-    assert_int_equal(hv_src_separate(s, in, cy.col, 6, 10, 1, 0.05, &added), HV_OK);
-    assert_int_equal(added, 1);
+    assert_int_equal(separate_cycles(x, t1, 0.5, t2, 0.4, 1), 1);
     assert_int_equal(s->tri[0][0], 0);
     assert_int_equal(s->tri[0][1], 1);
     assert_int_equal(s->tri[0][2], 2);
-    assert_int_equal(hv_src_separate(s, in, cy.col, 6, 10, 3, 0.05, &added), HV_OK);
-    assert_int_equal(added, 1); /* now {0, 3, 4} (lhs 1.2) */
+    assert_int_equal(separate_cycles(x, t1, 0.5, t2, 0.4, 3), 1); /* now {0, 3, 4} (lhs 1.2) */
     assert_int_equal(s->tri[1][1], 3);
 }
 
@@ -155,13 +162,8 @@ static void test_hits(void **state)
 {
     fixture_t *x = *state;
     hv_src_t *s = &x->s;
-    const hv_instance_t *in = &x->in;
     static const uint32_t t1[] = {0, 1, 2}, t2[] = {5, 6, 7};
-    cycles_t cy;
-    two_cycles(&cy, t1, 0.5, t2, 0.5);
-    size_t added;
-    assert_int_equal(hv_src_separate(s, in, cy.col, 6, 10, 10, 0.05, &added), HV_OK);
-    assert_int_equal(added, 2); /* {0, 1, 2} and {5, 6, 7} */
+    assert_int_equal(separate_cycles(x, t1, 0.5, t2, 0.5, 10), 2); /* {0, 1, 2}, {5, 6, 7} */
     uint32_t out[4];
     static const uint32_t p1[] = {0, 3}, p2[] = {1, 2, 3}, p3[] = {0, 1, 2, 5, 7}, p4[] = {6};
     assert_int_equal(hv_src_hits(s, p1, 2, out), 0);
@@ -177,13 +179,8 @@ static void test_keep(void **state)
 {
     fixture_t *x = *state;
     hv_src_t *s = &x->s;
-    const hv_instance_t *in = &x->in;
     static const uint32_t t1[] = {0, 1, 2}, t2[] = {5, 6, 7};
-    cycles_t cy;
-    two_cycles(&cy, t1, 0.5, t2, 0.5);
-    size_t added;
-    assert_int_equal(hv_src_separate(s, in, cy.col, 6, 10, 10, 0.05, &added), HV_OK);
-    assert_int_equal(added, 2);
+    assert_int_equal(separate_cycles(x, t1, 0.5, t2, 0.5, 10), 2);
     const unsigned char keep[] = {s->tri[0][0] == 5, s->tri[1][0] == 5}; /* {5, 6, 7} */
     assert_int_equal(hv_src_keep(s, keep), HV_OK);
     assert_int_equal(s->n, 1);
@@ -195,8 +192,7 @@ static void test_keep(void **state)
     assert_int_equal(hv_src_hits(s, left, 2, out), 1);
     assert_int_equal(out[0], 0);
     /* the deleted triple is no longer known: the same point cuts it again */
-    assert_int_equal(hv_src_separate(s, in, cy.col, 6, 10, 10, 0.05, &added), HV_OK);
-    assert_int_equal(added, 1);
+    assert_int_equal(separate_cycles(x, t1, 0.5, t2, 0.5, 10), 1);
     assert_int_equal(s->tri[1][0], 0);
 }
 
