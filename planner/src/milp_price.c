@@ -547,9 +547,8 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
     if (b->stop_begin == NULL || b->stop_pair == NULL || b->row_of_fruit == NULL ||
         b->row_of_stop == NULL || b->fixed_pat == NULL || b->lo == NULL || b->hi == NULL ||
         b->itl == NULL || b->itr == NULL || b->sel == NULL || b->pi_lp == NULL || b->pi_c == NULL ||
-        b->pi_sep == NULL || b->cover == NULL || b->mu_lp == NULL || b->sigma_lp == NULL || b->cand == NULL ||
-
-        b->warm_pair == NULL || b->warm_n == NULL || b->pair_at == NULL ||
+        b->pi_sep == NULL || b->cover == NULL || b->mu_lp == NULL || b->sigma_lp == NULL ||
+        b->cand == NULL || b->warm_pair == NULL || b->warm_n == NULL || b->pair_at == NULL ||
         b->pair_dead == NULL || b->root_pi == NULL || b->src_row == NULL ||
         b->src_hit == NULL || b->src_bit == NULL || hv_src_init(&b->src, nf) != HV_OK ||
         b->pc.sum[0] == NULL || b->pc.sum[1] == NULL || b->pc.n[0] == NULL || b->pc.n[1] == NULL ||
@@ -1730,9 +1729,7 @@ static hv_status_t purge_slack_cuts(bp_t *b, size_t *n_dropped)
                 below += b->ind[q] < b->src_row[c];
             }
             b->src_row[m] = b->src_row[c] - below;
-            b->pi_c[nf + m] = b->pi_c[nf + c];
-            b->pi_lp[nf + m] = b->pi_lp[nf + c];
-            b->pi_sep[nf + m] = b->pi_sep[nf + c];
+            b->pi_c[nf + m] = b->pi_c[nf + c]; /* the master's duals are read afresh */
             ++m;
         }
     }
