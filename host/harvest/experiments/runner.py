@@ -8,7 +8,9 @@ Layout of an output directory:
   results.csv           one row per (instance, method), appended as each one finishes
 """
 import concurrent.futures as cf
+import ctypes
 import datetime
+import errno
 import hashlib
 import json
 import os
@@ -149,6 +151,63 @@ def ensure_instance(s, row, inst):
 _STOP_SIGNALS = {signal.SIGINT, signal.SIGTERM}
 
 
+_PR_SET_CHILD_SUBREAPER = 36  # linux/prctl.h
+ORPHAN_GRACE_S = 5.0
+
+
+def _become_subreaper():
+    """Make orphaned descendants (a killed planner's own children) ours to reap.
+
+    A planner killed at the wrong moment leaves a child of its own behind: the sanitizers'
+    leak check runs in a cloned tracer at exit. Orphans go to PID 1, which on some machines
+    never reaps them; as subreaper the runner gets them and reaps them before it exits.
+    Returns False where prctl is not available (not Linux)."""
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        return libc.prctl(_PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0) == 0
+    except (OSError, AttributeError):
+        return False
+
+
+def _own_children():
+    """PIDs of this process's children, from /proc (every thread's list)."""
+    pids = set()
+    try:
+        for tid in os.listdir("/proc/self/task"):
+            with open(f"/proc/self/task/{tid}/children", encoding="ascii") as f:
+                pids.update(int(x) for x in f.read().split())
+    except OSError:
+        pass
+    return pids
+
+
+def reap_orphans(grace_s=ORPHAN_GRACE_S):
+    """Reap every child left once the planners are waited for: what is still running after
+    grace_s is killed, and after twice grace_s the rest is left (a process stuck in the
+    kernel). Returns (reaped, left)."""
+    reaped, start, killed = 0, time.monotonic(), False
+    while True:
+        try:
+            pid, _ = os.waitpid(-1, os.WNOHANG)
+        except ChildProcessError:
+            return reaped, 0
+        if pid:
+            reaped += 1
+            continue
+        waited = time.monotonic() - start
+        if waited >= 2 * grace_s:
+            return reaped, len(_own_children())
+        if waited >= grace_s and not killed:
+            for pid in _own_children():
+                try:
+                    os.kill(pid, signal.SIGKILL)
+                except OSError as e:
+                    if e.errno != errno.ESRCH:
+                        raise
+            killed = True
+        time.sleep(0.01)
+
+
 class _Children:
     """The planner processes running now, so an interruption can stop them with the runner."""
 
@@ -156,6 +215,7 @@ class _Children:
         self._lock = threading.Lock()
         self._procs = set()
         self.stopping = False
+        self.subreaper = _become_subreaper()
 
     def start(self, cmd):
         # Ctrl-C / SIGTERM are held back until the new process is registered: raised between
@@ -184,6 +244,11 @@ class _Children:
             p.kill()
         for p in procs:
             p.wait()  # reaped before we exit: no planner, not even a zombie, outlives us
+        if self.subreaper:
+            _, left = reap_orphans()
+            if left:
+                print(f"experiments: {left} process(es) left by the planners would not die",
+                      file=sys.stderr, flush=True)
 
 
 def _hang_timeout(s):
