@@ -2,6 +2,8 @@
  * an existing plan file against its inputs. `harvest-plan --help`. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
+#include <signal.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,7 +19,8 @@
 #include "hv/plan_eval.h"
 #include "hv/plan_io.h"
 
-enum { EXIT_INPUT = 1, EXIT_USAGE = 2, EXIT_NO_SOLUTION = 3, EXIT_CHECK = 4 };
+enum { EXIT_INPUT = 1, EXIT_USAGE = 2, EXIT_NO_SOLUTION = 3, EXIT_CHECK = 4,
+       EXIT_INTERRUPTED = 5 };
 
 static const char k_usage[] =
     "usage: harvest-plan --config CFG --left LEFT.tab --right RIGHT.tab --fruits MAP.csv\n"
@@ -50,8 +53,12 @@ static const char k_usage[] =
     "\n"
     "check: re-reads the fruit map, tables and config (paths default to the plan's inputs)\n"
     "and verifies the plan: exit 0 if it holds, 4 with the first violation otherwise.\n"
+    "\n"
+    "Ctrl-C or SIGTERM stops the solver as its time limit would: the best plan so far is\n"
+    "checked and written with its status and gap (exit 5); a second one ends the program\n"
+    "at once, writing nothing.\n"
     "exit codes: 0 plan written / check passed, 1 bad input, 2 usage, 3 no solution,\n"
-    "4 the plan failed the independent check.\n";
+    "4 the plan failed the independent check, 5 interrupted (the best plan so far written).\n";
 
 typedef struct args {
     const char *config, *left, *right, *fruits, *method, *out, *export_lp, *algorithm;
@@ -60,6 +67,44 @@ typedef struct args {
     int compare_single;
     int threads; /* 0: the default */
 } args_t;
+
+/* Set by the first SIGINT / SIGTERM. The program's one piece of process-wide state: a
+ * signal handler can reach nothing else. Lock-free, so the handler may store it and the
+ * solver's threads read it. */
+static atomic_int g_interrupted;
+
+static void on_stop_signal(int sig)
+{
+    (void)sig;
+    atomic_store(&g_interrupted, 1);
+}
+
+/* The solvers' stop callback (hv_milp_options_t.stop). */
+static int interrupted(void *ctx)
+{
+    (void)ctx;
+    return atomic_load(&g_interrupted);
+}
+
+/* The first Ctrl-C / SIGTERM asks the solver to stop; the handler then resets itself, so
+ * a second one ends the program. Both are unblocked too: a parent may have started us with
+ * them blocked (Python's subprocess passes its caller's mask on), and the solver's threads
+ * inherit this mask. */
+static void catch_stop_signals(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_stop_signal;
+    sa.sa_flags = SA_RESETHAND;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    sigprocmask(SIG_UNBLOCK, &set, NULL);
+}
 
 static int usage_error(const char *msg, const char *what)
 {
@@ -412,6 +457,7 @@ static int run_plan(const args_t *a)
         mopt.helper_thread = a->threads == 2;
         mopt.tree_threads = a->threads;
     }
+    mopt.stop = interrupted;
 
     if (rc == 0) {
         double t0 = now_s();
@@ -477,11 +523,15 @@ static int run_plan(const args_t *a)
                 rc = EXIT_NO_SOLUTION;
             } else if (st == HV_OK) {
                 meta.solver_status = solve_status_name(mr.status);
-                meta.gap = mr.gap;
+                meta.gap = isfinite(mr.gap) ? mr.gap : -1.0; /* null: no bound known */
                 meta.nodes = mr.nodes;
             }
         }
         meta.runtime_s = now_s() - t0;
+        if (interrupted(NULL)) {
+            fprintf(stderr, "harvest-plan: interrupted after %.1f s: %s\n", meta.runtime_s,
+                    rc == 0 && st == HV_OK ? "writing the best plan so far" : "no plan");
+        }
         if (st != HV_OK && rc == 0) {
             fprintf(stderr, "harvest-plan: %s: solve failed: %s\n", a->method,
                     hv_plan_status_name(st));
@@ -521,6 +571,9 @@ static int run_plan(const args_t *a)
                 plan.fruits_planned, plan.fruits_unreachable, plan.throughput_fruit_per_s,
                 plan.runtime_s, a->out);
     }
+    if (rc == 0 && interrupted(NULL) && strcmp(plan.solver_status, "optimal") != 0) {
+        rc = EXIT_INTERRUPTED; /* a proof that came in time lost nothing */
+    }
     hv_plan_free(&plan);
     free(passes);
     hv_assignment_free(&sol);
@@ -545,5 +598,6 @@ int main(int argc, char **argv)
     if (rc != 0) {
         return rc == 1 ? 0 : rc;
     }
+    catch_stop_signals();
     return run_plan(&a);
 }

@@ -93,6 +93,10 @@ static void callback(glp_tree *tree, void *info)
     glp_ios_tree_size(tree, &a_cnt, &n_cnt, &t_cnt);
     c->nodes = t_cnt;
     int reason = glp_ios_reason(tree);
+    if (c->opt->stop != NULL && c->opt->stop(c->opt->stop_ctx)) {
+        glp_ios_terminate(tree); /* glp_intopt returns GLP_ESTOP: as at the time limit */
+        return;
+    }
     if ((reason == GLP_IHEUR || reason == GLP_IBRANCH) && glp_ios_curr_node(tree) != 0 &&
         glp_ios_node_level(tree, glp_ios_curr_node(tree)) == 0) {
         c->root_after_cuts = glp_get_obj_val(glp_ios_get_prob(tree)); /* cuts are done */
@@ -520,6 +524,7 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
             have |= isfinite(best_t);
             int proven = (mip_ret == 0 && mip_stat == GLP_OPT) || mip_ret == GLP_EMIPGAP;
             if (proven || !two_phase || phase == 1 || t_deadline - hv_milp_now_s() < 2.0 ||
+                mip_ret == GLP_ESTOP ||
                 (mip_ret == 0 && mip_stat == GLP_NOFEAS)) {
                 break;
             }
@@ -539,7 +544,8 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
     if (mip_ret == 0 && mip_stat == GLP_NOFEAS) {
         res->status = HV_SOLVE_INFEASIBLE;
     } else if (!have) {
-        res->status = (mip_ret == GLP_ETMLIM || ret == GLP_ETMLIM || mip_ret == -1)
+        res->status = (mip_ret == GLP_ETMLIM || mip_ret == GLP_ESTOP || ret == GLP_ETMLIM ||
+                       mip_ret == -1)
                           ? HV_SOLVE_NO_SOLUTION
                           : HV_SOLVE_ERROR;
     } else {
@@ -711,6 +717,26 @@ static hv_status_t solve_segments(const hv_instance_t *inst, const hv_milp_optio
     return HV_OK;
 }
 
+/* A bound that needs no solve, for a solve stopped before it had one (the time limit or
+ * a stop request during the first pricing): T_travel, one stop, and each arm's cheapest
+ * picks, since every stop lasts at least as long as each arm's picks there. */
+static double trivial_bound_s(const hv_instance_t *inst)
+{
+    double side[2] = {0.0, 0.0};
+    int any = 0;
+    for (size_t f = 0; f < inst->n_fruits; ++f) {
+        double least = INFINITY;
+        for (size_t k = inst->fruit_begin[f]; k < inst->fruit_begin[f + 1]; ++k) {
+            least = fmin(least, inst->pairs[k].cost_s);
+        }
+        if (isfinite(least)) {
+            side[inst->fruits[f].side == HV_SIDE_LEFT ? 0 : 1] += least;
+            any = 1;
+        }
+    }
+    return inst->travel_time_s + (any ? inst->stop_penalty_s + fmax(side[0], side[1]) : 0.0);
+}
+
 hv_status_t hv_milp_solve(const hv_instance_t *inst, const hv_milp_options_t *opt,
                           const hv_assignment_t *incumbent, hv_assignment_t *out,
                           hv_milp_result_t *res)
@@ -784,6 +810,13 @@ hv_status_t hv_milp_solve(const hv_instance_t *inst, const hv_milp_options_t *op
     free(lo);
     free(hi);
     hv_assignment_free(&inc);
+    if (st == HV_OK && res->status == HV_SOLVE_FEASIBLE) {
+        double tb = fmin(trivial_bound_s(inst), res->objective_s);
+        if (!(res->bound_s >= tb)) { /* also a -inf or NaN bound: a gap is always stated */
+            res->bound_s = tb;
+            res->gap = (res->objective_s - tb) / fmax(res->objective_s, DBL_EPSILON);
+        }
+    }
     res->runtime_s = hv_milp_now_s() - t0;
     if (opt->verbose >= 1 && st == HV_OK) {
         fprintf(stderr, "milp: T = %.3f s, bound %.3f s, gap %.2e, %.2f s\n", res->objective_s,

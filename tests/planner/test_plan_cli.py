@@ -4,6 +4,7 @@ tests/planner/support) on the real configuration's grid."""
 import json
 import os
 import random
+import signal
 import subprocess
 
 import pytest
@@ -303,3 +304,37 @@ def test_horizon_compare_single(tables, tmp_path):
         single = float(line[0].split("single window ")[1].split(" s")[0])
         assert horizon >= single - 1e-3  # a window plan cannot beat the row's optimum
     run(*plan_args(tables, fruits, out, "milp", "--compare-single"), check=2)
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_interrupt_writes_the_best_plan_so_far(tables, tmp_path, sig):
+    """Ctrl-C / SIGTERM during a long solve: the solver stops as at its time limit, and the
+    best plan so far is checked and written with an honest status (exit 5)."""
+    fr = random_fruits(60, 240, seed=41)
+    fruits = write_map(tmp_path / "m.csv", fr)
+    out = tmp_path / "p.json"
+    p = subprocess.Popen([PLAN, *plan_args(tables, fruits, str(out), "milp",
+                                           "--time-limit", "600")],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        seen = []
+        for line in p.stderr:  # the solve is under way once it has a first plan
+            seen.append(line)
+            if line.startswith("milp: incumbent"):
+                break
+        assert p.poll() is None, "".join(seen)
+        p.send_signal(sig)
+        _, rest = p.communicate(timeout=120)
+    finally:
+        if p.poll() is None:
+            p.kill()
+            p.wait()
+    err = "".join(seen) + rest
+    assert p.returncode == 5, err
+    assert "interrupted after" in err and "writing the best plan so far" in err
+    plan = json.load(open(out))
+    assert plan["solver"]["status"] == "feasible" and plan["solver"]["gap"] > 0
+    picked = [pk["id"] for s in plan["stops"] for arm in ("left", "right") for pk in s[arm]]
+    assert len(picked) == len(set(picked)) == plan["totals"]["fruits_planned"]
+    assert plan["totals"]["fruits_planned"] + plan["totals"]["fruits_unreachable"] == len(fr)
+    run("check", str(out), check=0)

@@ -37,6 +37,9 @@ PAPER_SEEDS = tuple(range(10))
 QUICK_ALPHAS = (0.25, 1.0)
 QUICK_SEEDS = (0, 1)
 TABLE_FILES = {"L": "costtab_left.bin", "R": "costtab_right.bin"}
+# harvest-plan's exit code when a signal stopped it (its --help): the plan it wrote is not a
+# final result, so the row is not recorded (a Ctrl-C in the terminal reaches it too).
+PLANNER_EXIT_INTERRUPTED = 5
 # A planner still running this long after its own time limit is hung: kill it, record an error.
 HANG_FACTOR, HANG_MARGIN_S = 3.0, 120.0
 DEFAULT_HANG_S = 600.0
@@ -292,7 +295,7 @@ def run_one(s, children, tables, inst, map_path, method):
         raise
     finally:
         children.done(p)
-    if children.stopping:
+    if children.stopping or p.returncode == PLANNER_EXIT_INTERRUPTED:
         raise KeyboardInterrupt
     row["wall_s"] = round(time.monotonic() - t0, 3)
     row["finished_utc"] = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")

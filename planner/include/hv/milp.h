@@ -94,9 +94,10 @@ typedef struct hv_milp_options {
                                 (set partitioning, whose tree measured better at alpha 2.5);
                                 2 ">= 1" on instances of 9,000+ pairs (alpha 4), whose root
                                 takes seconds, else "= 1" */
-    /* When not NULL, polled by the branch-and-price at each node and pricing round: a
-     * non-zero return ends the solve as its time limit would (status FEASIBLE or
-     * NO_SOLUTION, never OPTIMAL unless proven). */
+    /* When not NULL, polled by the branch-and-price at each node and pricing round and by
+     * GLPK's branch-and-cut at each of its callbacks: a non-zero return ends the solve as
+     * its time limit would (status FEASIBLE or NO_SOLUTION, never OPTIMAL unless proven).
+     * harvest-plan sets it on Ctrl-C / SIGTERM. */
     int (*stop)(void *ctx);
     void *stop_ctx;
 } hv_milp_options_t;
@@ -111,7 +112,8 @@ enum { HV_MILP_CUT_GMI = 1, HV_MILP_CUT_MIR = 2, HV_MILP_CUT_COVER = 4, HV_MILP_
 typedef struct hv_milp_result {
     hv_solve_status_t status;
     double objective_s; /* T of the returned assignment, incl. tau * stops and T_travel */
-    double bound_s;     /* best proven lower bound on T */
+    double bound_s;     /* best proven lower bound on T; when FEASIBLE at least T_travel +
+                           tau + the larger arm's sum of cheapest picks */
     double gap;         /* (objective - bound) / objective; <= rel_gap when OPTIMAL */
     long nodes;         /* branch-and-bound nodes (summed over sub-solves if any) */
     double runtime_s;
