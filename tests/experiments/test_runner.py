@@ -132,8 +132,9 @@ def test_interrupted_run_resumes_without_recomputing(tmp_path):
     assert len(results.read(csv_path)) == total
 
 
-def _terminate_when(args, env, ready):
-    """Start the runner in a session of its own, send SIGTERM once ready() holds, and
+def _terminate_when(args, env, ready, sig=signal.SIGTERM, group=False):
+    """Start the runner in a session of its own, send sig once ready() holds (to the whole
+    process group, planners included, as a terminal's Ctrl-C does, when group is set), and
     return (process, stderr). Whatever is left of its group is killed if it never ends."""
     proc = subprocess.Popen(args, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True, start_new_session=True)
@@ -142,7 +143,10 @@ def _terminate_when(args, env, ready):
         while not ready() and proc.poll() is None and time.monotonic() < deadline:
             time.sleep(0.02)
         assert ready(), "the runner ended or hung before it could be interrupted"
-        proc.send_signal(signal.SIGTERM)
+        if group:
+            os.killpg(proc.pid, sig)
+        else:
+            proc.send_signal(sig)
         _, err = proc.communicate(timeout=120)
     finally:
         if proc.poll() is None:
@@ -164,7 +168,12 @@ def _assert_group_empty(proc):
             pass
 
 
-def test_sigterm_stops_the_planners_and_keeps_finished_rows(tmp_path):
+@pytest.mark.parametrize("sig,group", [(signal.SIGTERM, False), (signal.SIGINT, True)],
+                         ids=["sigterm-runner", "ctrl-c-group"])
+def test_sigterm_stops_the_planners_and_keeps_finished_rows(tmp_path, sig, group):
+    """SIGTERM to the runner, or Ctrl-C to the whole group (a planner that sees it first
+    stops with exit 5): the run stops, every finished row is kept, none is made of an
+    interrupted plan, and no planner outlives the runner."""
     require(PLANNER, "planner/harvest-plan")
     require(COSTGEN, "tools/costgen")
     out = tmp_path / "term"
@@ -173,10 +182,11 @@ def test_sigterm_stops_the_planners_and_keeps_finished_rows(tmp_path):
             "--config", CONFIG, "--alphas", "0.25", "--seeds", "3",
             "--time-limit", TIME_LIMIT_S, "--no-progress"]
     env = dict(os.environ, PYTHONPATH=os.path.join(SOURCE_DIR, "host"), HV_BUILD_DIR=BUILD_DIR)
-    proc, err = _terminate_when(args, env, lambda: _data_rows(csv_path) >= 1)
+    proc, err = _terminate_when(args, env, lambda: _data_rows(csv_path) >= 1, sig, group)
     assert proc.returncode == 130, err
-    kept = len(results.read(csv_path))
-    assert f"interrupted: {kept} of {3 * len(METHODS)} rows are saved" in err
+    rows = results.read(csv_path)
+    assert f"interrupted: {len(rows)} of {3 * len(METHODS)} rows are saved" in err
+    assert all(r["status"] != "error" for r in rows), rows
     _assert_group_empty(proc)
 
 
