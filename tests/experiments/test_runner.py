@@ -85,15 +85,22 @@ def _data_rows(path):
         return max(0, sum(1 for line in f if line.endswith("\n")) - 1)
 
 
+def _run_args(out, *options):
+    """`python -m harvest experiments run` into out, without a progress bar, and its
+    environment (host/ importable, the build of $HV_BUILD_DIR)."""
+    args = [sys.executable, "-m", "harvest", "experiments", "run", "--out", str(out),
+            "--config", CONFIG, "--no-progress", *options]
+    return args, dict(os.environ, PYTHONPATH=os.path.join(SOURCE_DIR, "host"),
+                      HV_BUILD_DIR=BUILD_DIR)
+
+
 def test_interrupted_run_resumes_without_recomputing(tmp_path):
     require(PLANNER, "planner/harvest-plan")
     require(COSTGEN, "tools/costgen")
     out = tmp_path / "resume"
     csv_path = str(out / "results.csv")
-    args = [sys.executable, "-m", "harvest", "experiments", "run", "--out", str(out),
-            "--config", CONFIG, "--alphas", "0.25,0.4", "--seeds", "3",
-            "--time-limit", TIME_LIMIT_S, "--no-progress"]
-    env = dict(os.environ, PYTHONPATH=os.path.join(SOURCE_DIR, "host"), HV_BUILD_DIR=BUILD_DIR)
+    args, env = _run_args(out, "--alphas", "0.25,0.4", "--seeds", "3",
+                          "--time-limit", TIME_LIMIT_S)
     total = 2 * 3 * len(METHODS)
     proc = subprocess.Popen(args, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             start_new_session=True)
@@ -178,10 +185,7 @@ def test_sigterm_stops_the_planners_and_keeps_finished_rows(tmp_path, sig, group
     require(COSTGEN, "tools/costgen")
     out = tmp_path / "term"
     csv_path = str(out / "results.csv")
-    args = [sys.executable, "-m", "harvest", "experiments", "run", "--out", str(out),
-            "--config", CONFIG, "--alphas", "0.25", "--seeds", "3",
-            "--time-limit", TIME_LIMIT_S, "--no-progress"]
-    env = dict(os.environ, PYTHONPATH=os.path.join(SOURCE_DIR, "host"), HV_BUILD_DIR=BUILD_DIR)
+    args, env = _run_args(out, "--alphas", "0.25", "--seeds", "3", "--time-limit", TIME_LIMIT_S)
     proc, err = _terminate_when(args, env, lambda: _data_rows(csv_path) >= 1, sig, group)
     assert proc.returncode == 130, err
     rows = results.read(csv_path)
@@ -201,10 +205,8 @@ def test_sigterm_reaps_what_a_killed_planner_left_behind(tmp_path):
     planner.write_text(f"#!/bin/sh\nsleep 300 &\necho $! > {marker}.tmp\n"
                        f"mv {marker}.tmp {marker}\nexec sleep 300\n")
     planner.chmod(0o755)
-    args = [sys.executable, "-m", "harvest", "experiments", "run", "--out", str(out),
-            "--config", CONFIG, "--alphas", "0.25", "--seeds", "1", "--methods", "fov",
-            "--planner", str(planner), "--costgen", COSTGEN, "--no-progress"]
-    env = dict(os.environ, PYTHONPATH=os.path.join(SOURCE_DIR, "host"))
+    args, env = _run_args(out, "--alphas", "0.25", "--seeds", "1", "--methods", "fov",
+                          "--planner", str(planner), "--costgen", COSTGEN)
     proc, err = _terminate_when(args, env, marker.exists)
     try:
         assert proc.returncode == 130, err
