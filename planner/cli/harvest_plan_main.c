@@ -523,7 +523,7 @@ static int run_plan(const args_t *a)
                 rc = EXIT_NO_SOLUTION;
             } else if (st == HV_OK) {
                 meta.solver_status = solve_status_name(mr.status);
-                meta.gap = isfinite(mr.gap) ? mr.gap : -1.0; /* null: no bound known */
+                meta.gap = mr.gap;
                 meta.nodes = mr.nodes;
             }
         }

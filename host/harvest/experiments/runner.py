@@ -10,7 +10,6 @@ Layout of an output directory:
 import concurrent.futures as cf
 import ctypes
 import datetime
-import errno
 import hashlib
 import json
 import os
@@ -187,26 +186,23 @@ def _own_children():
 def reap_orphans(grace_s=ORPHAN_GRACE_S):
     """Reap every child left once the planners are waited for: what is still running after
     grace_s is killed, and after twice grace_s the rest is left (a process stuck in the
-    kernel). Returns (reaped, left)."""
-    reaped, start, killed = 0, time.monotonic(), False
+    kernel). Returns how many are left."""
+    start, killed = time.monotonic(), False
     while True:
         try:
-            pid, _ = os.waitpid(-1, os.WNOHANG)
+            if os.waitpid(-1, os.WNOHANG)[0]:
+                continue
         except ChildProcessError:
-            return reaped, 0
-        if pid:
-            reaped += 1
-            continue
+            return 0
         waited = time.monotonic() - start
         if waited >= 2 * grace_s:
-            return reaped, len(_own_children())
+            return len(_own_children())
         if waited >= grace_s and not killed:
             for pid in _own_children():
                 try:
                     os.kill(pid, signal.SIGKILL)
-                except OSError as e:
-                    if e.errno != errno.ESRCH:
-                        raise
+                except ProcessLookupError:
+                    pass
             killed = True
         time.sleep(0.01)
 
@@ -248,7 +244,7 @@ class _Children:
         for p in procs:
             p.wait()  # reaped before we exit: no planner, not even a zombie, outlives us
         if self.subreaper:
-            _, left = reap_orphans()
+            left = reap_orphans()
             if left:
                 print(f"experiments: {left} process(es) left by the planners would not die",
                       file=sys.stderr, flush=True)
