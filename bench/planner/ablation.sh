@@ -13,12 +13,15 @@ alphas="${2:-1,4}"
 seeds="${3:-3}"
 limit="${4:-10}"
 [ -x "$bench" ] || { echo "ablation.sh: $bench not built" >&2; exit 1; }
-# the default (branch-and-price), its incumbent off, then GLPK's branch-and-cut on the
+# the default (branch-and-price), its incumbent, interval branching or tailing off
+# switched off, then GLPK's branch-and-cut on the
 # paper's model (algorithm=0) and that with one of its choices switched
 c="--set algorithm=0"
 for variant in \
     "" \
     "--set heuristic_incumbent=0" \
+    "--set interval_branching=0" \
+    "--set tail_off_ms=0" \
     "$c" \
     "$c --set link_disaggregated=0" \
     "$c --set link_disaggregated=2" \

@@ -38,12 +38,14 @@ void hv_milp_options_default(hv_milp_options_t *opt)
     opt->polish_work = 150000;
     opt->column_dive = 1;
     opt->sr_cuts = 1;
-    opt->sr_cuts_large = 5;
+    opt->sr_cuts_large = 2;
     opt->sr_purge = 1;
     opt->sr_keep_gain = 0.0;
     opt->cover_rows = 2;
     opt->sr_cross = 0;
     opt->pseudocost = 1;
+    opt->interval_branching = 50;
+    opt->tail_off_ms = 20;
     opt->tree_threads = 2;
     opt->ascent_steps = 100;
     opt->auto_smoothing = 1;
@@ -680,6 +682,8 @@ static hv_status_t solve_segments(const hv_instance_t *inst, const hv_milp_optio
         if (st == HV_OK) {
             res->nodes += r.nodes;
             res->worker_nodes += r.worker_nodes;
+            res->interval_branches += r.interval_branches;
+            res->tailed_nodes += r.tailed_nodes;
             res->incumbent_taken |= r.incumbent_taken;
             if (r.status == HV_SOLVE_OPTIMAL || r.status == HV_SOLVE_FEASIBLE) {
                 obj += r.objective_s - sub.travel_time_s;

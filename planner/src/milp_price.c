@@ -37,18 +37,26 @@
                                  from the paper's LP duals (SOLVER.md), cover_rows 2
                                  makes the fruit rows ">= 1", and the root separates
                                  sr_cuts_large rounds of cuts */
-#define PRIMAL_ROOT_GAP 2e-3 /* polish, column dive and row windows when the root leaves
-                                more than 0.2 % (SOLVER.md) */
+#define PRIMAL_ROOT_GAP 2e-3 /* polish, column dive, row windows and rounding at every node
+                                when the root leaves more than 0.2 % (SOLVER.md) */
 #define POLISH_MAX_KICKS 1000 /* ~0.15 s at 60 fruits */
 #define POLISH_CHUNK 50       /* kicks between two readings of the clock */
 #define WORKER_GAP 2e-3 /* the incumbent's gap from which the second core searches the tree */
 #define DIVE_EVERY 64     /* nodes between dives (search()) */
+#define ROUND_EVERY 8     /* nodes between roundings of the master point, once the plan is
+                             within PRIMAL_ROOT_GAP of the root's bound */
 #define WINDOW_SHARE 0.25 /* of the time left after the root, at most, for row windows */
 #define WINDOW_LIMIT_S 0.5 /* per window */
 #define SR_MAX 512          /* subset-row cuts at most (milp_srcuts.h), all made at the root */
 #define SR_PER_ROUND 64     /* cuts added per separation round */
 #define SR_PER_FRUIT 4      /* new cuts per fruit per round: spreads them over the row */
 #define SR_MIN_VIOL 0.05    /* a cut enters when the master point violates it by this */
+#define COUNT_MIN_SCORE 0.05 /* a count this far from an integer is branched on first */
+#define IV_MIN_FRAC 0.1     /* interval branching: the least fractional count considered */
+#define IV_GAP_WEIGHT 0.01  /* ... the weight of the empty stops around the interval */
+#define IV_EDGE_GAP 1000u   /* ... the empty run counted beyond an end of the row */
+#define TAIL_ROUNDS 10      /* tailing off: rounds without a fall of the master value */
+#define TAIL_FALL_MS 1e-3   /* ... that counts as one */
 #define STALL_ITERS_PER_ROW 10 /* primal simplex iterations per master row before a call
                                   counts as stalled (a normal round takes ~40 in all) */
 
@@ -171,6 +179,8 @@ typedef struct bp {
     double smooth;                /* this node's smoothing weight (auto_smoothing) */
     size_t sg_cap, sgc_cap, sgs_cap;
     double *sigma_lp;
+    double *stop_mass;    /* scratch of choose_count: prefix sums of the mass per stop */
+    uint32_t *stop_empty; /* ... and the runs of stops without mass (2 ns) */
     double center_lag;
     int root_centre; /* center_lag / pi_c were set before the root: keep them */
     cand_t *cand; /* per stop */
@@ -210,6 +220,8 @@ typedef struct bp {
     struct worker *worker; /* the second worker, NULL none */
     int is_worker;         /* this is the second worker: no progress lines */
     long nodes_done;       /* the second worker's nodes */
+    long iv_branches;      /* branches on an interval's stop count (interval_branching) */
+    long tailed;           /* nodes branched on before their column generation converged */
     long given, taken;     /* nodes passed to and taken from the other worker */
     hv_share_step_t *path; /* scratch: a node's path from the root */
     size_t path_cap;
@@ -482,6 +494,8 @@ static void bp_free(bp_t *b)
     free(b->cover);
     free(b->sg_sep);
     free(b->sigma_lp);
+    free(b->stop_mass);
+    free(b->stop_empty);
     free(b->cand);
     free(b->warm_pair);
     free(b->warm_n);
@@ -530,6 +544,8 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
     b->src_bit = malloc((SR_MAX + 1) * sizeof *b->src_bit);
     b->mu_lp = calloc(ns + 1, sizeof *b->mu_lp);
     b->sigma_lp = calloc(ns + 1, sizeof *b->sigma_lp);
+    b->stop_mass = calloc(ns + 1, sizeof *b->stop_mass);
+    b->stop_empty = calloc(2 * ns + 1, sizeof *b->stop_empty);
     b->cand = calloc(ns + 1, sizeof *b->cand);
     b->pair_dead = calloc(inst->n_pairs + 1, 1);
     b->root_pi = calloc(nf + SR_MAX + 1, sizeof *b->root_pi);
@@ -548,7 +564,8 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
         b->row_of_stop == NULL || b->fixed_pat == NULL || b->lo == NULL || b->hi == NULL ||
         b->itl == NULL || b->itr == NULL || b->sel == NULL || b->pi_lp == NULL || b->pi_c == NULL ||
         b->pi_sep == NULL || b->cover == NULL || b->mu_lp == NULL || b->sigma_lp == NULL ||
-        b->cand == NULL || b->warm_pair == NULL || b->warm_n == NULL || b->pair_at == NULL ||
+        b->stop_mass == NULL || b->stop_empty == NULL || b->cand == NULL ||
+        b->warm_pair == NULL || b->warm_n == NULL || b->pair_at == NULL ||
         b->pair_dead == NULL || b->root_pi == NULL || b->src_row == NULL ||
         b->src_hit == NULL || b->src_bit == NULL || hv_src_init(&b->src, nf) != HV_OK ||
         b->pc.sum[0] == NULL || b->pc.sum[1] == NULL || b->pc.n[0] == NULL || b->pc.n[1] == NULL ||
@@ -1492,17 +1509,69 @@ static hv_status_t polish_incumbent(bp_t *b)
 }
 
 /* Branching on the number of stops: the LP likes two stops at 0.8 with a third between
- * them at 0.2; "at most k stops" / "at least k + 1" separates those. score = how far the
- * master's stop count is from an integer, 0 when it is one. */
-static void choose_count(const bp_t *b, const double *x, split_t *best)
+ * them at 0.2; "at most k stops" / "at least k + 1" separates those. First over the whole
+ * row; when that count is (nearly) integral, over intervals [lo, hi] of up to
+ * opt->interval_branching stops. An interval qualifies when both its end stops carry
+ * master mass and its count is at least IV_MIN_FRAC from an integer; among those the score
+ * q + IV_GAP_WEIGHT * g prefers the most fractional count q, then the interval with the
+ * widest run g of empty stops on its sides: a cluster of stops the LP mixes, isolated from
+ * the rest (SOLVER.md: of the rules tried, this one proved the most instances). score 0
+ * when no count is fractional. */
+static void choose_count(bp_t *b, const double *x, split_t *best)
 {
-    double tot = 0.0;
+    double *m = b->stop_mass; /* m[p + 1] - m[p]: the master's mass at stop p */
+    memset(m, 0, (b->ns + 1) * sizeof *m);
     for (size_t k = 0; k < b->n_pat; ++k) {
-        tot += x[b->pat[k].col];
+        m[b->pat[k].stop + 1] += x[b->pat[k].col];
     }
-    double ft = tot - floor(tot), sc = fmin(ft, 1.0 - ft);
+    for (size_t p = 0; p < b->ns; ++p) {
+        m[p + 1] += m[p];
+    }
+    double tot = m[b->ns], ft = tot - floor(tot), sc = fmin(ft, 1.0 - ft);
     *best = (split_t){KIND_COUNT_LE, 0, 0, 0, (uint32_t)(b->ns - 1), (int32_t)floor(tot),
                       sc > LAMBDA_EPS ? sc : 0.0, ft >= 0.5, 0.0, 0.0};
+    if (best->score >= COUNT_MIN_SCORE || b->opt->interval_branching <= 0) {
+        return;
+    }
+    /* el[p]: the run of stops without mass that ends at p (p included), IV_EDGE_GAP when
+     * it reaches the start of the row; er[p] the same from the right */
+    uint32_t *el = b->stop_empty, *er = b->stop_empty + b->ns;
+    for (size_t p = 0; p < b->ns; ++p) {
+        int mass = m[p + 1] - m[p] >= LAMBDA_EPS;
+        el[p] = mass ? 0 : (p == 0 ? IV_EDGE_GAP : el[p - 1] + (el[p - 1] < IV_EDGE_GAP));
+    }
+    for (size_t p = b->ns; p-- > 0;) {
+        int mass = m[p + 1] - m[p] >= LAMBDA_EPS;
+        er[p] = mass ? 0 : (p + 1 == b->ns ? IV_EDGE_GAP : er[p + 1] + (er[p + 1] < IV_EDGE_GAP));
+    }
+    size_t wmax = (size_t)b->opt->interval_branching;
+    double bs = 0.0, bc = 0.0;
+    /* narrowest first, then leftmost: the first of equal scores is kept */
+    for (size_t w = 1; w <= wmax && w <= b->ns; ++w) {
+        for (size_t a = 0, e = w - 1; e < b->ns; ++a, ++e) {
+            if (m[a + 1] - m[a] < LAMBDA_EPS || m[e + 1] - m[e] < LAMBDA_EPS) {
+                continue;
+            }
+            double c = m[e + 1] - m[a], f = c - floor(c), q = fmin(f, 1.0 - f);
+            if (q < IV_MIN_FRAC) {
+                continue;
+            }
+            uint32_t gl = a == 0 ? IV_EDGE_GAP : el[a - 1];
+            uint32_t gr = e + 1 == b->ns ? IV_EDGE_GAP : er[e + 1];
+            double s = q + IV_GAP_WEIGHT * (double)(gl < gr ? gl : gr);
+            if (s > bs + 1e-9) {
+                bs = s;
+                bc = c;
+                best->lo = (uint32_t)a;
+                best->hi = (uint32_t)e;
+            }
+        }
+    }
+    if (bs > 0.0) {
+        best->rhs = (int32_t)floor(bc);
+        best->score = bs;
+        best->up = bc - floor(bc) >= 0.5;
+    }
 }
 
 /* Reduced-cost fixing of (fruit, stop) pairs from the root's duals pi (Lagrangian bound L):
@@ -1801,6 +1870,14 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
         *end = NODE_PRUNED;
         return st0;
     }
+    /* tailing off (opt->tail_off_ms): below the root, a master whose value has not fallen
+     * for TAIL_ROUNDS rounds and is within tail_off_ms of the node's Lagrangian bound is
+     * branched on as it is; the children start from that bound, which is valid at any
+     * round. When that point cannot be branched on (integral, or no fractional count or
+     * fruit), the column generation goes on to convergence, so nothing is closed on it. */
+    double tail_ms = b->nodes[k].parent >= 0 ? (double)b->opt->tail_off_ms : 0.0;
+    double best_master = INFINITY;
+    int last_fall = 0, tailed = 0;
     for (int round = 0;; ++round) {
         if (must_stop(b)) {
             *end = NODE_TIMEOUT;
@@ -1840,10 +1917,17 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
         }
         progress(b, b->heap_len ? fmin(b->nodes[k].lb_ms, b->nodes[b->heap[0]].lb_ms)
                                 : b->nodes[k].lb_ms, 0);
-        if (added > 0) {
+        double master_ms = glp_get_obj_val(b->lp) + b->travel_ms;
+        if (master_ms < best_master - TAIL_FALL_MS) {
+            best_master = master_ms;
+            last_fall = round;
+        }
+        tailed = added > 0 && tail_ms > 0.0 && round - last_fall >= TAIL_ROUNDS &&
+                 best_master - b->nodes[k].lb_ms <= tail_ms;
+        if (added > 0 && !tailed) {
             continue;
         }
-        /* the master is optimal over all columns of this node */
+        /* the master is optimal over all columns of this node (or tails off, below it) */
         if (b->nodes[k].parent < 0 && !isfinite(b->root_lag) && b->sr_rounds < b->sr_max) {
             size_t n_cuts;
             if (b->sr_rounds == 0) {
@@ -1900,25 +1984,37 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
         }
         if (take_integral(b, x)) {
             free(x); /* the node's LP optimum is a plan: the node is solved */
+            if (tailed) {
+                tail_ms = 0.0; /* ... unless the master was not optimal yet */
+                continue;
+            }
             *end = NODE_INTEGRAL;
             return HV_OK;
         }
-        /* the rounding pays near the root; deeper, every 8th node is enough */
         /* x covers the columns up to now: choose the branch before the rounding adds any */
         split_t fs = {KIND_FRUIT, 0, 0, 0, 0, 0, 0.0, 0, 0.0, 0.0};
         choose_count(b, x, sp);
-        if (sp->score < 0.05) {
+        if (sp->score < COUNT_MIN_SCORE) {
             st = choose_split(b, x, &fs);
             if (fs.score > 0.0) {
                 *sp = fs;
             }
         }
-        if (st == HV_OK && (b->nodes[k].depth <= 2 || b->n_nodes % 8 == 0) && !must_stop(b)) {
+        /* the rounding pays near the root, and at every node while the plan is more than
+         * PRIMAL_ROOT_GAP above the root's bound (node 0's; the second worker's node 0 is a
+         * copy of the root): alpha 2.5 seed 4 found its optimal plan only so (SOLVER.md) */
+        int far = b->ub_ms - b->nodes[0].lb_ms > PRIMAL_ROOT_GAP * b->ub_ms;
+        if (st == HV_OK && (far || b->nodes[k].depth <= 2 || b->n_nodes % ROUND_EVERY == 0) &&
+            !must_stop(b)) {
             st = round_and_improve(b, x);
         }
         free(x);
         if (st != HV_OK) {
             return st;
+        }
+        if (sp->score <= 0.0 && tailed) {
+            tail_ms = 0.0;
+            continue;
         }
         if (sp->score <= 0.0) {
             /* every fruit sits at one stop, so the point is integral up to round-off:
@@ -1927,6 +2023,7 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
             *end = NODE_PRUNED;
             return HV_OK;
         }
+        b->tailed += tailed;
         *end = NODE_BRANCH;
         return HV_OK;
     }
@@ -2147,6 +2244,7 @@ static hv_status_t branch(bp_t *b, int32_t k, const split_t *sp, int diving, int
     } else {
         c1 = node_new(b, k, KIND_COUNT_LE, 0, sp->lo, sp->hi, sp->rhs, lb);
         c2 = node_new(b, k, KIND_COUNT_GE, 0, sp->lo, sp->hi, sp->rhs + 1, lb);
+        b->iv_branches += sp->lo > 0 || sp->hi + 1 < b->ns;
     }
     if (c1 < 0 || c2 < 0) {
         return HV_ERR_PLAN_NOMEM;
@@ -2280,7 +2378,7 @@ struct worker {
     hv_status_t st_copy; /* the copy's status */
     /* written by the worker before it ends, read after the join */
     hv_status_t st;
-    long nodes;
+    long nodes, iv_branches, tailed;
     int inexact;
     double open_lb; /* of its nodes still open (INFINITY none), n_open of them */
     size_t n_open;
@@ -2323,6 +2421,8 @@ static void *worker_main(void *arg)
         }
         wk->st = st;
         wk->nodes = w.nodes_done;
+        wk->iv_branches = w.iv_branches;
+        wk->tailed = w.tailed;
         wk->inexact = w.inexact;
     }
     bp_free(&w);
@@ -2396,6 +2496,8 @@ static hv_status_t worker_join(bp_t *b, int failed, double *open_lb, size_t *n_o
     }
     b->inexact |= wk->inexact;
     b->nodes_done = wk->nodes;
+    b->iv_branches += wk->iv_branches;
+    b->tailed += wk->tailed;
     hv_status_t st = wk->st;
     b->share = NULL;
     b->worker = NULL;
@@ -2590,7 +2692,8 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
                     "in %.2f s, %ld plans from the helper thread, %ld of %zu pairs fixed in "
                     "%.2f s, "
                     "%zu subset-row cuts in %d rounds (%ld dropped; %.1f with a negative dual "
-                    "per priced stop, %ld stops over 64), second tree worker %ld nodes (%ld "
+                    "per priced stop, %ld stops over 64), %ld interval count branches, %ld "
+                    "nodes branched tailing off, second tree worker %ld nodes (%ld "
                     "nodes passed between the workers)\n",
                     b.cg_iters, b.t_lp, glp_get_it_cnt(b.lp), b.lp_restarts, b.lp_stalls,
                     b.t_price, b.pricer.calls,
@@ -2599,11 +2702,14 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
                     b.windows_better, b.t_window, b.helper_plans, b.pairs_fixed,
                     inst->n_pairs, b.t_fix, b.src.n, b.sr_rounds, b.sr_dropped,
                     (double)b.src_bits / (double)(b.src_stops ? b.src_stops : 1),
-                    b.src_overflow, b.nodes_done, b.given + b.taken);
+                    b.src_overflow, b.iv_branches, b.tailed, b.nodes_done,
+                    b.given + b.taken);
         }
         res->nodes = nodes;
         res->worker_nodes = b.nodes_done;
         res->columns = (long)b.n_pat;
+        res->interval_branches = b.iv_branches;
+        res->tailed_nodes = b.tailed;
         res->cuts = (long)b.src.n;
         res->root_bound_s = root_lb / 1000.0;
         if (!isfinite(b.ub_ms)) {

@@ -34,10 +34,11 @@ static uint64_t rng_next(uint64_t *s)
 }
 
 /* n_fruits fruits over n_stops stops; fruit f reaches each stop of a window of `window`
- * stops around a random centre with probability 3/4 (at least one); costs 1..15 s in
- * whole ms. `unreachable` fruits at the end get no pair. */
-static void make_instance(hv_instance_t *in, size_t nf, size_t ns, size_t window,
-                          size_t unreachable, uint64_t seed)
+ * stops around a random centre with probability 3/4 (at least one); costs of
+ * cost_lo_ms + [0, cost_span_ms) in whole ms. `unreachable` fruits at the end get no pair. */
+static void make_instance_costs(hv_instance_t *in, size_t nf, size_t ns, size_t window,
+                                size_t unreachable, uint64_t seed, uint64_t cost_lo_ms,
+                                uint64_t cost_span_ms)
 {
     memset(in, 0, sizeof *in);
     in->n_fruits = nf;
@@ -71,11 +72,18 @@ static void make_instance(hv_instance_t *in, size_t nf, size_t ns, size_t window
                 hv_pair_t *pr = &in->pairs[in->n_pairs++];
                 pr->fruit = (uint32_t)f;
                 pr->stop = (uint32_t)p;
-                pr->cost_s = (double)(1000 + rng_next(&s) % 14001) / 1000.0;
+                pr->cost_s = (double)(cost_lo_ms + rng_next(&s) % cost_span_ms) / 1000.0;
             }
         }
     }
     in->fruit_begin[nf] = in->n_pairs;
+}
+
+/* make_instance_costs with costs of 1..15 s */
+static void make_instance(hv_instance_t *in, size_t nf, size_t ns, size_t window,
+                          size_t unreachable, uint64_t seed)
+{
+    make_instance_costs(in, nf, ns, window, unreachable, seed, 1000, 14001);
 }
 
 /* Optimum by enumeration: every fruit on every one of its stops. */
@@ -233,9 +241,9 @@ static void test_price_matches_compact(void **state)
         o.column_dive = 2;
         hv_milp_result_t rs;
         solve_to_optimum(&in, &o, &out, rp.objective_s, seed, "with the dive", &rs);
-        /* subset-row cuts only cut off fractional points: five rounds (what instances of
-         * 9,000+ pairs get), kept in the whole tree whatever they gain, and the same
-         * optimum */
+        /* subset-row cuts only cut off fractional points: five rounds (more than
+         * instances of 9,000+ pairs get), kept in the whole tree whatever they gain, and
+         * the same optimum */
         o.column_dive = 1;
         o.sr_cuts = 5;
         o.sr_keep_gain = 0.0;
@@ -405,6 +413,57 @@ static void test_auto_smoothing(void **state)
     print_message("adaptive smoothing: %d of 12 branched, %d with other node counts\n", branched,
                   differ);
     assert_true(branched >= 2); /* precondition: the tree was searched */
+}
+
+/* Branching on the stop count of intervals (interval_branching) and before the column
+ * generation converges (tail_off_ms) change the tree, never the optimum: each on and off
+ * proves the same one. The tailing-off margin is also set so wide that every stalled node
+ * below the root is branched on early. (Closing such a node on an integral point before
+ * its master is optimal could lose the optimum; on these instances a solver that did so
+ * still found it, so that rule rests on its reasoning in milp_price.c.) */
+static void test_interval_branching_and_tail(void **state)
+{
+    (void)state;
+    long iv = 0, tailed = 0, tailed_wide = 0;
+    int branched = 0;
+    for (uint64_t seed = 600; seed < 616; ++seed) {
+        hv_instance_t in;
+        /* picks of 2.0-2.3 s, as on the robot: many patterns at one cost, whose column
+         * generation tails off as on the paper's instances */
+        make_instance_costs(&in, 24 + seed % 10, 30, 12, 0, seed, 2000, 301);
+        hv_assignment_t out;
+        assert_int_equal(hv_assignment_alloc(&out, in.n_fruits), HV_OK);
+        hv_milp_options_t o;
+        one_thread_options(&o);
+        o.interval_branching = 0;
+        o.tail_off_ms = 0;
+        hv_milp_result_t r0, r;
+        solve_optimal(&in, &o, &out, &r0);
+        assert_int_equal(r0.interval_branches, 0);
+        assert_int_equal(r0.tailed_nodes, 0);
+        branched += r0.nodes > 1;
+        o.interval_branching = 50;
+        solve_to_optimum(&in, &o, &out, r0.objective_s, seed, "interval branching", &r);
+        iv += r.interval_branches;
+        assert_int_equal(r.tailed_nodes, 0);
+        o.tail_off_ms = 20;
+        solve_to_optimum(&in, &o, &out, r0.objective_s, seed, "interval branching, tail", &r);
+        tailed += r.tailed_nodes;
+        o.interval_branching = 0;
+        o.tail_off_ms = 1000000;
+        solve_to_optimum(&in, &o, &out, r0.objective_s, seed, "every stalled node", &r);
+        assert_int_equal(r.interval_branches, 0);
+        tailed_wide += r.tailed_nodes;
+        double t;
+        assert_int_equal(hv_assignment_makespan(&in, &out, &t), HV_OK);
+        assert_true(fabs(t - r.objective_s) < 1e-6);
+        hv_assignment_free(&out);
+        hv_instance_free(&in);
+    }
+    print_message("%d of 16 branched; %ld interval branches, %ld nodes tailed off at 20 ms, "
+                  "%ld at any margin\n", branched, iv, tailed, tailed_wide);
+    /* preconditions: each rule really acted */
+    assert_true(branched >= 3 && iv >= 1 && tailed_wide >= 3);
 }
 
 /* What test_window_improve's callback saw: every reported plan is a plan, with the makespan
@@ -851,6 +910,7 @@ int main(void)
         cmocka_unit_test(test_two_tree_workers),
         cmocka_unit_test(test_ascent_centre),
         cmocka_unit_test(test_auto_smoothing),
+        cmocka_unit_test(test_interval_branching_and_tail),
         cmocka_unit_test(test_window_improve),
         cmocka_unit_test(test_helper_thread),
         cmocka_unit_test(test_stop_callback),

@@ -66,12 +66,20 @@ typedef struct hv_milp_options {
     int sr_cuts;             /* price: rounds of subset-row cuts on fruit triples at the root
                                 (milp_srcuts.h); 0 none */
     int sr_cuts_large;       /* price: the same on instances of 9,000+ pairs (alpha 4), where
-                                each of the first five rounds raised the root's bound */
+                                each of the first five rounds raised the root's bound; with
+                                interval branching two measured best (SOLVER.md) */
     int sr_purge;            /* price: 1 the cuts slack at the solved root (basic, zero duals)
                                 are deleted before the tree, whose master solves each cut
                                 row makes dearer; 0 they stay */
     int sr_cross;            /* price: 1 the cuts' triples may hold fruits of both sides, 0
                                 one side only */
+    int interval_branching;  /* price: when the row's stop count is integral, branch on the
+                                count of stops in an interval of up to this many stops
+                                before any fruit's stop (SOLVER.md); 0 the whole row only */
+    int tail_off_ms;         /* price: below the root, branch without waiting for the column
+                                generation to converge once the master value has not
+                                fallen for 10 rounds and is within this many ms of the
+                                node's Lagrangian bound; 0 never */
     int pseudocost;          /* price: 1 fruit splits are chosen by pseudocosts (the bound
                                 rises seen per unit of mass moved), 0 the most balanced */
     int tree_threads;        /* price: 2 (default) a second thread searches the tree too
@@ -125,6 +133,10 @@ typedef struct hv_milp_result {
                              in the tree */
     long columns;         /* stop-pattern columns generated (branch-and-price) */
     long worker_nodes;    /* price: of `nodes`, those the second tree worker solved */
+    long interval_branches; /* price: branches on the stop count of an interval shorter
+                               than the row (interval_branching) */
+    long tailed_nodes;      /* price: nodes branched on before their column generation
+                               converged (tail_off_ms) */
 } hv_milp_result_t;
 
 /* Defaults: 60 s limit, gap 1e-6, quiet, no export, the choices SOLVER.md keeps. */
