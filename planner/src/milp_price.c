@@ -1508,6 +1508,12 @@ static hv_status_t polish_incumbent(bp_t *b)
     return st;
 }
 
+/* m: prefix sums of the master's mass per stop (choose_count) */
+static int stop_has_mass(const double *m, size_t p)
+{
+    return m[p + 1] - m[p] >= LAMBDA_EPS;
+}
+
 /* Branching on the number of stops: the LP likes two stops at 0.8 with a third between
  * them at 0.2; "at most k stops" / "at least k + 1" separates those. First over the whole
  * row; when that count is (nearly) integral, over intervals [lo, hi] of up to
@@ -1537,19 +1543,19 @@ static void choose_count(bp_t *b, const double *x, split_t *best)
      * it reaches the start of the row; er[p] the same from the right */
     uint32_t *el = b->stop_empty, *er = b->stop_empty + b->ns;
     for (size_t p = 0; p < b->ns; ++p) {
-        int mass = m[p + 1] - m[p] >= LAMBDA_EPS;
-        el[p] = mass ? 0 : (p == 0 ? IV_EDGE_GAP : el[p - 1] + (el[p - 1] < IV_EDGE_GAP));
+        uint32_t before = p == 0 ? IV_EDGE_GAP : el[p - 1];
+        el[p] = stop_has_mass(m, p) ? 0 : (before == IV_EDGE_GAP ? IV_EDGE_GAP : before + 1);
     }
     for (size_t p = b->ns; p-- > 0;) {
-        int mass = m[p + 1] - m[p] >= LAMBDA_EPS;
-        er[p] = mass ? 0 : (p + 1 == b->ns ? IV_EDGE_GAP : er[p + 1] + (er[p + 1] < IV_EDGE_GAP));
+        uint32_t after = p + 1 == b->ns ? IV_EDGE_GAP : er[p + 1];
+        er[p] = stop_has_mass(m, p) ? 0 : (after == IV_EDGE_GAP ? IV_EDGE_GAP : after + 1);
     }
     size_t wmax = (size_t)b->opt->interval_branching;
     double bs = 0.0, bc = 0.0;
     /* narrowest first, then leftmost: the first of equal scores is kept */
     for (size_t w = 1; w <= wmax && w <= b->ns; ++w) {
         for (size_t a = 0, e = w - 1; e < b->ns; ++a, ++e) {
-            if (m[a + 1] - m[a] < LAMBDA_EPS || m[e + 1] - m[e] < LAMBDA_EPS) {
+            if (!stop_has_mass(m, a) || !stop_has_mass(m, e)) {
                 continue;
             }
             double c = m[e + 1] - m[a], f = c - floor(c), q = fmin(f, 1.0 - f);
