@@ -52,6 +52,8 @@ static void usage(FILE *f)
             "                       2 >= 1 from 9000 pairs),\n"
             "                       sr_cross (1: cut triples over both sides, 0: one side),\n"
             "                       pseudocost (1: fruit splits by pseudocosts, 0: balanced),\n"
+            "                       binding_splits (1: split scores weighted by the mass\n"
+            "                       where the fruit's arm binds, 0: unweighted),\n"
             "                       interval_branching (widest stop interval counted, 0 off),\n"
             "                       tail_off_ms (tailing-off branching margin, ms, 0 off),\n"
             "                       tree_threads (2: a second tree worker, 1: one),\n"
@@ -102,6 +104,7 @@ static int set_option(hv_milp_options_t *o, const char *kv)
         {"cover_rows", &o->cover_rows},
         {"sr_cross", &o->sr_cross},
         {"pseudocost", &o->pseudocost},
+        {"binding_splits", &o->binding_splits},
         {"interval_branching", &o->interval_branching},
         {"tail_off_ms", &o->tail_off_ms},
         {"tree_threads", &o->tree_threads},
@@ -260,13 +263,13 @@ int main(int argc, char **argv)
            "side_bounds=%d ms=%d decompose=%d cuts=%d pcost=%d limit=%.0fs; price: "
            "sr_cuts=%d/%d sr_purge=%d sr_cross=%d cover_rows=%d pseudocost=%d tree_threads=%d "
            "helper_thread=%d ascent_steps=%d auto_smoothing=%d interval_branching=%d "
-           "tail_off_ms=%d\n",
+           "tail_off_ms=%d binding_splits=%d\n",
            mo.algorithm == HV_MILP_ALG_PRICE ? "price" : "compact", mo.link_disaggregated,
            mo.heuristic_incumbent, mo.branch_stops_first, mo.side_bounds, mo.ms_granularity,
            mo.decompose, mo.glpk_cuts, mo.pcost_branching, mo.time_limit_s, mo.sr_cuts,
            mo.sr_cuts_large, mo.sr_purge, mo.sr_cross, mo.cover_rows, mo.pseudocost,
            mo.tree_threads, mo.helper_thread, mo.ascent_steps, mo.auto_smoothing,
-           mo.interval_branching, mo.tail_off_ms);
+           mo.interval_branching, mo.tail_off_ms, mo.binding_splits);
     printf("%-5s %-4s %4s %6s | %-9s %9s %9s %8s %7s %7s %5s | %9s %9s | %-9s %8s %7s | %9s %5s | %9s\n",
            "alpha", "seed", "nf", "pairs", "milp", "T_s", "bound_s", "gap", "time_s", "nodes",
            "stops", "root_s", "heur_T_s", "plain", "plain_gap", "plain_s", "fov_T_s", "stops", "serial_T");

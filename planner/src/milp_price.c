@@ -57,6 +57,7 @@
 #define IV_EDGE_GAP 1000u   /* ... the empty run counted beyond an end of the row */
 #define TAIL_ROUNDS 10      /* tailing off: rounds without a fall of the master value */
 #define TAIL_FALL_MS 1e-3   /* ... that counts as one */
+#define BIND_MIN_WEIGHT 1e-3 /* binding_splits: the weight of a fruit whose arm never binds */
 #define STALL_ITERS_PER_ROW 10 /* primal simplex iterations per master row before a call
                                   counts as stalled (a normal round takes ~40 in all) */
 
@@ -65,6 +66,7 @@ typedef struct pattern {
     uint32_t first, n; /* fruits bp->pf[first .. first + n), ascending */
     double cost_ms;
     int col; /* master column */
+    unsigned char binds; /* the arms whose time is the pattern's max: bit hv_side_t */
 } pattern_t;
 
 /* A branch-and-bound node: the parent's restrictions plus one more. */
@@ -333,6 +335,25 @@ static int cmp_u32(const void *a, const void *c)
     return x < y ? -1 : x > y;
 }
 
+/* Cost of the pair (fruit f, stop p) in ms, or -1 when not reachable. */
+static double pair_ms(const bp_t *b, uint32_t f, uint32_t p)
+{
+    size_t k = hv_instance_pair_index(b->inst, f, p);
+    return k == SIZE_MAX ? -1.0 : 1000.0 * b->inst->pairs[k].cost_s;
+}
+
+/* Which arms bind in the pattern of fruits f[0 .. n) at `stop`: bit s set when side s's
+ * time is the larger (both when equal). */
+static unsigned char pattern_binds(const bp_t *b, uint32_t stop, const uint32_t *f, uint32_t n)
+{
+    double w[2] = {0.0, 0.0}; /* indexed by hv_side_t */
+    for (uint32_t q = 0; q < n; ++q) {
+        w[b->inst->fruits[f[q]].side] += pair_ms(b, f[q], stop);
+    }
+    return (unsigned char)((w[HV_SIDE_LEFT] >= w[HV_SIDE_RIGHT] ? 1u << HV_SIDE_LEFT : 0u) |
+                           (w[HV_SIDE_RIGHT] >= w[HV_SIDE_LEFT] ? 1u << HV_SIDE_RIGHT : 0u));
+}
+
 /* Add the pattern (stop, fruits f[0..n), sorted here) as a master column unless known.
  * Returns 1 added, 0 known, -1 out of memory. */
 static int pattern_add(bp_t *b, uint32_t stop, uint32_t *f, uint32_t n, double cost_ms)
@@ -351,7 +372,8 @@ static int pattern_add(bp_t *b, uint32_t stop, uint32_t *f, uint32_t n, double c
         return -1;
     }
     b->pat_dead[b->n_pat] = 0;
-    b->pat[b->n_pat] = (pattern_t){stop, (uint32_t)b->pf_len, n, cost_ms, 0};
+    b->pat[b->n_pat] = (pattern_t){stop, (uint32_t)b->pf_len, n, cost_ms, 0,
+                                   pattern_binds(b, stop, f, n)};
     memcpy(b->pf + b->pf_len, f, n * sizeof *f);
     b->pf_len += n;
     b->pat_open[b->n_pat] = 1;
@@ -390,13 +412,6 @@ static int pattern_add(bp_t *b, uint32_t stop, uint32_t *f, uint32_t n, double c
     glp_set_col_bnds(b->lp, j, GLP_LO, 0.0, 0.0);
     glp_set_obj_coef(b->lp, j, cost_ms);
     return 1;
-}
-
-/* Cost of the pair (fruit f, stop p) in ms, or -1 when not reachable. */
-static double pair_ms(const bp_t *b, uint32_t f, uint32_t p)
-{
-    size_t k = hv_instance_pair_index(b->inst, f, p);
-    return k == SIZE_MAX ? -1.0 : 1000.0 * b->inst->pairs[k].cost_s;
 }
 
 /* The patterns of an assignment as columns (a plan's stops are good columns to start with). */
@@ -1305,6 +1320,7 @@ typedef struct split {
 typedef struct mass {
     uint32_t fruit, stop;
     double x;
+    double x_binds; /* the part of x in patterns where the fruit's arm binds */
 } mass_t;
 
 static int by_fruit_stop(const void *a, const void *c)
@@ -1369,7 +1385,9 @@ static hv_status_t choose_split(bp_t *b, const double *x, split_t *best)
             return HV_ERR_PLAN_NOMEM;
         }
         for (uint32_t q = 0; q < b->pat[k].n; ++q) {
-            m[n++] = (mass_t){b->pf[b->pat[k].first + q], b->pat[k].stop, v};
+            uint32_t f = b->pf[b->pat[k].first + q];
+            int binds = (b->pat[k].binds >> b->inst->fruits[f].side) & 1;
+            m[n++] = (mass_t){f, b->pat[k].stop, v, binds ? v : 0.0};
         }
     }
     qsort(m, n, sizeof *m, by_fruit_stop);
@@ -1379,10 +1397,15 @@ static hv_status_t choose_split(bp_t *b, const double *x, split_t *best)
     best->score = 0.0;
     for (size_t i = 0; i < n;) {
         size_t e = i;
-        double tot = 0.0;
+        double tot = 0.0, tot_binds = 0.0;
         while (e < n && m[e].fruit == m[i].fruit) {
+            tot_binds += m[e].x_binds;
             tot += m[e++].x;
         }
+        /* opt->binding_splits: a fruit whose arm has slack wherever the point puts it can
+         * usually move at no cost (alpha 4: the left fruits at stops where the right arm
+         * binds), so a split of it rarely raises the bound (SOLVER.md) */
+        double w_binds = b->opt->binding_splits ? fmax(tot_binds / tot, BIND_MIN_WEIGHT) : 1.0;
         double cum = 0.0;
         double pc_lo = b->opt->pseudocost ? pseudocost(b, m[i].fruit, 0) : 0.0;
         double pc_hi = b->opt->pseudocost ? pseudocost(b, m[i].fruit, 1) : 0.0;
@@ -1395,7 +1418,7 @@ static hv_status_t choose_split(bp_t *b, const double *x, split_t *best)
             /* prefer balanced splits, then splits between distant stops */
             double score = s + 1e-4 * (double)(m[e - 1].stop - m[i].stop);
             if (b->opt->pseudocost && s > LAMBDA_EPS) {
-                score = fmax((tot - cum) * pc_lo, 1e-6) * fmax(cum * pc_hi, 1e-6);
+                score = w_binds * fmax((tot - cum) * pc_lo, 1e-6) * fmax(cum * pc_hi, 1e-6);
             }
             if (s > LAMBDA_EPS && score > best->score) {
                 *best = (split_t){KIND_FRUIT, m[i].fruit, m[k - 1].stop, 0, 0, 0, score,

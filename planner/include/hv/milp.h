@@ -82,6 +82,9 @@ typedef struct hv_milp_options {
                                 node's Lagrangian bound; 0 never */
     int pseudocost;          /* price: 1 fruit splits are chosen by pseudocosts (the bound
                                 rises seen per unit of mass moved), 0 the most balanced */
+    int binding_splits;      /* price, with pseudocost: 1 a fruit's split score is weighted
+                                by the share of its master mass in patterns where its
+                                arm's time is the pattern's max (SOLVER.md); 0 unweighted */
     int tree_threads;        /* price: 2 (default) a second thread searches the tree too
                                 once the incumbent is within 0.2 % of the bound, the
                                 helper thread stopping then (milp_share.h); 1 one thread.
