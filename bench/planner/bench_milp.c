@@ -57,6 +57,8 @@ static void usage(FILE *f)
             "                       interval_branching (widest stop interval counted, 0 off),\n"
             "                       tail_off_ms (tailing-off branching margin, ms, 0 off),\n"
             "                       tree_threads (2: a second tree worker, 1: one),\n"
+            "                       balance_workers (1: a worker far above the other's\n"
+            "                       bound takes its best node, 0: only when idle),\n"
             "                       ascent_steps (subgradient steps before the root, 0 off),\n"
             "                       auto_smoothing (1: the smoothing weight adapts, 0: 0.8)\n"
             "  --no-baselines       skip FOV and Serial\n"
@@ -108,6 +110,7 @@ static int set_option(hv_milp_options_t *o, const char *kv)
         {"interval_branching", &o->interval_branching},
         {"tail_off_ms", &o->tail_off_ms},
         {"tree_threads", &o->tree_threads},
+        {"balance_workers", &o->balance_workers},
         {"ascent_steps", &o->ascent_steps},
         {"auto_smoothing", &o->auto_smoothing},
         {"window_width", &o->window_width},

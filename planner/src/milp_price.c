@@ -43,6 +43,8 @@
 #define POLISH_CHUNK 50       /* kicks between two readings of the clock */
 #define WORKER_GAP 2e-3 /* the incumbent's gap from which the second core searches the tree */
 #define DIVE_EVERY 64     /* nodes between dives (search()) */
+#define BALANCE_SHARE 0.2 /* balance_workers: a worker asks for the other's best node once
+                             its own best bound is this share of its gap above the other's */
 #define ROUND_EVERY 8     /* nodes between roundings of the master point, once the plan is
                              within PRIMAL_ROOT_GAP of the root's bound */
 #define WINDOW_SHARE 0.25 /* of the time left after the root, at most, for row windows */
@@ -1207,6 +1209,13 @@ static hv_status_t price_round(bp_t *b, int fresh_node, double *lag_ms, int *add
     }
 }
 
+/* The time to the deadline as GLPK's tm_lim (ms, at least 1). */
+static int ms_left(const bp_t *b)
+{
+    double left_ms = (b->t_deadline - hv_milp_now_s()) * 1000.0;
+    return (int)fmax(1.0, fmin(left_ms, 2e9));
+}
+
 /* first: after a node switch only bounds changed, so the last basis stays dual feasible
  * and the dual simplex repairs it; after new columns the primal simplex continues. */
 static hv_status_t lp_solve(bp_t *b, int first)
@@ -1215,9 +1224,8 @@ static hv_status_t lp_solve(bp_t *b, int first)
     glp_init_smcp(&sp);
     sp.msg_lev = GLP_MSG_OFF;
     sp.meth = first ? GLP_DUALP : GLP_PRIMAL;
-    double left_ms = (b->t_deadline - hv_milp_now_s()) * 1000.0;
-    sp.tm_lim = (int)fmax(1.0, fmin(left_ms, 2e9));
     double t0 = hv_milp_now_s();
+    sp.tm_lim = ms_left(b);
     sp.it_lim = STALL_ITERS_PER_ROW * glp_get_num_rows(b->lp) + 1000;
     int r = glp_simplex(b->lp, &sp);
     if (r == GLP_EITLIM) {
@@ -1227,11 +1235,13 @@ static hv_status_t lp_solve(bp_t *b, int first)
         b->lp_stalls++;
         sp.it_lim = INT_MAX;
         sp.meth = GLP_DUALP;
+        sp.tm_lim = ms_left(b); /* what the stalled call left, not what it started with */
         r = glp_simplex(b->lp, &sp);
     }
     if (r == GLP_EBADB || r == GLP_ESING || r == GLP_ECOND) {
         b->lp_restarts++;
         glp_adv_basis(b->lp, 0); /* an unusable warm start (singular, invalid): start afresh */
+        sp.tm_lim = ms_left(b);
         r = glp_simplex(b->lp, &sp);
     }
     b->t_lp += hv_milp_now_s() - t0;
@@ -2286,11 +2296,18 @@ static hv_status_t branch(bp_t *b, int32_t k, const split_t *sp, int diving, int
     return HV_OK;
 }
 
-/* When the other worker waits for a node: this worker's best open one goes to it, as its
- * path of restrictions from the root (node 0 of both workers, which restricts nothing). */
+/* This search's index among the tree workers (milp_share.h): 0 the main one, 1 the second. */
+static size_t worker_id(const bp_t *b)
+{
+    return b->is_worker ? 1u : 0u;
+}
+
+/* When the other worker waits for a node or asked for one: this worker's best open one
+ * goes to it, as its path of restrictions from the root (node 0 of both workers, which
+ * restricts nothing). */
 static hv_status_t give_if_hungry(bp_t *b)
 {
-    while (b->share != NULL && b->heap_len > 0 && hv_share_hungry(b->share)) {
+    while (b->share != NULL && b->heap_len > 0 && hv_share_hungry(b->share, worker_id(b))) {
         int32_t k = heap_pop(b);
         if (prunable(b, b->nodes[k].lb_ms)) {
             continue;
@@ -2313,9 +2330,46 @@ static hv_status_t give_if_hungry(bp_t *b)
     return HV_OK;
 }
 
-/* This worker has no open node: one from the other worker, made a node here (*k; no basis
- * and no pseudocost learning: its parent's bound is not known here). Returns 1 with a
- * node, 0 when the search is over or time is up, -1 when out of memory. */
+/* The node the other worker gave (its path in b->path, n steps, bound lb) made a node here,
+ * into *k (no basis and no pseudocost learning: its parent's bound is not known here).
+ * Returns 1, or -1 when out of memory. */
+static int import_shared(bp_t *b, size_t n, double lb, int32_t *k)
+{
+    int32_t q = 0;
+    for (size_t i = 0; i < n && q >= 0; ++i) {
+        const hv_share_step_t *st = &b->path[i];
+        q = node_new(b, q, (node_kind_t)st->kind, st->fruit, st->lo, st->hi, st->rhs, lb);
+    }
+    b->taken++;
+    *k = q;
+    return q >= 0 ? 1 : -1;
+}
+
+/* This worker holds open nodes whose best bound is well above the other worker's: it asks
+ * for the other's best (which comes at the other's next node) and queues what came of an
+ * earlier ask, so that both search near the least bound. Returns 0, or -1 when out of
+ * memory. */
+static int balance_shared(bp_t *b)
+{
+    double lb = b->heap_len > 0 ? b->nodes[b->heap[0]].lb_ms : INFINITY;
+    double margin = fmax(1.0, BALANCE_SHARE * (b->ub_ms - lb));
+    if (!hv_share_balance(b->share, worker_id(b), lb, margin)) {
+        return 0;
+    }
+    size_t n;
+    int32_t k;
+    int r = hv_share_poll(b->share, worker_id(b), &b->path, &b->path_cap, &n, &lb);
+    if (r == 0) {
+        return 0;
+    }
+    if (r < 0 || import_shared(b, n, lb, &k) < 0 || !heap_push(b, k)) {
+        return -1;
+    }
+    return 0;
+}
+
+/* This worker has no open node: one from the other worker, made a node here (*k). Returns
+ * 1 with a node, 0 when the search is over or time is up, -1 when out of memory. */
 static int next_shared(bp_t *b, int32_t *k)
 {
     for (;;) {
@@ -2324,19 +2378,12 @@ static int next_shared(bp_t *b, int32_t *k)
         }
         size_t n;
         double lb;
-        int r = hv_share_wait(b->share, &b->path, &b->path_cap, &n, &lb);
+        int r = hv_share_wait(b->share, worker_id(b), &b->path, &b->path_cap, &n, &lb);
         if (r == 0 || r == -2) {
             return r == 0 ? 0 : -1;
         }
         if (r == 1) {
-            int32_t q = 0;
-            for (size_t i = 0; i < n && q >= 0; ++i) {
-                const hv_share_step_t *st = &b->path[i];
-                q = node_new(b, q, (node_kind_t)st->kind, st->fruit, st->lo, st->hi, st->rhs, lb);
-            }
-            b->taken++;
-            *k = q;
-            return q >= 0 ? 1 : -1;
+            return import_shared(b, n, lb, k);
         }
     }
 }
@@ -2586,6 +2633,9 @@ static hv_status_t tree_search(bp_t *b, double *root_lb, long *nodes_done)
     long since_dive = 0;
     for (;;) {
         int32_t k = dive;
+        if (b->share != NULL && b->opt->balance_workers && balance_shared(b) < 0) {
+            return HV_ERR_PLAN_NOMEM;
+        }
         if (k >= 0) {
             dive = -1;
         } else if (b->heap_len > 0) {

@@ -25,6 +25,8 @@ struct hv_share {
     pthread_cond_t cv;  /* a node was queued, the search ended, or a worker failed */
     size_t n_workers, waiting;
     int done, failed;
+    double *open_lb; /* per worker: the best bound it holds open (hv_share_balance) */
+    unsigned char *asked; /* per worker: it asked for a node without waiting */
     size_t nf;
     uint32_t *best;
     double best_ms;
@@ -44,7 +46,9 @@ hv_status_t hv_share_create(size_t n_workers, size_t n_fruits, hv_share_t **out)
     pthread_mutex_init(&s->mu, NULL);
     pthread_cond_init(&s->cv, NULL);
     s->best = malloc((n_fruits + 1) * sizeof *s->best);
-    int ok = s->best != NULL;
+    s->open_lb = malloc(n_workers * sizeof *s->open_lb);
+    s->asked = calloc(n_workers, 1);
+    int ok = s->best != NULL && s->open_lb != NULL && s->asked != NULL;
     for (int d = 0; d < 2; ++d) {
         s->pc.sum[d] = calloc(n_fruits + 1, sizeof *s->pc.sum[d]);
         s->pc.n[d] = calloc(n_fruits + 1, sizeof *s->pc.n[d]);
@@ -53,6 +57,9 @@ hv_status_t hv_share_create(size_t n_workers, size_t n_fruits, hv_share_t **out)
     if (!ok) {
         hv_share_destroy(s);
         return HV_ERR_PLAN_NOMEM;
+    }
+    for (size_t w = 0; w < n_workers; ++w) {
+        s->open_lb[w] = INFINITY; /* not published yet: nothing to ask it for */
     }
     s->n_workers = n_workers;
     s->nf = n_fruits;
@@ -73,6 +80,8 @@ void hv_share_destroy(hv_share_t *s)
         free(s->pc.n[d]);
     }
     free(s->best);
+    free(s->open_lb);
+    free(s->asked);
     free(s->q);
     free(s->steps);
     free(s);
@@ -100,12 +109,34 @@ int hv_share_take(hv_share_t *s, double ub_ms, uint32_t *fruit_stop, double *ub_
     return better;
 }
 
-int hv_share_hungry(hv_share_t *s)
+int hv_share_hungry(hv_share_t *s, size_t worker)
 {
     pthread_mutex_lock(&s->mu);
-    int h = s->waiting > s->n_q;
+    size_t want = s->waiting;
+    for (size_t w = 0; w < s->n_workers; ++w) {
+        want += w != worker && s->asked[w];
+    }
+    int h = want > s->n_q;
     pthread_mutex_unlock(&s->mu);
     return h;
+}
+
+int hv_share_balance(hv_share_t *s, size_t worker, double lb_ms, double margin_ms)
+{
+    pthread_mutex_lock(&s->mu);
+    s->open_lb[worker] = lb_ms;
+    double other = INFINITY;
+    for (size_t w = 0; w < s->n_workers; ++w) {
+        if (w != worker) {
+            other = fmin(other, s->open_lb[w]);
+        }
+    }
+    if (!s->asked[worker] && lb_ms > other + margin_ms) {
+        s->asked[worker] = 1;
+    }
+    int r = s->asked[worker];
+    pthread_mutex_unlock(&s->mu);
+    return r;
 }
 
 hv_status_t hv_share_give(hv_share_t *s, double lb_ms, const hv_share_step_t *path, size_t n)
@@ -124,10 +155,41 @@ hv_status_t hv_share_give(hv_share_t *s, double lb_ms, const hv_share_step_t *pa
     return st;
 }
 
-int hv_share_wait(hv_share_t *s, hv_share_step_t **path, size_t *cap, size_t *n,
-                  double *lb_ms)
+/* The newest queued node (the giver's best at the time) into *path: 1, or -2 when out of
+ * memory. The caller holds the mutex and has seen n_q > 0. */
+static int dequeue(hv_share_t *s, hv_share_step_t **path, size_t *cap, size_t *n, double *lb_ms)
+{
+    const queued_t *t = &s->q[--s->n_q];
+    int r = hv_grow((void **)path, cap, t->n + 1, sizeof **path) ? 1 : -2;
+    if (r == 1) {
+        memcpy(*path, s->steps + t->first, t->n * sizeof **path);
+        *n = t->n;
+        *lb_ms = t->lb_ms;
+    }
+    if (s->n_q == 0) {
+        s->n_steps = 0;
+    }
+    return r;
+}
+
+int hv_share_poll(hv_share_t *s, size_t worker, hv_share_step_t **path, size_t *cap,
+                  size_t *n, double *lb_ms)
 {
     pthread_mutex_lock(&s->mu);
+    int r = 0;
+    if (s->asked[worker] && s->n_q > 0) {
+        s->asked[worker] = 0;
+        r = dequeue(s, path, cap, n, lb_ms);
+    }
+    pthread_mutex_unlock(&s->mu);
+    return r;
+}
+
+int hv_share_wait(hv_share_t *s, size_t worker, hv_share_step_t **path, size_t *cap,
+                  size_t *n, double *lb_ms)
+{
+    pthread_mutex_lock(&s->mu);
+    s->asked[worker] = 0; /* it waits now, which asks for a node anyway */
     s->waiting++;
     if (s->n_q == 0 && s->waiting == s->n_workers) {
         s->done = 1; /* nobody holds a node, so nobody can make one */
@@ -145,16 +207,7 @@ int hv_share_wait(hv_share_t *s, hv_share_step_t **path, size_t *cap, size_t *n,
     }
     int r = s->done || s->failed ? 0 : -1;
     if (r != 0 && s->n_q > 0) {
-        const queued_t *t = &s->q[--s->n_q]; /* the newest: the giver's best at the time */
-        r = hv_grow((void **)path, cap, t->n + 1, sizeof **path) ? 1 : -2;
-        if (r == 1) {
-            memcpy(*path, s->steps + t->first, t->n * sizeof **path);
-            *n = t->n;
-            *lb_ms = t->lb_ms;
-        }
-        if (s->n_q == 0) {
-            s->n_steps = 0;
-        }
+        r = dequeue(s, path, cap, n, lb_ms);
     }
     if (r != 0) {
         s->waiting--; /* it works again (or asks again) */

@@ -322,9 +322,9 @@ static void test_slack_cut_purge(void **state)
     assert_true(purged < kept);
 }
 
-/* Two tree workers (milp_share.h) against one: the same proven optimum, the plan returned
- * is the one of that makespan (a worker's plan must reach the result), and the second
- * worker really searched on some of them. */
+/* Two tree workers (milp_share.h), balanced by bound and not, against one: the same proven
+ * optimum, the plan returned is the one of that makespan (a worker's plan must reach the
+ * result), and the second worker really searched on some of them. */
 static void test_two_tree_workers(void **state)
 {
     (void)state;
@@ -351,6 +351,9 @@ static void test_two_tree_workers(void **state)
                     (r2.worker_nodes < r2.nodes || (r2.nodes == 0 && r2.worker_nodes == 0)));
         print_message("seed %llu: %ld nodes, %ld by the second worker (one worker: %ld)\n",
                       (unsigned long long)seed, r2.nodes, r2.worker_nodes, r1.nodes);
+        o.balance_workers = 0; /* the workers trade nodes only when one has none */
+        hv_milp_result_t r3;
+        solve_to_optimum(&in, &o, &out, r1.objective_s, seed, "two workers, unbalanced", &r3);
         worker_nodes += r2.worker_nodes;
         with_worker += r2.worker_nodes > 0;
         hv_assignment_free(&out);

@@ -1,5 +1,5 @@
 /* The tree workers' work sharing (milp_share.h): a node's path and bound arrive intact, a
- * hungry worker is seen, the search ends when every worker waits with nothing queued, a
+ * hungry worker is seen, a worker far behind the other's bound asks for a node, the search ends when every worker waits with nothing queued, a
  * failure ends every wait, only a better plan is handed over, and pseudocosts pool. */
 #define _POSIX_C_SOURCE 200809L /* nanosleep */
 #include <math.h>
@@ -15,7 +15,8 @@
 
 #include "hv/milp_share.h"
 
-/* A second worker that waits until it gets a node or the search ends. */
+/* A second worker (worker 1; the test's thread is worker 0) that waits until it gets a
+ * node or the search ends. */
 typedef struct waiter {
     hv_share_t *s;
     int got; /* 1 a node, 0 the end */
@@ -28,7 +29,7 @@ static void *wait_for_node(void *arg)
 {
     waiter_t *w = arg;
     int r;
-    while ((r = hv_share_wait(w->s, &w->path, &w->cap, &w->n, &w->lb)) == -1) {
+    while ((r = hv_share_wait(w->s, 1, &w->path, &w->cap, &w->n, &w->lb)) == -1) {
     }
     w->got = r;
     return NULL;
@@ -39,11 +40,11 @@ static void test_node_travels_and_search_ends(void **state)
     (void)state;
     hv_share_t *s;
     assert_int_equal(hv_share_create(2, 4, &s), HV_OK);
-    assert_false(hv_share_hungry(s));
+    assert_false(hv_share_hungry(s, 0));
     waiter_t w = {s, -1, NULL, 0, 0, 0.0};
     pthread_t t;
     assert_int_equal(pthread_create(&t, NULL, wait_for_node, &w), 0);
-    while (!hv_share_hungry(s)) { /* the waiter is seen as soon as it asks */
+    while (!hv_share_hungry(s, 0)) { /* the waiter is seen as soon as it asks */
         struct timespec ms = {0, 1000000};
         nanosleep(&ms, NULL);
     }
@@ -69,7 +70,7 @@ static void test_node_travels_and_search_ends(void **state)
     hv_share_step_t *mine = NULL;
     size_t cap = 0, n;
     double lb;
-    while ((r = hv_share_wait(s, &mine, &cap, &n, &lb)) == -1) {
+    while ((r = hv_share_wait(s, 0, &mine, &cap, &n, &lb)) == -1) {
     }
     assert_int_equal(r, 0);
     assert_int_equal(pthread_join(t, NULL), 0);
@@ -94,12 +95,44 @@ static void test_queue_bound_and_failure(void **state)
     hv_share_step_t *p = NULL;
     size_t cap = 0, n;
     double lb;
-    assert_int_equal(hv_share_wait(s, &p, &cap, &n, &lb), 1);
+    assert_int_equal(hv_share_wait(s, 0, &p, &cap, &n, &lb), 1);
     assert_int_equal(n, 1);
     assert_false(hv_share_failed(s));
     hv_share_fail(s);
     assert_true(hv_share_failed(s));
-    assert_int_equal(hv_share_wait(s, &p, &cap, &n, &lb), 0);
+    assert_int_equal(hv_share_wait(s, 0, &p, &cap, &n, &lb), 0);
+    free(p);
+    hv_share_destroy(s);
+}
+
+/* A worker whose best open bound is well above the other's asks without waiting; the
+ * other sees the ask (not its own), and the node given comes back by polling. */
+static void test_balance_asks_when_behind(void **state)
+{
+    (void)state;
+    hv_share_t *s;
+    assert_int_equal(hv_share_create(2, 4, &s), HV_OK);
+    assert_false(hv_share_balance(s, 1, 150.0, 10.0)); /* worker 0 has published nothing */
+    assert_false(hv_share_balance(s, 0, 100.0, 10.0));
+    assert_false(hv_share_balance(s, 1, 105.0, 10.0)); /* within the margin */
+    assert_false(hv_share_hungry(s, 0));
+    assert_true(hv_share_balance(s, 1, 150.0, 10.0));
+    assert_true(hv_share_hungry(s, 0));
+    assert_false(hv_share_hungry(s, 1)); /* its own ask is not a reason to give */
+    hv_share_step_t *p = NULL;
+    size_t cap = 0, n;
+    double lb;
+    assert_int_equal(hv_share_poll(s, 1, &p, &cap, &n, &lb), 0); /* nothing given yet */
+    hv_share_step_t step = {2, 0, 3, 9, 1};
+    assert_int_equal(hv_share_give(s, 100.0, &step, 1), HV_OK);
+    assert_false(hv_share_hungry(s, 0)); /* the queue holds what was asked for */
+    assert_int_equal(hv_share_poll(s, 0, &p, &cap, &n, &lb), 0); /* worker 0 did not ask */
+    assert_int_equal(hv_share_poll(s, 1, &p, &cap, &n, &lb), 1);
+    assert_int_equal(n, 1);
+    assert_true(lb == 100.0);
+    assert_int_equal(p[0].hi, 9);
+    assert_int_equal(hv_share_poll(s, 1, &p, &cap, &n, &lb), 0); /* the ask is answered */
+    assert_false(hv_share_hungry(s, 0));
     free(p);
     hv_share_destroy(s);
 }
@@ -149,6 +182,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_node_travels_and_search_ends),
         cmocka_unit_test(test_queue_bound_and_failure),
+        cmocka_unit_test(test_balance_asks_when_behind),
         cmocka_unit_test(test_only_better_plans),
         cmocka_unit_test(test_pseudocosts_pooled),
     };

@@ -85,6 +85,9 @@ typedef struct hv_milp_options {
     int binding_splits;      /* price, with pseudocost: 1 a fruit's split score is weighted
                                 by the share of its master mass in patterns where its
                                 arm's time is the pattern's max (SOLVER.md); 0 unweighted */
+    int balance_workers;     /* price, with two tree workers: 1 a worker whose best open bound
+                                lies well above the other's asks for the other's best node
+                                (milp_share.h); 0 only a worker without nodes asks */
     int tree_threads;        /* price: 2 (default) a second thread searches the tree too
                                 once the incumbent is within 0.2 % of the bound, the
                                 helper thread stopping then (milp_share.h); 1 one thread.

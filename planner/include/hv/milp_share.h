@@ -4,8 +4,9 @@
  * second worker searches the tree beside the first, each with its own master LP. An open
  * node travels between them as the path of restrictions from the root to it: the two
  * masters number their columns differently once they have split, so nothing else of a
- * node is portable. A worker takes a node only when it has none of its own; the other
- * gives its best one at its next node. The incumbent is shared, so either prunes by it, and
+ * node is portable. A worker takes a node when it has none of its own, or when the best
+ * bound it holds is well above the other's (so that both search near the best bound); the
+ * other gives its best one at its next node. The incumbent is shared, so either prunes by it, and
  * so are the pseudocosts of fruit splits, so either branches on what both learnt.
  *
  * All calls are thread-safe. Bounds and makespans are in ms, times in s (CLOCK_MONOTONIC).
@@ -41,8 +42,20 @@ void hv_share_offer(hv_share_t *s, const uint32_t *fruit_stop, double ub_ms);
 /* 1 when the shared plan beats ub_ms: copied into fruit_stop, its makespan into *ub_out. */
 int hv_share_take(hv_share_t *s, double ub_ms, uint32_t *fruit_stop, double *ub_out);
 
-/* 1 when a worker waits for a node. */
-int hv_share_hungry(hv_share_t *s);
+/* 1 when a worker other than `worker` (0 .. n_workers - 1) waits for a node or asked for
+ * one (hv_share_balance) and the queue does not hold enough for them. */
+int hv_share_hungry(hv_share_t *s, size_t worker);
+
+/* `worker` publishes lb_ms, the best bound of the nodes it holds open (INFINITY: none).
+ * When that exceeds every other worker's by more than margin_ms, it asks for a node
+ * without waiting: the others give their best at their next node, and it takes it with
+ * hv_share_poll. Returns 1 while its ask is pending. */
+int hv_share_balance(hv_share_t *s, size_t worker, double lb_ms, double margin_ms);
+
+/* A node given for `worker`'s pending ask: 1 with it (as hv_share_wait), 0 none yet, -2
+ * out of memory. Never blocks. */
+int hv_share_poll(hv_share_t *s, size_t worker, hv_share_step_t **path, size_t *cap,
+                  size_t *n, double *lb_ms);
 
 /* Queue an open node: its path from the root (n steps) and its bound. Returns HV_OK or
  * HV_ERR_PLAN_NOMEM. */
@@ -53,8 +66,8 @@ hv_status_t hv_share_give(hv_share_t *s, double lb_ms, const hv_share_step_t *pa
  * *lb_ms), 0 when the search is over (every worker waits and none is queued, or a worker
  * failed), -1 when nothing came yet (the caller checks its clock and asks again), or -2
  * when out of memory. */
-int hv_share_wait(hv_share_t *s, hv_share_step_t **path, size_t *cap, size_t *n,
-                  double *lb_ms);
+int hv_share_wait(hv_share_t *s, size_t worker, hv_share_step_t **path, size_t *cap,
+                  size_t *n, double *lb_ms);
 
 /* A worker stopped on an error: the others stop too (hv_share_failed). */
 void hv_share_fail(hv_share_t *s);
