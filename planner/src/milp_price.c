@@ -2758,9 +2758,15 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
         st = st != HV_OK ? st : sth;
     }
     if (st == HV_OK) {
+        /* nodes left open that the final incumbent prunes (the limit came before they were
+         * popped) cannot hold a better plan, as during the search */
         double lb = fmin(b.ub_ms, open_lb);
+        size_t n_main = 0;
         for (size_t i = 0; i < b.heap_len; ++i) {
-            lb = fmin(lb, b.nodes[b.heap[i]].lb_ms);
+            if (!prunable(&b, b.nodes[b.heap[i]].lb_ms)) {
+                lb = fmin(lb, b.nodes[b.heap[i]].lb_ms);
+                n_main++;
+            }
         }
         progress(&b, lb, 1);
         if (opt->verbose >= 1) {
@@ -2798,8 +2804,8 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
             res->objective_s = b.ub_ms / 1000.0;
             res->bound_s = fmin(lb, b.ub_ms) / 1000.0;
             res->gap = (res->objective_s - res->bound_s) / fmax(res->objective_s, DBL_EPSILON);
-            res->status = b.heap_len == 0 && n_open == 0 && !b.inexact ? HV_SOLVE_OPTIMAL
-                                                                       : HV_SOLVE_FEASIBLE;
+            res->status = n_main == 0 && n_open == 0 && !b.inexact ? HV_SOLVE_OPTIMAL
+                                                                   : HV_SOLVE_FEASIBLE;
             if (res->status == HV_SOLVE_OPTIMAL) {
                 res->bound_s = res->objective_s; /* every open node was pruned */
                 res->gap = 0.0;
