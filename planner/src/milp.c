@@ -441,8 +441,7 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
     glp_init_smcp(&sp);
     sp.msg_lev = opt->verbose >= 2 ? GLP_MSG_ON : GLP_MSG_OFF;
     sp.presolve = GLP_OFF;
-    double left_s = t_deadline - hv_milp_now_s();
-    sp.tm_lim = (int)fmax(1.0, fmin(left_s * 1000.0, 2e9));
+    sp.tm_lim = hv_milp_limit_ms(t_deadline - hv_milp_now_s());
     glp_scale_prob(m.lp, GLP_SF_AUTO); /* costs of 1..60 s against 0/1 columns */
     sp.meth = GLP_DUALP;
     int ret = glp_simplex(m.lp, &sp);
@@ -453,8 +452,7 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
         if (added == 0) {
             break;
         }
-        left_s = t_deadline - hv_milp_now_s();
-        sp.tm_lim = (int)fmax(1.0, fmin(left_s * 1000.0, 2e9));
+        sp.tm_lim = hv_milp_limit_ms(t_deadline - hv_milp_now_s());
         ret = glp_simplex(m.lp, &sp);
         lp_stat = glp_get_status(m.lp);
     }
@@ -508,11 +506,11 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
                 ip.cov_cuts = (cuts & HV_MILP_CUT_COVER) ? GLP_ON : GLP_OFF;
                 ip.clq_cuts = (cuts & HV_MILP_CUT_CLIQUE) ? GLP_ON : GLP_OFF;
             }
-            left_s = t_deadline - hv_milp_now_s();
+            double left_s = t_deadline - hv_milp_now_s();
             if (two_phase && phase == 0) {
                 left_s = fmin(left_s, fmax(1.0, 0.2 * opt->time_limit_s));
             }
-            ip.tm_lim = (int)fmax(1.0, fmin(left_s * 1000.0, 2e9));
+            ip.tm_lim = hv_milp_limit_ms(left_s);
             mip_ret = glp_intopt(m.lp, &ip);
             mip_stat = glp_mip_status(m.lp);
             res->incumbent_taken |= c.inc_taken;

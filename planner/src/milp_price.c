@@ -1209,11 +1209,10 @@ static hv_status_t price_round(bp_t *b, int fresh_node, double *lag_ms, int *add
     }
 }
 
-/* The time to the deadline as GLPK's tm_lim (ms, at least 1). */
+/* The time to the deadline as GLPK's tm_lim. */
 static int ms_left(const bp_t *b)
 {
-    double left_ms = (b->t_deadline - hv_milp_now_s()) * 1000.0;
-    return (int)fmax(1.0, fmin(left_ms, 2e9));
+    return hv_milp_limit_ms(b->t_deadline - hv_milp_now_s());
 }
 
 /* first: after a node switch only bounds changed, so the last basis stays dual feasible
@@ -2085,7 +2084,7 @@ static void compact_centre(bp_t *b, double limit_s)
     glp_init_smcp(&sp);
     sp.msg_lev = GLP_MSG_OFF;
     sp.meth = GLP_DUALP;
-    sp.tm_lim = (int)fmax(1.0, 1000.0 * fmin(limit_s, b->t_deadline - hv_milp_now_s()));
+    sp.tm_lim = hv_milp_limit_ms(fmin(limit_s, b->t_deadline - hv_milp_now_s()));
     glp_scale_prob(m.lp, GLP_SF_AUTO);
     if (glp_simplex(m.lp, &sp) == 0 && glp_get_status(m.lp) == GLP_OPT) {
         /* the model's first rows are the assignment rows, in fruit order */
@@ -2390,6 +2389,22 @@ static int next_shared(bp_t *b, int32_t *k)
 
 static hv_status_t tree_search(bp_t *b, double *root_lb, long *nodes_done);
 
+/* The least bound of the nodes still queued at the end that the incumbent does not prune
+ * (INFINITY none), their number in *n: the others (the limit came before they were popped)
+ * cannot hold a better plan, as during the search. */
+static double open_bound(const bp_t *b, size_t *n)
+{
+    double lb = INFINITY;
+    *n = 0;
+    for (size_t i = 0; i < b->heap_len; ++i) {
+        if (!prunable(b, b->nodes[b->heap[i]].lb_ms)) {
+            lb = fmin(lb, b->nodes[b->heap[i]].lb_ms);
+            ++*n;
+        }
+    }
+    return lb;
+}
+
 /* w (from bp_init) becomes a copy of b's state after the root: its master (same rows and
  * columns in the same order), pattern pool, cuts, count rows, fixed pairs and incumbent
  * (the pseudocosts come from the shared pool). Returns HV_OK or an error. */
@@ -2487,14 +2502,7 @@ static void *worker_main(void *arg)
         if (hv_share_take(wk->share, w.ub_ms, w.best, &ub)) {
             w.ub_ms = ub; /* prune what it leaves open by the best plan known */
         }
-        wk->open_lb = INFINITY;
-        for (size_t i = 0; i < w.heap_len; ++i) {
-            double lb = w.nodes[w.heap[i]].lb_ms;
-            if (!prunable(&w, lb)) {
-                wk->open_lb = fmin(wk->open_lb, lb);
-                wk->n_open++;
-            }
-        }
+        wk->open_lb = open_bound(&w, &wk->n_open);
         wk->st = st;
         wk->nodes = w.nodes_done;
         wk->iv_branches = w.iv_branches;
@@ -2758,16 +2766,8 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
         st = st != HV_OK ? st : sth;
     }
     if (st == HV_OK) {
-        /* nodes left open that the final incumbent prunes (the limit came before they were
-         * popped) cannot hold a better plan, as during the search */
-        double lb = fmin(b.ub_ms, open_lb);
-        size_t n_main = 0;
-        for (size_t i = 0; i < b.heap_len; ++i) {
-            if (!prunable(&b, b.nodes[b.heap[i]].lb_ms)) {
-                lb = fmin(lb, b.nodes[b.heap[i]].lb_ms);
-                n_main++;
-            }
-        }
+        size_t n_main;
+        double lb = fmin(fmin(b.ub_ms, open_lb), open_bound(&b, &n_main));
         progress(&b, lb, 1);
         if (opt->verbose >= 1) {
             fprintf(stderr,

@@ -1,6 +1,7 @@
 /* The tree workers' work sharing (milp_share.h): a node's path and bound arrive intact, a
- * hungry worker is seen, a worker far behind the other's bound asks for a node, the search ends when every worker waits with nothing queued, a
- * failure ends every wait, only a better plan is handed over, and pseudocosts pool. */
+ * hungry worker is seen, a worker far behind the other's bound asks for a node, the search
+ * ends when every worker waits with nothing queued, a failure ends every wait, only a
+ * better plan is handed over, and pseudocosts pool. */
 #define _POSIX_C_SOURCE 200809L /* nanosleep */
 #include <math.h>
 #include <pthread.h>

@@ -10,6 +10,10 @@ extern "C" {
 /* Seconds since an unspecified start, monotonic. */
 double hv_milp_now_s(void);
 
+/* left_s seconds as a GLPK time limit (tm_lim): whole ms, at least 1 (GLPK reads 0 or less
+ * as no limit), at most 2e9. */
+int hv_milp_limit_ms(double left_s);
+
 #ifdef __cplusplus
 }
 #endif

@@ -6,8 +6,8 @@
  * masters number their columns differently once they have split, so nothing else of a
  * node is portable. A worker takes a node when it has none of its own, or when the best
  * bound it holds is well above the other's (so that both search near the best bound); the
- * other gives its best one at its next node. The incumbent is shared, so either prunes by it, and
- * so are the pseudocosts of fruit splits, so either branches on what both learnt.
+ * other gives its best one at its next node. The incumbent is shared, so either prunes by
+ * it, and so are the pseudocosts of fruit splits, so either branches on what both learnt.
  *
  * All calls are thread-safe. Bounds and makespans are in ms, times in s (CLOCK_MONOTONIC).
  */
