@@ -13,8 +13,9 @@ alphas="${2:-1,4}"
 seeds="${3:-3}"
 limit="${4:-10}"
 [ -x "$bench" ] || { echo "ablation.sh: $bench not built" >&2; exit 1; }
-# the default (branch-and-price), its incumbent, interval branching, tailing off, the
-# binding-arm weighting of fruit splits or the workers' balancing switched off, then
+# the default (branch-and-price), its incumbent, interval branching, tailing off (or only
+# its branching of stalled masters the incumbent does not prune), the binding-arm weighting
+# of fruit splits, the workers' balancing or their warm starts switched off, then
 # GLPK's branch-and-cut on the paper's model (algorithm=0) and that with one of its
 # choices switched
 c="--set algorithm=0"
@@ -23,8 +24,10 @@ for variant in \
     "--set heuristic_incumbent=0" \
     "--set interval_branching=0" \
     "--set tail_off_ms=0" \
+    "--set tail_off_open=0" \
     "--set binding_splits=0" \
     "--set balance_workers=0" \
+    "--set warm_transfer=0" \
     "$c" \
     "$c --set link_disaggregated=0" \
     "$c --set link_disaggregated=2" \

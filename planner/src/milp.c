@@ -48,6 +48,8 @@ void hv_milp_options_default(hv_milp_options_t *opt)
     opt->balance_workers = 1;
     opt->interval_branching = 50;
     opt->tail_off_ms = 20;
+    opt->tail_off_open = 1;
+    opt->warm_transfer = 1;
     opt->tree_threads = 2;
     opt->ascent_steps = 100;
     opt->auto_smoothing = 1;

@@ -227,8 +227,11 @@ typedef struct bp {
     long iv_branches;      /* branches on an interval's stop count (interval_branching) */
     long tailed;           /* nodes branched on before their column generation converged */
     long given, taken;     /* nodes passed to and taken from the other worker */
-    hv_share_step_t *path; /* scratch: a node's path from the root */
-    size_t path_cap;
+    long taken_warm;       /* of `taken`, those whose warm start made a basis here */
+    hv_share_node_t msg;   /* scratch: a node passed between the workers */
+    uint32_t *col_pat;     /* scratch (warm_pack): the pattern of each column, the count
+                              row of each row */
+    size_t col_pat_cap;
 } bp_t;
 
 /* The time limit is reached or the caller asked to stop. */
@@ -523,7 +526,8 @@ static void bp_free(bp_t *b)
     free(b->crow);
     free(b->sigma_stop);
     free(b->best);
-    free(b->path);
+    hv_share_node_free(&b->msg);
+    free(b->col_pat);
 }
 
 static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_options_t *opt)
@@ -719,18 +723,31 @@ static size_t n_pi(const bp_t *b)
     return b->nf + b->src.n;
 }
 
+/* A basis of nr rows and nc columns (statuses `stat`, rows first) with its centre (`duals`:
+ * n_pi fruit and cut duals, then n_sg count-row duals; bound lag) joins b->bases, which
+ * takes both arrays: returns its index, or -1 (both freed) past the memory cap. */
+static int32_t basis_keep(bp_t *b, int nr, int nc, unsigned char *stat, double *duals,
+                          size_t n_pi, size_t n_sg, double lag)
+{
+    size_t bytes = (size_t)nr + (size_t)nc + (n_pi + n_sg) * sizeof(double);
+    if (b->bases_bytes + bytes > ((size_t)256 << 20) ||
+        !hv_grow((void **)&b->bases, &b->bases_cap, b->n_bases + 1, sizeof *b->bases)) {
+        free(stat);
+        free(duals);
+        return -1;
+    }
+    b->bases[b->n_bases] = (basis_t){nr, nc, stat, duals, duals + n_pi, n_pi, n_sg, lag};
+    b->bases_bytes += bytes;
+    return (int32_t)b->n_bases++;
+}
+
 /* Keep the master's current basis; returns its index, -1 when not kept (memory). */
 static int32_t basis_save(bp_t *b)
 {
     int nr = glp_get_num_rows(b->lp), nc = glp_get_num_cols(b->lp);
-    size_t npi = n_pi(b), n_duals = npi + b->n_crow;
-    size_t bytes = (size_t)nr + (size_t)nc + n_duals * sizeof(double);
-    if (b->bases_bytes + bytes > ((size_t)256 << 20) ||
-        !hv_grow((void **)&b->bases, &b->bases_cap, b->n_bases + 1, sizeof *b->bases)) {
-        return -1;
-    }
+    size_t npi = n_pi(b);
     unsigned char *st = malloc((size_t)nr + (size_t)nc);
-    double *duals = malloc((n_duals + 1) * sizeof *duals);
+    double *duals = malloc((npi + b->n_crow + 1) * sizeof *duals);
     if (st == NULL || duals == NULL) {
         free(st);
         free(duals);
@@ -746,11 +763,8 @@ static int32_t basis_save(bp_t *b)
     for (int j = 1; j <= nc; ++j) {
         st[nr + j - 1] = (unsigned char)glp_get_col_stat(b->lp, j);
     }
-    b->bases[b->n_bases] =
-        (basis_t){nr, nc, st, duals, duals + npi, npi, b->n_crow,
-                  isfinite(b->center_lag) ? b->center_lag : -INFINITY};
-    b->bases_bytes += bytes;
-    return (int32_t)b->n_bases++;
+    return basis_keep(b, nr, nc, st, duals, npi, b->n_crow,
+                      isfinite(b->center_lag) ? b->center_lag : -INFINITY);
 }
 
 /* Restore a kept basis: rows made since are basic, columns made since non-basic, so it
@@ -1911,8 +1925,12 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
     /* tailing off (opt->tail_off_ms): below the root, a master whose value has not fallen
      * for TAIL_ROUNDS rounds and is within tail_off_ms of the node's Lagrangian bound is
      * branched on as it is; the children start from that bound, which is valid at any
-     * round. When that point cannot be branched on (integral, or no fractional count or
-     * fruit), the column generation goes on to convergence, so nothing is closed on it. */
+     * round. With opt->tail_off_open, so is a stalled master that the incumbent does not
+     * prune, however far that bound lies below: the node's LP value is at most the
+     * master's, so no bound its column generation could reach would prune it (SOLVER.md:
+     * such nodes priced one degenerate column a round for hundreds of rounds). When that
+     * point cannot be branched on (integral, or no fractional count or fruit), the column
+     * generation goes on to convergence, so nothing is closed on it. */
     double tail_ms = b->nodes[k].parent >= 0 ? (double)b->opt->tail_off_ms : 0.0;
     double best_master = INFINITY;
     int last_fall = 0, tailed = 0;
@@ -1961,7 +1979,8 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
             last_fall = round;
         }
         tailed = added > 0 && tail_ms > 0.0 && round - last_fall >= TAIL_ROUNDS &&
-                 best_master - b->nodes[k].lb_ms <= tail_ms;
+                 (best_master - b->nodes[k].lb_ms <= tail_ms ||
+                  (b->opt->tail_off_open && !prunable(b, best_master)));
         if (added > 0 && !tailed) {
             continue;
         }
@@ -2301,9 +2320,246 @@ static size_t worker_id(const bp_t *b)
     return b->is_worker ? 1u : 0u;
 }
 
+/* A node's warm start in transit (hv_share_node_t.warm): the basis its parent left it and
+ * that parent's stabilisation centre, with the columns named by content, because the two
+ * workers' masters number them differently. Rows other than count rows are numbered alike
+ * in both (made before the second worker copied the master); count rows go by their
+ * interval. Layout, each item copied with memcpy: warm_head_t; n_rows warm_item_t (rows
+ * that are neither basic nor count rows: index, status); n_crow warm_crow_t; n_art
+ * warm_item_t (fruit artificials not at 0: column, status); n_basic times a warm_pat_t
+ * followed by its fruits (uint32_t); n_pi doubles (the centre's fruit and cut duals). */
+typedef struct warm_head {
+    uint32_t n_rows, n_crow, n_art, n_basic, n_pi;
+    double lag;
+} warm_head_t;
+typedef struct warm_item {
+    int32_t index, stat;
+} warm_item_t;
+typedef struct warm_crow {
+    uint32_t lo, hi;
+    int32_t stat, art_stat;
+    double sg;
+} warm_crow_t;
+typedef struct warm_pat {
+    uint32_t stop, n;
+} warm_pat_t;
+
+static int warm_put(hv_share_node_t *m, const void *p, size_t len)
+{
+    if (!hv_grow((void **)&m->warm, &m->warm_cap, m->warm_len + len, 1)) {
+        return 0;
+    }
+    memcpy(m->warm + m->warm_len, p, len);
+    m->warm_len += len;
+    return 1;
+}
+
+/* Basis bi (b->bases) as a warm start into m->warm (none when bi < 0). Returns 1, or 0
+ * when out of memory. */
+static int warm_pack(bp_t *b, int32_t bi, hv_share_node_t *m)
+{
+    m->warm_len = 0;
+    if (bi < 0) {
+        return 1;
+    }
+    const basis_t *s = &b->bases[bi];
+    size_t nr = (size_t)s->n_rows, nc = (size_t)s->n_cols;
+    if (!hv_grow((void **)&b->col_pat, &b->col_pat_cap, nr + nc + 1, sizeof *b->col_pat)) {
+        return 0;
+    }
+    uint32_t *pat_of = b->col_pat, *crow_of = b->col_pat + nc + 1; /* by column / row */
+    for (size_t j = 0; j <= nc; ++j) {
+        pat_of[j] = UINT32_MAX;
+    }
+    for (size_t i = 0; i < nr; ++i) {
+        crow_of[i] = UINT32_MAX;
+    }
+    for (size_t k = 0; k < b->n_pat; ++k) {
+        if ((size_t)b->pat[k].col <= nc) {
+            pat_of[b->pat[k].col] = (uint32_t)k;
+        }
+    }
+    for (size_t r = 0; r < b->n_crow; ++r) {
+        if ((size_t)b->crow[r].row <= nr) {
+            crow_of[b->crow[r].row - 1] = (uint32_t)r;
+        }
+    }
+    warm_head_t h = {0, 0, 0, 0, (uint32_t)s->n_pi, s->lag};
+    int ok = warm_put(m, &h, sizeof h);
+    for (size_t i = 0; ok && i < nr; ++i) {
+        if (crow_of[i] == UINT32_MAX && s->stat[i] != GLP_BS) {
+            warm_item_t it = {(int32_t)i + 1, s->stat[i]};
+            ok = warm_put(m, &it, sizeof it);
+            h.n_rows++;
+        }
+    }
+    for (size_t i = 0; ok && i < nr; ++i) {
+        if (crow_of[i] != UINT32_MAX) {
+            const count_row_t *c = &b->crow[crow_of[i]];
+            warm_crow_t it = {c->lo, c->hi, s->stat[i],
+                              (size_t)c->art <= nc ? s->stat[nr + (size_t)c->art - 1] : GLP_NL,
+                              crow_of[i] < s->n_sg ? s->sg[crow_of[i]] : 0.0};
+            ok = warm_put(m, &it, sizeof it);
+            h.n_crow++;
+        }
+    }
+    for (size_t j = 1; ok && j <= (size_t)b->n_art && j <= nc; ++j) {
+        if (s->stat[nr + j - 1] != GLP_NL) {
+            warm_item_t it = {(int32_t)j, s->stat[nr + j - 1]};
+            ok = warm_put(m, &it, sizeof it);
+            h.n_art++;
+        }
+    }
+    for (size_t j = 1; ok && j <= nc; ++j) {
+        if (pat_of[j] != UINT32_MAX && s->stat[nr + j - 1] == GLP_BS) {
+            const pattern_t *pt = &b->pat[pat_of[j]];
+            warm_pat_t it = {pt->stop, pt->n};
+            ok = warm_put(m, &it, sizeof it) &&
+                 warm_put(m, b->pf + pt->first, pt->n * sizeof *b->pf);
+            h.n_basic++;
+        }
+    }
+    ok = ok && warm_put(m, s->pi, s->n_pi * sizeof *s->pi);
+    if (ok) {
+        memcpy(m->warm, &h, sizeof h);
+    }
+    return ok;
+}
+
+/* Reads len bytes at *at of warm start m into p: 1, or 0 past its end. */
+static int warm_get(const hv_share_node_t *m, size_t *at, void *p, size_t len)
+{
+    if (m->warm_len - *at < len) {
+        return 0;
+    }
+    memcpy(p, m->warm + *at, len);
+    *at += len;
+    return 1;
+}
+
+/* The basic patterns of warm start m (from byte *at) as patterns of this worker, made here
+ * when missing, their indices into pat[0 .. n). Returns 1, 0 when m is malformed or names a
+ * pair unknown here, -1 when out of memory. */
+static int warm_patterns(bp_t *b, const hv_share_node_t *m, size_t *at, int32_t *pat, uint32_t n)
+{
+    for (uint32_t q = 0; q < n; ++q) {
+        warm_pat_t wp;
+        if (!warm_get(m, at, &wp, sizeof wp) || wp.n > b->nf || wp.stop >= b->ns ||
+            !warm_get(m, at, b->sel, wp.n * sizeof *b->sel)) {
+            return 0;
+        }
+        double w[2] = {0.0, 0.0}; /* by hv_side_t */
+        for (uint32_t i = 0; i < wp.n; ++i) {
+            double c = b->sel[i] < b->nf ? pair_ms(b, b->sel[i], wp.stop) : -1.0;
+            if (c < 0.0) {
+                return 0;
+            }
+            w[b->inst->fruits[b->sel[i]].side] += c;
+        }
+        if (pattern_add(b, wp.stop, b->sel, wp.n, b->tau_ms + fmax(w[0], w[1])) < 0) {
+            return -1;
+        }
+        pat[q] = pattern_find(b, wp.stop, b->sel, wp.n); /* pattern_add sorted b->sel */
+    }
+    return 1;
+}
+
+/* The statuses of warm start m (header h; its count rows and basic patterns pat[] exist
+ * here) over this worker's master of nr rows and nc columns, rows first, into st, and its
+ * count rows' duals into sg (by count row here). Returns 1 when they make a basis here. */
+static int warm_statuses(bp_t *b, const hv_share_node_t *m, const warm_head_t *h,
+                         const int32_t *pat, int nr, int nc, unsigned char *st, double *sg)
+{
+    memset(st, GLP_BS, (size_t)nr); /* rows not named: basic; columns: at 0 */
+    memset(st + nr, GLP_NL, (size_t)nc);
+    size_t at = sizeof *h;
+    warm_item_t it;
+    for (uint32_t q = 0; q < h->n_rows; ++q) {
+        warm_get(m, &at, &it, sizeof it);
+        if (it.index < 1 || it.index > nr) {
+            return 0;
+        }
+        st[it.index - 1] = (unsigned char)it.stat;
+    }
+    for (uint32_t q = 0; q < h->n_crow; ++q) {
+        warm_crow_t wc;
+        warm_get(m, &at, &wc, sizeof wc);
+        const count_row_t *c = crow_get(b, wc.lo, wc.hi); /* made by warm_unpack: found */
+        st[c->row - 1] = (unsigned char)wc.stat;
+        st[nr + c->art - 1] = (unsigned char)wc.art_stat;
+        sg[c - b->crow] = wc.sg;
+    }
+    for (uint32_t q = 0; q < h->n_art; ++q) {
+        warm_get(m, &at, &it, sizeof it);
+        if (it.index < 1 || it.index > b->n_art) {
+            return 0;
+        }
+        st[nr + it.index - 1] = (unsigned char)it.stat;
+    }
+    for (uint32_t q = 0; q < h->n_basic; ++q) {
+        st[nr + b->pat[pat[q]].col - 1] = GLP_BS;
+    }
+    int n_basic = 0;
+    for (int i = 0; i < nr + nc; ++i) {
+        n_basic += st[i] == GLP_BS;
+    }
+    return n_basic == nr;
+}
+
+/* The warm start of m as a basis of this worker's master in b->bases (the count rows and
+ * patterns it names are made here when missing): its index in *bi, -1 when m has none, is
+ * malformed, or does not make a basis here (the node then starts from the current one).
+ * Returns HV_OK or HV_ERR_PLAN_NOMEM. */
+static hv_status_t warm_unpack(bp_t *b, const hv_share_node_t *m, int32_t *bi)
+{
+    *bi = -1;
+    warm_head_t h;
+    size_t at = 0;
+    if (!warm_get(m, &at, &h, sizeof h)) {
+        return HV_OK;
+    }
+    size_t pat_at = at + (h.n_rows + h.n_art) * sizeof(warm_item_t) +
+                    h.n_crow * sizeof(warm_crow_t);
+    size_t pi_len = h.n_pi * sizeof(double);
+    if (pat_at + pi_len > m->warm_len || h.n_basic > m->warm_len) {
+        return HV_OK;
+    }
+    at += h.n_rows * sizeof(warm_item_t);
+    for (uint32_t q = 0; q < h.n_crow; ++q) {
+        warm_crow_t wc;
+        warm_get(m, &at, &wc, sizeof wc);
+        if (crow_get(b, wc.lo, wc.hi) == NULL) {
+            return HV_ERR_PLAN_NOMEM;
+        }
+    }
+    int32_t *pat = malloc(((size_t)h.n_basic + 1) * sizeof *pat);
+    double *duals = NULL;
+    unsigned char *st = NULL;
+    int ok = pat != NULL ? warm_patterns(b, m, &(size_t){pat_at}, pat, h.n_basic) : -1;
+    int nr = glp_get_num_rows(b->lp), nc = glp_get_num_cols(b->lp);
+    size_t npi = n_pi(b);
+    if (ok == 1) {
+        st = malloc((size_t)nr + (size_t)nc);
+        duals = calloc(npi + b->n_crow + 1, sizeof *duals);
+        ok = st != NULL && duals != NULL ? 1 : -1;
+    }
+    if (ok == 1 && warm_statuses(b, m, &h, pat, nr, nc, st, duals + npi)) {
+        int centre = h.n_pi == npi; /* the same cuts: always, as the root made them all */
+        if (centre) {
+            memcpy(duals, m->warm + m->warm_len - pi_len, pi_len);
+        }
+        *bi = basis_keep(b, nr, nc, st, duals, npi, b->n_crow, centre ? h.lag : -INFINITY);
+    } else {
+        free(st);
+        free(duals);
+    }
+    free(pat);
+    return ok < 0 ? HV_ERR_PLAN_NOMEM : HV_OK;
+}
+
 /* When the other worker waits for a node or asked for one: this worker's best open one
  * goes to it, as its path of restrictions from the root (node 0 of both workers, which
- * restricts nothing). */
+ * restricts nothing) and its warm start. */
 static hv_status_t give_if_hungry(bp_t *b)
 {
     while (b->share != NULL && b->heap_len > 0 && hv_share_hungry(b->share, worker_id(b))) {
@@ -2311,37 +2567,48 @@ static hv_status_t give_if_hungry(bp_t *b)
         if (prunable(b, b->nodes[k].lb_ms)) {
             continue;
         }
+        hv_share_node_t *m = &b->msg;
         size_t n = 0;
         for (int32_t q = k; b->nodes[q].parent >= 0; q = b->nodes[q].parent) {
             n++;
         }
-        if (!hv_grow((void **)&b->path, &b->path_cap, n + 1, sizeof *b->path)) {
+        if (!hv_grow((void **)&m->path, &m->cap, n + 1, sizeof *m->path) ||
+            !warm_pack(b, b->opt->warm_transfer ? b->nodes[k].basis : -1, m)) {
             return HV_ERR_PLAN_NOMEM;
         }
-        size_t i = n;
+        m->n = n;
+        m->lb_ms = b->nodes[k].lb_ms;
         for (int32_t q = k; b->nodes[q].parent >= 0; q = b->nodes[q].parent) {
             const node_t *d = &b->nodes[q];
-            b->path[--i] = (hv_share_step_t){(int)d->kind, d->fruit, d->lo, d->hi, d->rhs};
+            m->path[--n] = (hv_share_step_t){(int)d->kind, d->fruit, d->lo, d->hi, d->rhs};
         }
         b->given++;
-        return hv_share_give(b->share, b->nodes[k].lb_ms, b->path, n);
+        return hv_share_give(b->share, m);
     }
     return HV_OK;
 }
 
-/* The node the other worker gave (its path in b->path, n steps, bound lb) made a node here,
- * into *k (no basis and no pseudocost learning: its parent's bound is not known here).
- * Returns 1, or -1 when out of memory. */
-static int import_shared(bp_t *b, size_t n, double lb, int32_t *k)
+/* The node the other worker gave (in b->msg) made a node here, into *k, with its warm
+ * start when that makes a basis here (no pseudocost learning: its parent's bound is not
+ * known here). Returns 1, or -1 when out of memory. */
+static int import_shared(bp_t *b, int32_t *k)
 {
+    const hv_share_node_t *m = &b->msg;
     int32_t q = 0;
-    for (size_t i = 0; i < n && q >= 0; ++i) {
-        const hv_share_step_t *st = &b->path[i];
-        q = node_new(b, q, (node_kind_t)st->kind, st->fruit, st->lo, st->hi, st->rhs, lb);
+    for (size_t i = 0; i < m->n && q >= 0; ++i) {
+        const hv_share_step_t *st = &m->path[i];
+        q = node_new(b, q, (node_kind_t)st->kind, st->fruit, st->lo, st->hi, st->rhs,
+                     m->lb_ms);
     }
+    int32_t bi = -1;
+    if (q < 0 || warm_unpack(b, m, &bi) != HV_OK) {
+        return -1;
+    }
+    b->nodes[q].basis = bi;
     b->taken++;
+    b->taken_warm += bi >= 0;
     *k = q;
-    return q >= 0 ? 1 : -1;
+    return 1;
 }
 
 /* This worker holds open nodes whose best bound is well above the other worker's: it asks
@@ -2355,13 +2622,12 @@ static int balance_shared(bp_t *b)
     if (!hv_share_balance(b->share, worker_id(b), lb, margin)) {
         return 0;
     }
-    size_t n;
     int32_t k;
-    int r = hv_share_poll(b->share, worker_id(b), &b->path, &b->path_cap, &n, &lb);
+    int r = hv_share_poll(b->share, worker_id(b), &b->msg);
     if (r == 0) {
         return 0;
     }
-    if (r < 0 || import_shared(b, n, lb, &k) < 0 || !heap_push(b, k)) {
+    if (r < 0 || import_shared(b, &k) < 0 || !heap_push(b, k)) {
         return -1;
     }
     return 0;
@@ -2375,14 +2641,12 @@ static int next_shared(bp_t *b, int32_t *k)
         if (must_stop(b)) {
             return 0;
         }
-        size_t n;
-        double lb;
-        int r = hv_share_wait(b->share, worker_id(b), &b->path, &b->path_cap, &n, &lb);
+        int r = hv_share_wait(b->share, worker_id(b), &b->msg);
         if (r == 0 || r == -2) {
             return r == 0 ? 0 : -1;
         }
         if (r == 1) {
-            return import_shared(b, n, lb, k);
+            return import_shared(b, k);
         }
     }
 }
@@ -2469,7 +2733,7 @@ struct worker {
     hv_status_t st_copy; /* the copy's status */
     /* written by the worker before it ends, read after the join */
     hv_status_t st;
-    long nodes, iv_branches, tailed;
+    long nodes, iv_branches, tailed, taken_warm;
     int inexact;
     double open_lb; /* of its nodes still open (INFINITY none), n_open of them */
     size_t n_open;
@@ -2507,6 +2771,7 @@ static void *worker_main(void *arg)
         wk->nodes = w.nodes_done;
         wk->iv_branches = w.iv_branches;
         wk->tailed = w.tailed;
+        wk->taken_warm = w.taken_warm;
         wk->inexact = w.inexact;
     }
     bp_free(&w);
@@ -2582,6 +2847,7 @@ static hv_status_t worker_join(bp_t *b, int failed, double *open_lb, size_t *n_o
     b->nodes_done = wk->nodes;
     b->iv_branches += wk->iv_branches;
     b->tailed += wk->tailed;
+    b->taken_warm += wk->taken_warm;
     hv_status_t st = wk->st;
     b->share = NULL;
     b->worker = NULL;
@@ -2779,7 +3045,7 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
                     "%zu subset-row cuts in %d rounds (%ld dropped; %.1f with a negative dual "
                     "per priced stop, %ld stops over 64), %ld interval count branches, %ld "
                     "nodes branched tailing off, second tree worker %ld nodes (%ld "
-                    "nodes passed between the workers)\n",
+                    "nodes passed between the workers, %ld with a warm start)\n",
                     b.cg_iters, b.t_lp, glp_get_it_cnt(b.lp), b.lp_restarts, b.lp_stalls,
                     b.t_price, b.pricer.calls,
                     (double)b.pricer.points / (double)(b.pricer.calls ? b.pricer.calls : 1),
@@ -2788,13 +3054,15 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
                     inst->n_pairs, b.t_fix, b.src.n, b.sr_rounds, b.sr_dropped,
                     (double)b.src_bits / (double)(b.src_stops ? b.src_stops : 1),
                     b.src_overflow, b.iv_branches, b.tailed, b.nodes_done,
-                    b.given + b.taken);
+                    b.given + b.taken, b.taken_warm);
         }
         res->nodes = nodes;
         res->worker_nodes = b.nodes_done;
         res->columns = (long)b.n_pat;
         res->interval_branches = b.iv_branches;
         res->tailed_nodes = b.tailed;
+        res->passed_nodes = b.given + b.taken;
+        res->passed_warm = b.taken_warm;
         res->cuts = (long)b.src.n;
         res->root_bound_s = root_lb / 1000.0;
         if (!isfinite(b.ub_ms)) {

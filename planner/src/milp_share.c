@@ -17,7 +17,8 @@
 
 typedef struct queued {
     double lb_ms;
-    size_t first, n; /* its steps: steps[first .. first + n) */
+    size_t first, n;         /* its steps: steps[first .. first + n) */
+    size_t warm_first, warm; /* its warm start: bytes[warm_first .. warm_first + warm) */
 } queued_t;
 
 struct hv_share {
@@ -34,6 +35,8 @@ struct hv_share {
     size_t n_q, q_cap;
     hv_share_step_t *steps; /* of the queued nodes; reset when the queue empties */
     size_t n_steps, steps_cap;
+    unsigned char *bytes; /* their warm starts; reset likewise */
+    size_t n_bytes, bytes_cap;
     hv_share_pc_t pc;
 };
 
@@ -84,7 +87,15 @@ void hv_share_destroy(hv_share_t *s)
     free(s->asked);
     free(s->q);
     free(s->steps);
+    free(s->bytes);
     free(s);
+}
+
+void hv_share_node_free(hv_share_node_t *node)
+{
+    free(node->path);
+    free(node->warm);
+    *node = (hv_share_node_t){0};
 }
 
 void hv_share_offer(hv_share_t *s, const uint32_t *fruit_stop, double ub_ms)
@@ -139,15 +150,23 @@ int hv_share_balance(hv_share_t *s, size_t worker, double lb_ms, double margin_m
     return r;
 }
 
-hv_status_t hv_share_give(hv_share_t *s, double lb_ms, const hv_share_step_t *path, size_t n)
+hv_status_t hv_share_give(hv_share_t *s, const hv_share_node_t *node)
 {
     pthread_mutex_lock(&s->mu);
     hv_status_t st = HV_ERR_PLAN_NOMEM;
+    size_t n = node->n, w = node->warm_len;
     if (hv_grow((void **)&s->q, &s->q_cap, s->n_q + 1, sizeof *s->q) &&
-        hv_grow((void **)&s->steps, &s->steps_cap, s->n_steps + n + 1, sizeof *s->steps)) {
-        memcpy(s->steps + s->n_steps, path, n * sizeof *path);
-        s->q[s->n_q++] = (queued_t){lb_ms, s->n_steps, n};
+        hv_grow((void **)&s->steps, &s->steps_cap, s->n_steps + n + 1, sizeof *s->steps) &&
+        hv_grow((void **)&s->bytes, &s->bytes_cap, s->n_bytes + w + 1, 1)) {
+        if (n > 0) {
+            memcpy(s->steps + s->n_steps, node->path, n * sizeof *node->path);
+        }
+        if (w > 0) {
+            memcpy(s->bytes + s->n_bytes, node->warm, w);
+        }
+        s->q[s->n_q++] = (queued_t){node->lb_ms, s->n_steps, n, s->n_bytes, w};
         s->n_steps += n;
+        s->n_bytes += w;
         pthread_cond_broadcast(&s->cv);
         st = HV_OK;
     }
@@ -155,38 +174,42 @@ hv_status_t hv_share_give(hv_share_t *s, double lb_ms, const hv_share_step_t *pa
     return st;
 }
 
-/* The newest queued node (the giver's best at the time) into *path: 1, or -2 when out of
+/* The newest queued node (the giver's best at the time) into *node: 1, or -2 when out of
  * memory. The caller holds the mutex and has seen n_q > 0. */
-static int dequeue(hv_share_t *s, hv_share_step_t **path, size_t *cap, size_t *n, double *lb_ms)
+static int dequeue(hv_share_t *s, hv_share_node_t *node)
 {
     const queued_t *t = &s->q[--s->n_q];
-    int r = hv_grow((void **)path, cap, t->n + 1, sizeof **path) ? 1 : -2;
+    int r = hv_grow((void **)&node->path, &node->cap, t->n + 1, sizeof *node->path) &&
+                    hv_grow((void **)&node->warm, &node->warm_cap, t->warm + 1, 1)
+                ? 1
+                : -2;
     if (r == 1) {
-        memcpy(*path, s->steps + t->first, t->n * sizeof **path);
-        *n = t->n;
-        *lb_ms = t->lb_ms;
+        memcpy(node->path, s->steps + t->first, t->n * sizeof *node->path);
+        memcpy(node->warm, s->bytes + t->warm_first, t->warm);
+        node->n = t->n;
+        node->warm_len = t->warm;
+        node->lb_ms = t->lb_ms;
     }
     if (s->n_q == 0) {
         s->n_steps = 0;
+        s->n_bytes = 0;
     }
     return r;
 }
 
-int hv_share_poll(hv_share_t *s, size_t worker, hv_share_step_t **path, size_t *cap,
-                  size_t *n, double *lb_ms)
+int hv_share_poll(hv_share_t *s, size_t worker, hv_share_node_t *node)
 {
     pthread_mutex_lock(&s->mu);
     int r = 0;
     if (s->asked[worker] && s->n_q > 0) {
         s->asked[worker] = 0;
-        r = dequeue(s, path, cap, n, lb_ms);
+        r = dequeue(s, node);
     }
     pthread_mutex_unlock(&s->mu);
     return r;
 }
 
-int hv_share_wait(hv_share_t *s, size_t worker, hv_share_step_t **path, size_t *cap,
-                  size_t *n, double *lb_ms)
+int hv_share_wait(hv_share_t *s, size_t worker, hv_share_node_t *node)
 {
     pthread_mutex_lock(&s->mu);
     s->asked[worker] = 0; /* it waits now, which asks for a node anyway */
@@ -207,7 +230,7 @@ int hv_share_wait(hv_share_t *s, size_t worker, hv_share_step_t **path, size_t *
     }
     int r = s->done || s->failed ? 0 : -1;
     if (r != 0 && s->n_q > 0) {
-        r = dequeue(s, path, cap, n, lb_ms);
+        r = dequeue(s, node);
     }
     if (r != 0) {
         s->waiting--; /* it works again (or asks again) */

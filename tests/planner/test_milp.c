@@ -322,13 +322,15 @@ static void test_slack_cut_purge(void **state)
     assert_true(purged < kept);
 }
 
-/* Two tree workers (milp_share.h), balanced by bound and not, against one: the same proven
- * optimum, the plan returned is the one of that makespan (a worker's plan must reach the
- * result), and the second worker really searched on some of them. */
+/* Two tree workers (milp_share.h), balanced by bound and not, with and without warm starts
+ * for the nodes they pass, against one: the same proven optimum, the plan returned is the
+ * one of that makespan (a worker's plan must reach the result), the second worker really
+ * searched on some of them, and passed nodes started from the giver's basis only with
+ * warm_transfer. */
 static void test_two_tree_workers(void **state)
 {
     (void)state;
-    long worker_nodes = 0;
+    long worker_nodes = 0, passed = 0, passed_warm = 0;
     int with_worker = 0;
     for (uint64_t seed = 300; seed < 324; ++seed) {
         hv_instance_t in;
@@ -351,17 +353,27 @@ static void test_two_tree_workers(void **state)
                     (r2.worker_nodes < r2.nodes || (r2.nodes == 0 && r2.worker_nodes == 0)));
         print_message("seed %llu: %ld nodes, %ld by the second worker (one worker: %ld)\n",
                       (unsigned long long)seed, r2.nodes, r2.worker_nodes, r1.nodes);
+        assert_true(r2.passed_warm <= r2.passed_nodes);
+        passed += r2.passed_nodes;
+        passed_warm += r2.passed_warm;
         o.balance_workers = 0; /* the workers trade nodes only when one has none */
         hv_milp_result_t r3;
         solve_to_optimum(&in, &o, &out, r1.objective_s, seed, "two workers, unbalanced", &r3);
+        o.balance_workers = 1;
+        o.warm_transfer = 0;
+        solve_to_optimum(&in, &o, &out, r1.objective_s, seed, "two workers, no warm start",
+                         &r3);
+        assert_int_equal(r3.passed_warm, 0);
         worker_nodes += r2.worker_nodes;
         with_worker += r2.worker_nodes > 0;
         hv_assignment_free(&out);
         hv_instance_free(&in);
     }
-    print_message("the second worker solved %ld nodes on %d of 24 instances\n", worker_nodes,
-                  with_worker);
+    print_message("the second worker solved %ld nodes on %d of 24 instances; %ld nodes "
+                  "passed, %ld of them with a warm start\n",
+                  worker_nodes, with_worker, passed, passed_warm);
     assert_true(with_worker >= 2); /* precondition: the second worker searched */
+    assert_true(passed_warm >= 1); /* warm starts made bases on the taker's side */
 }
 
 /* The ascent before the root (ascent_steps): its bound is a proven one, so with it or
@@ -446,15 +458,16 @@ static void test_binding_splits(void **state)
 }
 
 /* Branching on the stop count of intervals (interval_branching) and before the column
- * generation converges (tail_off_ms) change the tree, never the optimum: each on and off
- * proves the same one. The tailing-off margin is also set so wide that every stalled node
- * below the root is branched on early. (Closing such a node on an integral point before
+ * generation converges (tail_off_ms, tail_off_open) change the tree, never the optimum:
+ * each on and off proves the same one. The tailing-off margin is also set so wide that
+ * every stalled node below the root is branched on early, and so narrow (1 ms) that the
+ * stalled masters the incumbent does not prune tail off only by the open rule. (Closing such a node on an integral point before
  * its master is optimal could lose the optimum; on these instances a solver that did so
  * still found it, so that rule rests on its reasoning in milp_price.c.) */
 static void test_interval_branching_and_tail(void **state)
 {
     (void)state;
-    long iv = 0, tailed = 0, tailed_wide = 0;
+    long iv = 0, tailed = 0, tailed_wide = 0, tailed_margin = 0, tailed_open = 0;
     int branched = 0;
     for (uint64_t seed = 600; seed < 616; ++seed) {
         hv_instance_t in;
@@ -479,6 +492,14 @@ static void test_interval_branching_and_tail(void **state)
         o.tail_off_ms = 20;
         solve_to_optimum(&in, &o, &out, r0.objective_s, seed, "interval branching, tail", &r);
         tailed += r.tailed_nodes;
+        /* a margin too small for the stalls seen: what tails off then is the open rule's */
+        o.tail_off_ms = 1;
+        o.tail_off_open = 0;
+        solve_to_optimum(&in, &o, &out, r0.objective_s, seed, "1 ms margin", &r);
+        tailed_margin += r.tailed_nodes;
+        o.tail_off_open = 1;
+        solve_to_optimum(&in, &o, &out, r0.objective_s, seed, "1 ms margin, open", &r);
+        tailed_open += r.tailed_nodes;
         o.interval_branching = 0;
         o.tail_off_ms = 1000000;
         solve_to_optimum(&in, &o, &out, r0.objective_s, seed, "every stalled node", &r);
@@ -491,9 +512,10 @@ static void test_interval_branching_and_tail(void **state)
         hv_instance_free(&in);
     }
     print_message("%d of 16 branched; %ld interval branches, %ld nodes tailed off at 20 ms, "
-                  "%ld at any margin\n", branched, iv, tailed, tailed_wide);
+                  "%ld at any margin, %ld at 1 ms, %ld at 1 ms with the open rule\n",
+                  branched, iv, tailed, tailed_wide, tailed_margin, tailed_open);
     /* preconditions: each rule really acted */
-    assert_true(branched >= 3 && iv >= 1 && tailed_wide >= 3);
+    assert_true(branched >= 3 && iv >= 1 && tailed_wide >= 3 && tailed_open > tailed_margin);
 }
 
 /* What test_window_improve's callback saw: every reported plan is a plan, with the makespan

@@ -80,6 +80,11 @@ typedef struct hv_milp_options {
                                 generation to converge once the master value has not
                                 fallen for 10 rounds and is within this many ms of the
                                 node's Lagrangian bound; 0 never */
+    int tail_off_open;       /* price, with tail_off_ms: 1 a master that has not fallen for
+                                10 rounds is also branched on, however far below it the
+                                Lagrangian bound lies, when the incumbent does not prune
+                                it (no bound that node could reach would); 0 only within
+                                tail_off_ms */
     int pseudocost;          /* price: 1 fruit splits are chosen by pseudocosts (the bound
                                 rises seen per unit of mass moved), 0 the most balanced */
     int binding_splits;      /* price, with pseudocost: 1 a fruit's split score is weighted
@@ -88,6 +93,10 @@ typedef struct hv_milp_options {
     int balance_workers;     /* price, with two tree workers: 1 a worker whose best open bound
                                 lies well above the other's asks for the other's best node
                                 (milp_share.h); 0 only a worker without nodes asks */
+    int warm_transfer;       /* price, with two tree workers: 1 a node passed between them
+                                carries the basis and stabilisation centre its parent left
+                                it, its columns named by content (milp_share.h); 0 its path
+                                only, the taker starting from its own last basis */
     int tree_threads;        /* price: 2 (default) a second thread searches the tree too
                                 once the incumbent is within 0.2 % of the bound, the
                                 helper thread stopping then (milp_share.h); 1 one thread.
@@ -143,6 +152,9 @@ typedef struct hv_milp_result {
                                than the row (interval_branching) */
     long tailed_nodes;      /* price: nodes branched on before their column generation
                                converged (tail_off_ms) */
+    long passed_nodes;      /* price: nodes passed between the two tree workers */
+    long passed_warm;       /* price: of those, the ones whose warm start made a basis of
+                               the taker's master (warm_transfer) */
 } hv_milp_result_t;
 
 /* Defaults: 60 s limit, gap 1e-6, quiet, no export, the choices SOLVER.md keeps. */

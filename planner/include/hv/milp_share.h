@@ -2,9 +2,10 @@
  *
  * DESIGN §10 counts 2 cores. When the helper thread (milp_helper.h) is not running, a
  * second worker searches the tree beside the first, each with its own master LP. An open
- * node travels between them as the path of restrictions from the root to it: the two
- * masters number their columns differently once they have split, so nothing else of a
- * node is portable. A worker takes a node when it has none of its own, or when the best
+ * node travels between them as the path of restrictions from the root to it, with a warm
+ * start that names its columns by content (opaque here: milp_price.c packs and reads it),
+ * because the two masters number their columns differently once they have split. A worker
+ * takes a node when it has none of its own, or when the best
  * bound it holds is well above the other's (so that both search near the best bound); the
  * other gives its best one at its next node. The incumbent is shared, so either prunes by
  * it, and so are the pseudocosts of fruit splits, so either branches on what both learnt.
@@ -30,6 +31,19 @@ typedef struct hv_share_step {
     int32_t rhs;
 } hv_share_step_t;
 
+/* A node in transit: its path from the root (n steps), its bound, and the giver's warm
+ * start (warm_len bytes, 0: none). A receiver's arrays grow as needed (capacities cap and
+ * warm_cap); hv_share_node_free releases them. */
+typedef struct hv_share_node {
+    hv_share_step_t *path;
+    size_t n, cap;
+    unsigned char *warm;
+    size_t warm_len, warm_cap;
+    double lb_ms;
+} hv_share_node_t;
+
+void hv_share_node_free(hv_share_node_t *node);
+
 typedef struct hv_share hv_share_t;
 
 /* For n_workers workers over plans of n_fruits fruits. Returns HV_OK or HV_ERR_PLAN_NOMEM. */
@@ -52,22 +66,18 @@ int hv_share_hungry(hv_share_t *s, size_t worker);
  * hv_share_poll. Returns 1 while its ask is pending. */
 int hv_share_balance(hv_share_t *s, size_t worker, double lb_ms, double margin_ms);
 
-/* A node given for `worker`'s pending ask: 1 with it (as hv_share_wait), 0 none yet, -2
- * out of memory. Never blocks. */
-int hv_share_poll(hv_share_t *s, size_t worker, hv_share_step_t **path, size_t *cap,
-                  size_t *n, double *lb_ms);
+/* A node given for `worker`'s pending ask: 1 with it in *node (as hv_share_wait), 0 none
+ * yet, -2 out of memory. Never blocks. */
+int hv_share_poll(hv_share_t *s, size_t worker, hv_share_node_t *node);
 
-/* Queue an open node: its path from the root (n steps) and its bound. Returns HV_OK or
- * HV_ERR_PLAN_NOMEM. */
-hv_status_t hv_share_give(hv_share_t *s, double lb_ms, const hv_share_step_t *path, size_t n);
+/* Queue an open node (copied). Returns HV_OK or HV_ERR_PLAN_NOMEM. */
+hv_status_t hv_share_give(hv_share_t *s, const hv_share_node_t *node);
 
 /* A worker without nodes of its own asks for one and waits up to 20 ms. Returns 1 with a
- * node (its path into *path, grown as needed, of *n steps, capacity *cap; its bound in
- * *lb_ms), 0 when the search is over (every worker waits and none is queued, or a worker
- * failed), -1 when nothing came yet (the caller checks its clock and asks again), or -2
- * when out of memory. */
-int hv_share_wait(hv_share_t *s, size_t worker, hv_share_step_t **path, size_t *cap,
-                  size_t *n, double *lb_ms);
+ * node in *node, 0 when the search is over (every worker waits and none is queued, or a
+ * worker failed), -1 when nothing came yet (the caller checks its clock and asks again),
+ * or -2 when out of memory. */
+int hv_share_wait(hv_share_t *s, size_t worker, hv_share_node_t *node);
 
 /* A worker stopped on an error: the others stop too (hv_share_failed). */
 void hv_share_fail(hv_share_t *s);
