@@ -347,14 +347,28 @@ static double pair_ms(const bp_t *b, uint32_t f, uint32_t p)
     return k == SIZE_MAX ? -1.0 : 1000.0 * b->inst->pairs[k].cost_s;
 }
 
+/* The arms' pick times (ms, indexed by hv_side_t) of the pattern of fruits f[0 .. n) at
+ * `stop` into w. Returns 0 when one of the fruits is not reachable from there. */
+static int pattern_times(const bp_t *b, uint32_t stop, const uint32_t *f, uint32_t n,
+                         double w[2])
+{
+    w[0] = w[1] = 0.0;
+    for (uint32_t q = 0; q < n; ++q) {
+        double c = pair_ms(b, f[q], stop);
+        if (c < 0.0) {
+            return 0;
+        }
+        w[b->inst->fruits[f[q]].side] += c;
+    }
+    return 1;
+}
+
 /* Which arms bind in the pattern of fruits f[0 .. n) at `stop`: bit s set when side s's
  * time is the larger (both when equal). */
 static unsigned char pattern_binds(const bp_t *b, uint32_t stop, const uint32_t *f, uint32_t n)
 {
-    double w[2] = {0.0, 0.0}; /* indexed by hv_side_t */
-    for (uint32_t q = 0; q < n; ++q) {
-        w[b->inst->fruits[f[q]].side] += pair_ms(b, f[q], stop);
-    }
+    double w[2];
+    pattern_times(b, stop, f, n, w);
     return (unsigned char)((w[HV_SIDE_LEFT] >= w[HV_SIDE_RIGHT] ? 1u << HV_SIDE_LEFT : 0u) |
                            (w[HV_SIDE_RIGHT] >= w[HV_SIDE_LEFT] ? 1u << HV_SIDE_RIGHT : 0u));
 }
@@ -2448,13 +2462,14 @@ static int warm_patterns(bp_t *b, const hv_share_node_t *m, size_t *at, int32_t 
             !warm_get(m, at, b->sel, wp.n * sizeof *b->sel)) {
             return 0;
         }
-        double w[2] = {0.0, 0.0}; /* by hv_side_t */
+        double w[2];
         for (uint32_t i = 0; i < wp.n; ++i) {
-            double c = b->sel[i] < b->nf ? pair_ms(b, b->sel[i], wp.stop) : -1.0;
-            if (c < 0.0) {
+            if (b->sel[i] >= b->nf) {
                 return 0;
             }
-            w[b->inst->fruits[b->sel[i]].side] += c;
+        }
+        if (!pattern_times(b, wp.stop, b->sel, wp.n, w)) {
+            return 0;
         }
         if (pattern_add(b, wp.stop, b->sel, wp.n, b->tau_ms + fmax(w[0], w[1])) < 0) {
             return -1;

@@ -179,11 +179,10 @@ hv_status_t hv_share_give(hv_share_t *s, const hv_share_node_t *node)
 static int dequeue(hv_share_t *s, hv_share_node_t *node)
 {
     const queued_t *t = &s->q[--s->n_q];
-    int r = hv_grow((void **)&node->path, &node->cap, t->n + 1, sizeof *node->path) &&
-                    hv_grow((void **)&node->warm, &node->warm_cap, t->warm + 1, 1)
-                ? 1
-                : -2;
-    if (r == 1) {
+    int r = -2;
+    if (hv_grow((void **)&node->path, &node->cap, t->n + 1, sizeof *node->path) &&
+        hv_grow((void **)&node->warm, &node->warm_cap, t->warm + 1, 1)) {
+        r = 1;
         memcpy(node->path, s->steps + t->first, t->n * sizeof *node->path);
         memcpy(node->warm, s->bytes + t->warm_first, t->warm);
         node->n = t->n;
