@@ -433,14 +433,14 @@ int main(int argc, char **argv)
                alphas[ai], median(r->t_milp, r->n), tmax, r->n_opt, r->n, r->gap_sum / n, r->gap_max,
                r->stops_milp / n, r->thr_milp / n, fov, serial, plain);
     }
-    for (size_t ai = 0; given_plan && ai < n_alpha; ++ai) {
-        row_stats_t *r = &rows[ai];
-        if (ai == 0) {
-            printf("\n# Given its own plan from the start (the proof alone)\n%-5s | %7s %7s %7s\n",
-                   "alpha", "median", "max", "optimal");
+    if (given_plan) {
+        printf("\n# Given its own plan from the start (the proof alone)\n%-5s | %7s %7s %7s\n",
+               "alpha", "median", "max", "optimal");
+        for (size_t ai = 0; ai < n_alpha; ++ai) {
+            row_stats_t *r = &rows[ai];
+            printf("%-5g | %7.3f %7.3f %3zu/%-3zu\n", alphas[ai], median(r->t_given, r->n_given),
+                   max_of(r->t_given, r->n_given), r->n_given_opt, r->n_given);
         }
-        printf("%-5g | %7.3f %7.3f %3zu/%-3zu\n", alphas[ai], median(r->t_given, r->n_given),
-               max_of(r->t_given, r->n_given), r->n_given_opt, r->n_given);
     }
     bench_tables_free(&tabs);
     return failures ? 1 : 0;
