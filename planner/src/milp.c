@@ -51,6 +51,7 @@ void hv_milp_options_default(hv_milp_options_t *opt)
     opt->tail_off_open = 1;
     opt->warm_transfer = 1;
     opt->tree_threads = 2;
+    opt->rins_every = 8;
     opt->ascent_steps = 100;
     opt->auto_smoothing = 1;
     opt->window_width = 4;

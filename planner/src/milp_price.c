@@ -18,6 +18,7 @@
 #include "hv/milp_model.h"
 #include "hv/milp_status.h"
 #include "hv/milp_helper.h"
+#include "hv/milp_rins.h"
 #include "hv/milp_share.h"
 #include "hv/milp_srcuts.h"
 #include "hv/milp_window.h"
@@ -49,6 +50,9 @@
                              within PRIMAL_ROOT_GAP of the root's bound */
 #define WINDOW_SHARE 0.25 /* of the time left after the root, at most, for row windows */
 #define WINDOW_LIMIT_S 0.5 /* per window */
+#define RINS_LIMIT_S 0.3   /* per relaxation-induced neighbourhood (sub-solve) */
+#define RINS_MAX_FREE 60   /* ... fruits freed in one, at most */
+#define RINS_CALL_S 1.0    /* ... time for the neighbourhoods at one master point */
 #define SR_MAX 512          /* subset-row cuts at most (milp_srcuts.h), all made at the root */
 #define SR_PER_ROUND 64     /* cuts added per separation round */
 #define SR_PER_FRUIT 4      /* new cuts per fruit per round: spreads them over the row */
@@ -208,6 +212,9 @@ typedef struct bp {
     long dives;
     double t_window; /* time spent re-planning row windows (s) */
     long windows, windows_better;
+    double t_rins; /* time spent in relaxation-induced neighbourhoods (s) */
+    long rins, rins_better, rins_freed; /* their sub-solves, better plans, fruits freed */
+    int rins_wait; /* nodes solved since the last neighbourhoods */
     hv_helper_t *helper; /* re-plans windows on the second core, NULL when not running */
     long helper_plans;   /* incumbents taken from it */
     double t_lp, t_price; /* time in the master LP and in pricing (s) */
@@ -1568,6 +1575,115 @@ static hv_status_t polish_incumbent(bp_t *b)
     return st;
 }
 
+/* The fruits on which the master point x (columns 1..ncol: the patterns added since are
+ * not in it) and the incumbent disagree (x holds less than all of the fruit at its
+ * incumbent stop), in order of their incumbent stop, into ord[]; returns their number. */
+static size_t rins_disagree(const bp_t *b, const double *x, int ncol, double *agree,
+                            uint32_t *ord)
+{
+    memset(agree, 0, b->nf * sizeof *agree);
+    for (size_t k = 0; k < b->n_pat; ++k) {
+        double v = b->pat[k].col <= ncol ? x[b->pat[k].col] : 0.0;
+        for (uint32_t q = 0; v > LAMBDA_EPS && q < b->pat[k].n; ++q) {
+            uint32_t f = b->pf[b->pat[k].first + q];
+            agree[f] += b->best[f] == b->pat[k].stop ? v : 0.0;
+        }
+    }
+    size_t n = 0;
+    for (size_t f = 0; f < b->nf; ++f) {
+        if (b->best[f] != HV_NO_STOP && agree[f] < 1.0 - LAMBDA_EPS) {
+            ord[n++] = (uint32_t)f;
+        }
+    }
+    for (size_t i = 1; i < n; ++i) { /* insertion sort: nearly ordered by fruit already */
+        uint32_t f = ord[i];
+        size_t j = i;
+        for (; j > 0 && b->best[ord[j - 1]] > b->best[f]; --j) {
+            ord[j] = ord[j - 1];
+        }
+        ord[j] = f;
+    }
+    return n;
+}
+
+/* Relaxation-induced neighbourhoods of the incumbent at master point x (columns 1..ncol;
+ * milp_rins.h): the fruits on which they disagree are re-planned exactly, RINS_MAX_FREE
+ * at a time along the row, each over the stops where x holds it and its incumbent stop,
+ * the rest kept. After a better plan the disagreement is taken again from the same place. */
+static hv_status_t rins_at(bp_t *b, const double *x, int ncol)
+{
+    double t0 = hv_milp_now_s();
+    size_t nf = b->nf;
+    double *agree = malloc((nf + 1) * sizeof *agree);
+    uint32_t *ord = malloc((nf + 1) * sizeof *ord);
+    unsigned char *freed = calloc(nf + 1, 1);
+    unsigned char *open = calloc(b->inst->n_pairs + 1, 1);
+    hv_assignment_t a;
+    if (agree == NULL || ord == NULL || freed == NULL || open == NULL ||
+        hv_assignment_alloc(&a, nf) != HV_OK) {
+        free(agree);
+        free(ord);
+        free(freed);
+        free(open);
+        return HV_ERR_PLAN_NOMEM;
+    }
+    for (size_t k = 0; k < b->n_pat; ++k) {
+        for (uint32_t q = 0; b->pat[k].col <= ncol && x[b->pat[k].col] > LAMBDA_EPS &&
+                             q < b->pat[k].n;
+             ++q) {
+            size_t pk = hv_instance_pair_index(b->inst, b->pf[b->pat[k].first + q],
+                                               b->pat[k].stop);
+            if (pk != SIZE_MAX) {
+                open[pk] = 1;
+            }
+        }
+    }
+    hv_status_t st = HV_OK;
+    size_t at = 0; /* the first disagreeing fruit (in row order) of the next neighbourhood */
+    for (;;) {
+        size_t n = rins_disagree(b, x, ncol, agree, ord);
+        double left = fmin(b->t_deadline, t0 + RINS_CALL_S) - hv_milp_now_s();
+        if (at >= n || left <= 0.0 || must_stop(b)) {
+            break;
+        }
+        size_t end = at + RINS_MAX_FREE < n ? at + RINS_MAX_FREE : n;
+        for (size_t i = at; i < end; ++i) {
+            freed[ord[i]] = 1;
+        }
+        memcpy(a.fruit_stop, b->best, nf * sizeof *b->best);
+        double t = b->ub_ms / 1000.0;
+        int better = 0;
+        st = hv_rins_improve(b->inst, b->opt, freed, open, fmin(RINS_LIMIT_S, left), &a, &t,
+                             &better, NULL);
+        for (size_t i = at; i < end; ++i) {
+            freed[ord[i]] = 0;
+        }
+        b->rins++;
+        b->rins_freed += (long)(end - at);
+        if (st == HV_OK && better) {
+            b->rins_better++;
+            if (b->opt->verbose >= 1) {
+                fprintf(stderr, "price: %.2f s: a neighbourhood of %zu fruits: %.3f -> %.3f s\n",
+                        hv_milp_now_s() - b->t_start, end - at, b->ub_ms / 1000.0, t);
+            }
+            st = offer_plan(b, &a, t);
+        }
+        if (st != HV_OK) {
+            break;
+        }
+        if (!better) {
+            at = end >= n ? n : at + RINS_MAX_FREE / 2; /* the next overlapping run */
+        }
+    }
+    hv_assignment_free(&a);
+    free(agree);
+    free(ord);
+    free(freed);
+    free(open);
+    b->t_rins += hv_milp_now_s() - t0;
+    return st;
+}
+
 /* m: prefix sums of the master's mass per stop (choose_count) */
 static int stop_has_mass(const double *m, size_t p)
 {
@@ -2078,6 +2194,11 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
         if (st == HV_OK && (far || b->nodes[k].depth <= 2 || b->n_nodes % ROUND_EVERY == 0) &&
             !must_stop(b)) {
             st = round_and_improve(b, x);
+        }
+        if (st == HV_OK && !far && b->opt->rins_every > 0 &&
+            ++b->rins_wait >= b->opt->rins_every && !must_stop(b)) {
+            b->rins_wait = 0;
+            st = rins_at(b, x, ncol);
         }
         free(x);
         if (st != HV_OK) {
@@ -2748,7 +2869,8 @@ struct worker {
     hv_status_t st_copy; /* the copy's status */
     /* written by the worker before it ends, read after the join */
     hv_status_t st;
-    long nodes, iv_branches, tailed, taken_warm;
+    long nodes, iv_branches, tailed, taken_warm, rins, rins_better, rins_freed;
+    double t_rins;
     int inexact;
     double open_lb; /* of its nodes still open (INFINITY none), n_open of them */
     size_t n_open;
@@ -2786,6 +2908,10 @@ static void *worker_main(void *arg)
         wk->nodes = w.nodes_done;
         wk->iv_branches = w.iv_branches;
         wk->tailed = w.tailed;
+        wk->rins = w.rins;
+        wk->rins_better = w.rins_better;
+        wk->rins_freed = w.rins_freed;
+        wk->t_rins = w.t_rins;
         wk->taken_warm = w.taken_warm;
         wk->inexact = w.inexact;
     }
@@ -2862,6 +2988,10 @@ static hv_status_t worker_join(bp_t *b, int failed, double *open_lb, size_t *n_o
     b->nodes_done = wk->nodes;
     b->iv_branches += wk->iv_branches;
     b->tailed += wk->tailed;
+    b->rins += wk->rins;
+    b->rins_better += wk->rins_better;
+    b->rins_freed += wk->rins_freed;
+    b->t_rins += wk->t_rins;
     b->taken_warm += wk->taken_warm;
     hv_status_t st = wk->st;
     b->share = NULL;
@@ -3070,6 +3200,11 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
                     (double)b.src_bits / (double)(b.src_stops ? b.src_stops : 1),
                     b.src_overflow, b.iv_branches, b.tailed, b.nodes_done,
                     b.given + b.taken, b.taken_warm);
+        }
+        if (opt->verbose >= 1) {
+            fprintf(stderr, "price: %ld relaxation-induced neighbourhoods (%ld better, %.1f "
+                    "fruits freed each) in %.2f s\n", b.rins, b.rins_better,
+                    (double)b.rins_freed / (double)(b.rins ? b.rins : 1), b.t_rins);
         }
         res->nodes = nodes;
         res->worker_nodes = b.nodes_done;

@@ -109,7 +109,8 @@ hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t
         hv_milp_options_t so = *opt;
         so.verbose = 0;
         so.export_lp_path = NULL;
-        so.window_width = 0; /* no windows within windows */
+        so.window_width = 0; /* no windows within windows, nor neighbourhoods: a window is */
+        so.rins_every = 0;   /* small, its plan near its optimum from the start */
         so.polish_work = 0;  /* a long local search would not see opt->stop */
         so.tree_threads = 1; /* a window runs on its caller's thread: the helper's, or the
                                 search's own; a worker of its own would take a third core */

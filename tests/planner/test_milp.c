@@ -22,6 +22,7 @@
 #include "hv/milp_local_search.h"
 #include "hv/milp_helper.h"
 #include "hv/milp_status.h"
+#include "hv/milp_rins.h"
 #include "hv/milp_window.h"
 #include "hv/plan_eval.h"
 
@@ -586,6 +587,130 @@ static void test_window_improve(void **state)
     assert_true(improved >= 20);
 }
 
+/* The best makespan of `a` with the freed fruits each over its open pairs and its stop in
+ * `a` (enumerated from fruit f on), the others where `a` has them; a ends as it began. */
+static double neighbourhood_best(const hv_instance_t *in, const unsigned char *freed,
+                                 const unsigned char *open, hv_assignment_t *a, size_t f)
+{
+    while (f < in->n_fruits && !freed[f]) {
+        ++f;
+    }
+    double t;
+    if (f == in->n_fruits) {
+        assert_int_equal(hv_assignment_makespan(in, a, &t), HV_OK);
+        return t;
+    }
+    uint32_t was = a->fruit_stop[f];
+    double best = neighbourhood_best(in, freed, open, a, f + 1);
+    for (size_t k = in->fruit_begin[f]; k < in->fruit_begin[f + 1]; ++k) {
+        if (open[k] && in->pairs[k].stop != was) {
+            a->fruit_stop[f] = in->pairs[k].stop;
+            t = neighbourhood_best(in, freed, open, a, f + 1);
+            best = t < best ? t : best;
+        }
+    }
+    a->fruit_stop[f] = was;
+    return best;
+}
+
+/* Relaxation-induced neighbourhoods re-plan the freed fruits exactly, over their open pairs,
+ * the others staying at their stops: the result is the neighbourhood's optimum by
+ * enumeration; freeing every fruit over every pair gives the whole problem's optimum, and
+ * freeing none changes nothing. */
+static void test_rins_improve(void **state)
+{
+    (void)state;
+    int improved = 0;
+    for (uint64_t seed = 300; seed < 320; ++seed) {
+        hv_instance_t in;
+        make_instance(&in, 12 + seed % 6, 30, 8, seed % 5 == 0, seed);
+        size_t nf = in.n_fruits;
+        hv_assignment_t poor, a, opt_a;
+        assert_int_equal(hv_assignment_alloc(&poor, nf), HV_OK);
+        assert_int_equal(hv_assignment_alloc(&a, nf), HV_OK);
+        assert_int_equal(hv_assignment_alloc(&opt_a, nf), HV_OK);
+        for (size_t f = 0; f < nf; ++f) {
+            if (in.fruit_begin[f] < in.fruit_begin[f + 1]) {
+                poor.fruit_stop[f] = in.pairs[in.fruit_begin[f + 1] - 1].stop;
+            }
+        }
+        double t0, t, check;
+        assert_int_equal(hv_assignment_makespan(&in, &poor, &t0), HV_OK);
+        hv_milp_options_t o;
+        hv_milp_options_default(&o);
+        hv_milp_result_t res;
+        assert_int_equal(hv_milp_solve(&in, &o, NULL, &opt_a, &res), HV_OK);
+        assert_int_equal(res.status, HV_SOLVE_OPTIMAL);
+        double t_opt = res.objective_s;
+        unsigned char *freed = calloc(nf + 1, 1), *open = calloc(in.n_pairs + 1, 1);
+        assert_non_null(freed);
+        assert_non_null(open);
+        int better;
+
+        /* nothing freed: the plan as it was */
+        memcpy(a.fruit_stop, poor.fruit_stop, nf * sizeof *a.fruit_stop);
+        t = t0;
+        assert_int_equal(hv_rins_improve(&in, &o, freed, NULL, 30.0, &a, &t, &better, &res),
+                         HV_OK);
+        assert_int_equal(better, 0);
+        assert_true(t == t0);
+        assert_memory_equal(a.fruit_stop, poor.fruit_stop, nf * sizeof *a.fruit_stop);
+
+        /* every fruit freed over every pair: the whole problem */
+        memset(freed, 1, nf);
+        assert_int_equal(hv_rins_improve(&in, &o, freed, NULL, 30.0, &a, &t, &better, &res),
+                         HV_OK);
+        assert_int_equal(res.status, HV_SOLVE_OPTIMAL);
+        assert_true(fabs(t - t_opt) < 1e-6);
+        assert_int_equal(better, t0 > t_opt + 1e-4);
+        assert_int_equal(hv_assignment_makespan(&in, &a, &check), HV_OK);
+        assert_true(fabs(check - t) < 1e-9);
+
+        /* five fruits freed over about half their pairs: the neighbourhood's optimum */
+        uint64_t r = seed;
+        memset(freed, 0, nf);
+        for (size_t n = 0; n < 5;) {
+            size_t f = (size_t)(rng_next(&r) % nf);
+            if (!freed[f] && poor.fruit_stop[f] != HV_NO_STOP) {
+                freed[f] = 1;
+                ++n;
+            }
+        }
+        for (size_t k = 0; k < in.n_pairs; ++k) {
+            open[k] = rng_next(&r) & 1;
+        }
+        memcpy(a.fruit_stop, poor.fruit_stop, nf * sizeof *a.fruit_stop);
+        double want = neighbourhood_best(&in, freed, open, &a, 0);
+        t = t0;
+        assert_int_equal(hv_rins_improve(&in, &o, freed, open, 30.0, &a, &t, &better, &res),
+                         HV_OK);
+        assert_int_equal(res.status, HV_SOLVE_OPTIMAL);
+        if (fabs(t - want) > 1e-6) {
+            fail_msg("seed %llu: neighbourhood %.3f s, enumerated %.3f s",
+                     (unsigned long long)seed, t, want);
+        }
+        assert_int_equal(better, t0 > want + 1e-4);
+        improved += better;
+        assert_int_equal(hv_assignment_makespan(&in, &a, &check), HV_OK);
+        assert_true(fabs(check - t) < 1e-9);
+        for (size_t f = 0; f < nf; ++f) {
+            if (!freed[f]) {
+                assert_int_equal(a.fruit_stop[f], poor.fruit_stop[f]);
+            } else if (a.fruit_stop[f] != poor.fruit_stop[f]) {
+                size_t k = hv_instance_pair_index(&in, (uint32_t)f, a.fruit_stop[f]);
+                assert_true(k != SIZE_MAX && open[k]);
+            }
+        }
+        free(freed);
+        free(open);
+        hv_assignment_free(&poor);
+        hv_assignment_free(&a);
+        hv_assignment_free(&opt_a);
+        hv_instance_free(&in);
+    }
+    assert_true(improved >= 10);
+}
+
 static double mono_s(void)
 {
     struct timespec ts;
@@ -965,6 +1090,7 @@ int main(void)
         cmocka_unit_test(test_interval_branching_and_tail),
         cmocka_unit_test(test_binding_splits),
         cmocka_unit_test(test_window_improve),
+        cmocka_unit_test(test_rins_improve),
         cmocka_unit_test(test_helper_thread),
         cmocka_unit_test(test_stop_callback),
         cmocka_unit_test(test_heuristic_and_local_search),

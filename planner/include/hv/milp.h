@@ -97,6 +97,9 @@ typedef struct hv_milp_options {
                                 carries the basis and stabilisation centre its parent left
                                 it, its columns named by content (milp_share.h); 0 its path
                                 only, the taker starting from its own last basis */
+    int rins_every;          /* price: once the plan is within 0.2 % of the root's bound, every
+                                this many nodes the fruits on which the node's LP point and
+                                the plan disagree are re-planned exactly (milp_rins.h); 0 never */
     int tree_threads;        /* price: 2 (default) a second thread searches the tree too
                                 once the incumbent is within 0.2 % of the bound, the
                                 helper thread stopping then (milp_share.h); 1 one thread.
