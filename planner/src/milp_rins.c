@@ -8,7 +8,8 @@
 #include "hv/plan_status.h"
 
 /* The sub-instance: the free fruits with their open pairs, then one stand-in per
- * (stop, arm) holding kept fruits. stand_stop[i] is the stop of stand-in i (sub fruit n_free + i). */
+ * (stop, arm) holding kept fruits. stand_stop[i] is the stop of stand-in i (sub fruit
+ * n_free + i). */
 typedef struct rins_sub {
     hv_instance_t inst;
     uint32_t *full_of; /* full index of each free sub fruit */
@@ -124,8 +125,7 @@ static hv_status_t sub_build(const hv_instance_t *in, const unsigned char *free_
 
 hv_status_t hv_rins_improve(const hv_instance_t *inst, const hv_milp_options_t *opt,
                             const unsigned char *free_fruit, const unsigned char *pair_open,
-                            double limit_s,
-                            hv_assignment_t *plan, double *t_s, int *better,
+                            double limit_s, hv_assignment_t *plan, double *t_s, int *better,
                             hv_milp_result_t *res_out)
 {
     if (better != NULL) {

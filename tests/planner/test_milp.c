@@ -656,6 +656,21 @@ static void test_rins_improve(void **state)
         assert_true(t == t0);
         assert_memory_equal(a.fruit_stop, poor.fruit_stop, nf * sizeof *a.fruit_stop);
 
+        /* no time, or a kept fruit at a stop that cannot reach it: refused, plan untouched */
+        assert_int_equal(hv_rins_improve(&in, &o, freed, NULL, 0.0, &a, &t, &better, &res),
+                         HV_ERR_ARG);
+        for (uint32_t p = 0; p < in.n_stops; ++p) {
+            if (hv_instance_pair_index(&in, 0, p) == SIZE_MAX) {
+                a.fruit_stop[0] = p;
+                break;
+            }
+        }
+        assert_int_equal(hv_rins_improve(&in, &o, freed, NULL, 30.0, &a, &t, &better, &res),
+                         HV_ERR_ARG);
+        assert_int_equal(better, 0);
+        assert_true(t == t0);
+        a.fruit_stop[0] = poor.fruit_stop[0];
+
         /* every fruit freed over every pair: the whole problem */
         memset(freed, 1, nf);
         assert_int_equal(hv_rins_improve(&in, &o, freed, NULL, 30.0, &a, &t, &better, &res),
