@@ -1640,8 +1640,8 @@ static hv_status_t rins_at(bp_t *b, const double *x, int ncol)
     }
     hv_status_t st = HV_OK;
     size_t at = 0; /* the first disagreeing fruit (in row order) of the next neighbourhood */
+    size_t n = rins_disagree(b, x, ncol, agree, ord);
     for (;;) {
-        size_t n = rins_disagree(b, x, ncol, agree, ord);
         double left = fmin(b->t_deadline, t0 + RINS_CALL_S) - hv_milp_now_s();
         if (at >= n || left <= 0.0 || must_stop(b)) {
             break;
@@ -1671,7 +1671,9 @@ static hv_status_t rins_at(bp_t *b, const double *x, int ncol)
         if (st != HV_OK) {
             break;
         }
-        if (!better) {
+        if (better) {
+            n = rins_disagree(b, x, ncol, agree, ord); /* against the new incumbent */
+        } else {
             at = end >= n ? n : at + RINS_MAX_FREE / 2; /* the next overlapping run */
         }
     }

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "hv/milp_rins.h"
+#include "hv/milp_subsolve.h"
 #include "hv/plan_eval.h"
 #include "hv/plan_status.h"
 
@@ -155,14 +156,8 @@ hv_status_t hv_rins_improve(const hv_instance_t *inst, const hv_milp_options_t *
         inc.fruit_stop[q] =
             q < s.n_free ? plan->fruit_stop[s.full_of[q]] : s.stand_stop[q - s.n_free];
     }
-    hv_milp_options_t so = *opt;
-    so.verbose = 0;
-    so.export_lp_path = NULL;
-    so.time_limit_s = limit_s;
-    so.window_width = 0; /* no windows, polish, neighbourhoods or second thread inside: a */
-    so.polish_work = 0;  /* neighbourhood is a short exact solve on its caller's thread */
-    so.tree_threads = 1;
-    so.rins_every = 0;
+    hv_milp_options_t so;
+    hv_milp_subsolve_options(opt, limit_s, &so);
     hv_milp_result_t res;
     st = hv_milp_solve(&s.inst, &so, &inc, &out, &res);
     double t;

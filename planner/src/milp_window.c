@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "hv/milp_clock.h"
+#include "hv/milp_subsolve.h"
 #include "hv/milp_window.h"
 #include "hv/plan_eval.h"
 #include "hv/plan_status.h"
@@ -106,14 +107,8 @@ hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t
     if (mark != NULL && used != NULL && keep != NULL && back != NULL &&
         hv_assignment_alloc(&saved, inst->n_fruits) == HV_OK) {
         st = HV_OK;
-        hv_milp_options_t so = *opt;
-        so.verbose = 0;
-        so.export_lp_path = NULL;
-        so.window_width = 0; /* no windows within windows, nor neighbourhoods: a window is */
-        so.rins_every = 0;   /* small, its plan near its optimum from the start */
-        so.polish_work = 0;  /* a long local search would not see opt->stop */
-        so.tree_threads = 1; /* a window runs on its caller's thread: the helper's, or the
-                                search's own; a worker of its own would take a third core */
+        hv_milp_options_t so; /* its limit set per window below */
+        hv_milp_subsolve_options(opt, window_limit_s, &so);
         int again = 1;
         while (again && st == HV_OK && hv_milp_now_s() < t_deadline_s &&
                !(opt->stop != NULL && opt->stop(opt->stop_ctx))) {
