@@ -124,6 +124,13 @@ typedef struct cand {
 
 typedef struct worker worker_t;
 
+/* What the relaxation-induced neighbourhoods did: sub-solves, better plans, fruits freed,
+ * time (s). */
+typedef struct rins_stats {
+    long calls, better, freed;
+    double t_s;
+} rins_stats_t;
+
 typedef struct bp {
     const hv_instance_t *inst;
     const hv_milp_options_t *opt;
@@ -212,8 +219,7 @@ typedef struct bp {
     long dives;
     double t_window; /* time spent re-planning row windows (s) */
     long windows, windows_better;
-    double t_rins; /* time spent in relaxation-induced neighbourhoods (s) */
-    long rins, rins_better, rins_freed; /* their sub-solves, better plans, fruits freed */
+    rins_stats_t rins; /* the relaxation-induced neighbourhoods (both workers' at the end) */
     int rins_wait; /* nodes solved since the last neighbourhoods */
     hv_helper_t *helper; /* re-plans windows on the second core, NULL when not running */
     long helper_plans;   /* incumbents taken from it */
@@ -1575,6 +1581,13 @@ static hv_status_t polish_incumbent(bp_t *b)
     return st;
 }
 
+/* Pattern k's value at the master point x of columns 1..ncol (0 for the patterns added
+ * since, which it does not hold). */
+static double point_value(const bp_t *b, const double *x, int ncol, size_t k)
+{
+    return b->pat[k].col <= ncol ? x[b->pat[k].col] : 0.0;
+}
+
 /* The fruits on which the master point x (columns 1..ncol: the patterns added since are
  * not in it) and the incumbent disagree (x holds less than all of the fruit at its
  * incumbent stop), in order of their incumbent stop, into ord[]; returns their number. */
@@ -1583,7 +1596,7 @@ static size_t rins_disagree(const bp_t *b, const double *x, int ncol, double *ag
 {
     memset(agree, 0, b->nf * sizeof *agree);
     for (size_t k = 0; k < b->n_pat; ++k) {
-        double v = b->pat[k].col <= ncol ? x[b->pat[k].col] : 0.0;
+        double v = point_value(b, x, ncol, k);
         for (uint32_t q = 0; v > LAMBDA_EPS && q < b->pat[k].n; ++q) {
             uint32_t f = b->pf[b->pat[k].first + q];
             agree[f] += b->best[f] == b->pat[k].stop ? v : 0.0;
@@ -1628,9 +1641,10 @@ static hv_status_t rins_at(bp_t *b, const double *x, int ncol)
         return HV_ERR_PLAN_NOMEM;
     }
     for (size_t k = 0; k < b->n_pat; ++k) {
-        for (uint32_t q = 0; b->pat[k].col <= ncol && x[b->pat[k].col] > LAMBDA_EPS &&
-                             q < b->pat[k].n;
-             ++q) {
+        if (point_value(b, x, ncol, k) <= LAMBDA_EPS) {
+            continue; /* x does not hold it: its pairs stay closed */
+        }
+        for (uint32_t q = 0; q < b->pat[k].n; ++q) {
             size_t pk = hv_instance_pair_index(b->inst, b->pf[b->pat[k].first + q],
                                                b->pat[k].stop);
             if (pk != SIZE_MAX) {
@@ -1658,10 +1672,10 @@ static hv_status_t rins_at(bp_t *b, const double *x, int ncol)
         for (size_t i = at; i < end; ++i) {
             freed[ord[i]] = 0;
         }
-        b->rins++;
-        b->rins_freed += (long)(end - at);
+        b->rins.calls++;
+        b->rins.freed += (long)(end - at);
         if (st == HV_OK && better) {
-            b->rins_better++;
+            b->rins.better++;
             if (b->opt->verbose >= 1) {
                 fprintf(stderr, "price: %.2f s: a neighbourhood of %zu fruits: %.3f -> %.3f s\n",
                         hv_milp_now_s() - b->t_start, end - at, b->ub_ms / 1000.0, t);
@@ -1682,7 +1696,7 @@ static hv_status_t rins_at(bp_t *b, const double *x, int ncol)
     free(ord);
     free(freed);
     free(open);
-    b->t_rins += hv_milp_now_s() - t0;
+    b->rins.t_s += hv_milp_now_s() - t0;
     return st;
 }
 
@@ -2871,8 +2885,8 @@ struct worker {
     hv_status_t st_copy; /* the copy's status */
     /* written by the worker before it ends, read after the join */
     hv_status_t st;
-    long nodes, iv_branches, tailed, taken_warm, rins, rins_better, rins_freed;
-    double t_rins;
+    long nodes, iv_branches, tailed, taken_warm;
+    rins_stats_t rins;
     int inexact;
     double open_lb; /* of its nodes still open (INFINITY none), n_open of them */
     size_t n_open;
@@ -2911,9 +2925,6 @@ static void *worker_main(void *arg)
         wk->iv_branches = w.iv_branches;
         wk->tailed = w.tailed;
         wk->rins = w.rins;
-        wk->rins_better = w.rins_better;
-        wk->rins_freed = w.rins_freed;
-        wk->t_rins = w.t_rins;
         wk->taken_warm = w.taken_warm;
         wk->inexact = w.inexact;
     }
@@ -2990,10 +3001,10 @@ static hv_status_t worker_join(bp_t *b, int failed, double *open_lb, size_t *n_o
     b->nodes_done = wk->nodes;
     b->iv_branches += wk->iv_branches;
     b->tailed += wk->tailed;
-    b->rins += wk->rins;
-    b->rins_better += wk->rins_better;
-    b->rins_freed += wk->rins_freed;
-    b->t_rins += wk->t_rins;
+    b->rins.calls += wk->rins.calls;
+    b->rins.better += wk->rins.better;
+    b->rins.freed += wk->rins.freed;
+    b->rins.t_s += wk->rins.t_s;
     b->taken_warm += wk->taken_warm;
     hv_status_t st = wk->st;
     b->share = NULL;
@@ -3205,8 +3216,9 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
         }
         if (opt->verbose >= 1) {
             fprintf(stderr, "price: %ld relaxation-induced neighbourhoods (%ld better, %.1f "
-                    "fruits freed each) in %.2f s\n", b.rins, b.rins_better,
-                    (double)b.rins_freed / (double)(b.rins ? b.rins : 1), b.t_rins);
+                    "fruits freed each) in %.2f s\n", b.rins.calls, b.rins.better,
+                    (double)b.rins.freed / (double)(b.rins.calls ? b.rins.calls : 1),
+                    b.rins.t_s);
         }
         res->nodes = nodes;
         res->worker_nodes = b.nodes_done;

@@ -537,6 +537,18 @@ static void record_window(void *ctx, const hv_assignment_t *plan, double t_s)
     w->n++;
 }
 
+/* A poor plan into a: every reachable fruit at its first stop (`last`: its last); the
+ * others left as they are. */
+static void plan_at_end_stops(const hv_instance_t *in, hv_assignment_t *a, int last)
+{
+    for (size_t f = 0; f < in->n_fruits; ++f) {
+        size_t b = in->fruit_begin[f], e = in->fruit_begin[f + 1];
+        if (b < e) {
+            a->fruit_stop[f] = in->pairs[last ? e - 1 : b].stop;
+        }
+    }
+}
+
 /* Row windows re-planned exactly: from a poor plan (every fruit at its first stop) the plan
  * improves, stays a plan whose makespan is the one reported, and never beats the optimum. */
 static void test_window_improve(void **state)
@@ -549,11 +561,7 @@ static void test_window_improve(void **state)
         hv_assignment_t a, opt_a;
         assert_int_equal(hv_assignment_alloc(&a, in.n_fruits), HV_OK);
         assert_int_equal(hv_assignment_alloc(&opt_a, in.n_fruits), HV_OK);
-        for (size_t f = 0; f < in.n_fruits; ++f) {
-            if (in.fruit_begin[f] < in.fruit_begin[f + 1]) {
-                a.fruit_stop[f] = in.pairs[in.fruit_begin[f]].stop;
-            }
-        }
+        plan_at_end_stops(&in, &a, 0);
         double t0, t, check;
         assert_int_equal(hv_assignment_makespan(&in, &a, &t0), HV_OK);
         hv_milp_options_t o;
@@ -629,11 +637,7 @@ static void test_rins_improve(void **state)
         assert_int_equal(hv_assignment_alloc(&poor, nf), HV_OK);
         assert_int_equal(hv_assignment_alloc(&a, nf), HV_OK);
         assert_int_equal(hv_assignment_alloc(&opt_a, nf), HV_OK);
-        for (size_t f = 0; f < nf; ++f) {
-            if (in.fruit_begin[f] < in.fruit_begin[f + 1]) {
-                poor.fruit_stop[f] = in.pairs[in.fruit_begin[f + 1] - 1].stop;
-            }
-        }
+        plan_at_end_stops(&in, &poor, 1);
         double t0, t, check;
         assert_int_equal(hv_assignment_makespan(&in, &poor, &t0), HV_OK);
         hv_milp_options_t o;
