@@ -66,7 +66,9 @@ static void usage(FILE *f)
             "                       ascent_steps (subgradient steps before the root, 0 off),\n"
             "                       auto_smoothing (1: the smoothing weight adapts, 0: 0.8),\n"
             "                       rins_every (nodes between relaxation-induced\n"
-            "                       neighbourhoods of the plan, 0 off)\n"
+            "                       neighbourhoods of the plan, 0 off),\n"
+            "                       region_stops (longest stretch of a regional bound,\n"
+            "                       0 off)\n"
             "  --no-baselines       skip FOV and Serial\n"
             "  --given-plan         also solve each instance again from the plan its MILP run\n"
             "                       found, and print that time: what the proof alone takes\n"
@@ -127,6 +129,7 @@ static int set_option(hv_milp_options_t *o, const char *kv)
         {"window_width", &o->window_width},
         {"helper_thread", &o->helper_thread},
         {"rins_every", &o->rins_every},
+        {"region_stops", &o->region_stops},
     };
     for (size_t i = 0; i < sizeof keys / sizeof keys[0]; ++i) {
         if (strlen(keys[i].k) == n && strncmp(kv, keys[i].k, n) == 0) {
@@ -290,14 +293,14 @@ int main(int argc, char **argv)
            "sr_cuts=%d/%d sr_purge=%d sr_cross=%d cover_rows=%d pseudocost=%d tree_threads=%d "
            "helper_thread=%d ascent_steps=%d auto_smoothing=%d interval_branching=%d "
            "tail_off_ms=%d tail_off_open=%d binding_splits=%d balance_workers=%d "
-           "warm_transfer=%d rins_every=%d\n",
+           "warm_transfer=%d rins_every=%d region_stops=%d\n",
            mo.algorithm == HV_MILP_ALG_PRICE ? "price" : "compact", mo.link_disaggregated,
            mo.heuristic_incumbent, mo.branch_stops_first, mo.side_bounds, mo.ms_granularity,
            mo.decompose, mo.glpk_cuts, mo.pcost_branching, mo.time_limit_s, mo.sr_cuts,
            mo.sr_cuts_large, mo.sr_purge, mo.sr_cross, mo.cover_rows, mo.pseudocost,
            mo.tree_threads, mo.helper_thread, mo.ascent_steps, mo.auto_smoothing,
            mo.interval_branching, mo.tail_off_ms, mo.tail_off_open, mo.binding_splits,
-           mo.balance_workers, mo.warm_transfer, mo.rins_every);
+           mo.balance_workers, mo.warm_transfer, mo.rins_every, mo.region_stops);
     printf("%-5s %-4s %4s %6s | %-9s %9s %9s %8s %7s %7s %5s | %9s %9s | %-9s %8s %7s | %9s %5s | %9s\n",
            "alpha", "seed", "nf", "pairs", "milp", "T_s", "bound_s", "gap", "time_s", "nodes",
            "stops", "root_s", "heur_T_s", "plain", "plain_gap", "plain_s", "fov_T_s", "stops", "serial_T");

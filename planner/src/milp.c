@@ -52,6 +52,7 @@ void hv_milp_options_default(hv_milp_options_t *opt)
     opt->warm_transfer = 1;
     opt->tree_threads = 2;
     opt->rins_every = 8;
+    opt->region_stops = 100;
     opt->ascent_steps = 100;
     opt->auto_smoothing = 1;
     opt->window_width = 4;

@@ -18,9 +18,11 @@
 #include "hv/milp_model.h"
 #include "hv/milp_status.h"
 #include "hv/milp_helper.h"
+#include "hv/milp_region.h"
 #include "hv/milp_rins.h"
 #include "hv/milp_share.h"
 #include "hv/milp_srcuts.h"
+#include "hv/milp_subsolve.h"
 #include "hv/milp_window.h"
 #include "hv/plan_eval.h"
 #include "hv/plan_status.h"
@@ -56,6 +58,11 @@
 #define SR_MAX 512          /* subset-row cuts at most (milp_srcuts.h), all made at the root */
 #define SR_PER_ROUND 64     /* cuts added per separation round */
 #define SR_PER_FRUIT 4      /* new cuts per fruit per round: spreads them over the row */
+#define REGION_AFTER_NODES 16 /* tree nodes before the first regional bound (SOLVER.md) */
+#define REGION_SHARE 0.5      /* ... of the time left, at most, for each */
+#define REGION_EPS_MS 1e-3    /* ... proved above what the incumbent needs */
+#define REGION_KICKS 20       /* local-search kicks on the plan a stretch's solution gives */
+#define REGION_GROW 12        /* stops a stretch grows by on either side when short */
 #define SR_MIN_VIOL 0.05    /* a cut enters when the master point violates it by this */
 #define COUNT_MIN_SCORE 0.05 /* a count this far from an integer is branched on first */
 #define IV_MIN_FRAC 0.1     /* interval branching: the least fractional count considered */
@@ -228,6 +235,21 @@ typedef struct bp {
     long lp_stalls;       /* primal simplex calls stopped as stalled, finished by the dual */
     long heur_runs, heur_wins;
     int inexact; /* a numerically doubtful node was closed: do not claim optimality */
+    /* hv_price_bound: per fruit the cost of leaving it uncovered (INFINITY: it must be
+     * covered), NULL in a plain solve. A fruit that may be left out has the virtual stop
+     * ns at the top of its interval, there its artificial column costs skip_ms, and a
+     * branch on its stop can forbid that as it forbids real stops. */
+    const double *skip_ms;
+    double *stop_v; /* per stop: its term of the Lagrangian bound at the duals last priced */
+    /* the regional bound (milp_region.h, opt->region_stops): the root's duals before any cut
+     * (fruits), their stop terms and Lagrangian bound; the bound it proved, valid at every
+     * node; the incumbent it last tried to prove; its sub-solves' tries, nodes and time */
+    double *region_pi, *region_v, region_lag0;
+    double region_lb, region_tried_ub;
+    long region_tries, region_proofs, region_nodes;
+    size_t region_s0, region_s1; /* the stretch whose sub-solve last finished */
+    int region_stalled;          /* a sub-solve ran out of its time: no more tries */
+    double t_region;
     /* pseudocosts of fruit splits, [0] the child "<= stop", [1] "> stop": per fruit the sum
      * of (child bound - parent bound) / frac and the count, and over all fruits; with two
      * workers read from and added to the pool they share (milp_share.h) */
@@ -260,6 +282,7 @@ static int prunable(const bp_t *b, double lb_ms)
     if (!isfinite(b->ub_ms)) {
         return 0;
     }
+    lb_ms = fmax(lb_ms, b->region_lb);
     if (b->whole_ms && lb_ms > b->ub_ms - 1.0 + 1e-6) {
         return 1;
     }
@@ -358,6 +381,20 @@ static double pair_ms(const bp_t *b, uint32_t f, uint32_t p)
 {
     size_t k = hv_instance_pair_index(b->inst, f, p);
     return k == SIZE_MAX ? -1.0 : 1000.0 * b->inst->pairs[k].cost_s;
+}
+
+/* The arms' times (ms) per stop of the assignment stop_of (HV_NO_STOP: none), added into
+ * arm[2 p] (left) and arm[2 p + 1] (right), and the stops it uses marked in used[]. */
+static void stop_arms(const bp_t *b, const uint32_t *stop_of, double *arm, unsigned char *used)
+{
+    for (size_t f = 0; f < b->nf; ++f) {
+        uint32_t p = stop_of[f];
+        if (p != HV_NO_STOP) {
+            arm[2 * p + (b->inst->fruits[f].side == HV_SIDE_LEFT ? 0 : 1)] +=
+                pair_ms(b, (uint32_t)f, p);
+            used[p] = 1;
+        }
+    }
 }
 
 /* The arms' pick times (ms, indexed by hv_side_t) of the pattern of fruits f[0 .. n) at
@@ -553,6 +590,9 @@ static void bp_free(bp_t *b)
     free(b->crow);
     free(b->sigma_stop);
     free(b->best);
+    free(b->stop_v);
+    free(b->region_pi);
+    free(b->region_v);
     hv_share_node_free(&b->msg);
     free(b->col_pat);
 }
@@ -608,7 +648,14 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
     b->val = malloc(b->iv_cap * sizeof *b->val);
     b->sigma_stop = calloc(ns + 1, sizeof *b->sigma_stop);
     b->best = malloc((nf + 1) * sizeof *b->best);
-    if (b->stop_begin == NULL || b->stop_pair == NULL || b->row_of_fruit == NULL ||
+    b->stop_v = calloc(ns + 1, sizeof *b->stop_v);
+    b->region_pi = calloc(nf + 1, sizeof *b->region_pi);
+    b->region_v = calloc(ns + 1, sizeof *b->region_v);
+    b->region_lb = b->region_lag0 = -INFINITY;
+    b->region_tried_ub = INFINITY;
+    b->region_s0 = SIZE_MAX;
+    if (b->stop_v == NULL || b->region_pi == NULL || b->region_v == NULL ||
+        b->stop_begin == NULL || b->stop_pair == NULL || b->row_of_fruit == NULL ||
         b->row_of_stop == NULL || b->fixed_pat == NULL || b->lo == NULL || b->hi == NULL ||
         b->itl == NULL || b->itr == NULL || b->sel == NULL || b->pi_lp == NULL || b->pi_c == NULL ||
         b->pi_sep == NULL || b->cover == NULL || b->mu_lp == NULL || b->sigma_lp == NULL ||
@@ -841,6 +888,18 @@ static count_row_t *crow_get(bp_t *b, uint32_t lo, uint32_t hi)
     return c;
 }
 
+/* Fruit f may be left uncovered (hv_price_bound). */
+static int skippable(const bp_t *b, size_t f)
+{
+    return b->skip_ms != NULL && isfinite(b->skip_ms[f]);
+}
+
+/* ... and the current node allows that (its interval holds the virtual stop ns). */
+static int skip_open(const bp_t *b, size_t f)
+{
+    return skippable(b, f) && b->hi[f] == b->ns;
+}
+
 /* The node's restrictions: its fruits' stop intervals with the master columns that respect
  * them opened, and its count rows. */
 static hv_status_t node_apply(bp_t *b, int32_t k, int *infeasible)
@@ -848,7 +907,7 @@ static hv_status_t node_apply(bp_t *b, int32_t k, int *infeasible)
     *infeasible = 0;
     for (size_t f = 0; f < b->nf; ++f) {
         b->lo[f] = 0;
-        b->hi[f] = (uint32_t)(b->ns - 1);
+        b->hi[f] = (uint32_t)(skippable(b, f) ? b->ns : b->ns - 1);
     }
     for (size_t r = 0; r < b->n_crow; ++r) {
         b->crow[r].min = -INFINITY;
@@ -907,6 +966,11 @@ static hv_status_t node_apply(bp_t *b, int32_t k, int *infeasible)
         }
         int32_t fx = b->fixed_pat[p->stop];
         col_open(b, j, fx == (int32_t)j ? 2 : (ok && fx < 0 && !b->pat_dead[j]));
+    }
+    for (size_t f = 0; b->skip_ms != NULL && f < b->nf; ++f) {
+        if (skippable(b, f) && b->row_of_fruit[f] != 0) { /* the artificial stays: feasibility */
+            glp_set_obj_coef(b->lp, b->row_of_fruit[f], skip_open(b, f) ? b->skip_ms[f] : BIG_MS);
+        }
     }
     b->cur_basis = b->nodes[k].basis;
     if (b->cur_basis >= 0) {
@@ -1064,7 +1128,14 @@ static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, double 
         b->cand[p].rc = 0.0;
     }
     memset(b->cover, 0, b->nf * sizeof *b->cover);
+    for (size_t f = 0; b->skip_ms != NULL && f < b->nf; ++f) {
+        if (b->row_of_fruit[f] != 0 && skip_open(b, f) && b->skip_ms[f] < pi[f]) {
+            sum += b->skip_ms[f] - pi[f]; /* left uncovered in the Lagrangian's optimum */
+            b->cover[f] += 1.0;
+        }
+    }
     for (size_t p = 0; p < b->ns; ++p) {
+        b->stop_v[p] = 0.0;
         if (b->row_of_stop[p] == 0) {
             continue;
         }
@@ -1078,6 +1149,7 @@ static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, double 
                 b->cover[b->pf[pt->first + q]] += 1.0;
             }
             sum += v;
+            b->stop_v[p] = v;
             continue;
         }
         size_t nl, nr;
@@ -1124,6 +1196,7 @@ static hv_status_t price_at(bp_t *b, const double *pi, const double *sg, double 
             }
         }
         sum += v; /* v <= 0 by construction */
+        b->stop_v[p] = v;
         if (time < 0.0) {
             continue;
         }
@@ -1320,10 +1393,13 @@ static void set_incumbent(bp_t *b, const hv_assignment_t *a, double t_s)
  * is better. Returns 1 when the master point was integral. */
 static int take_integral(bp_t *b, const double *x)
 {
-    for (int j = 1; j <= b->n_art; ++j) {
-        if (x[j] > LAMBDA_EPS) {
+    double skipped_ms = 0.0; /* hv_price_bound: the fruits left uncovered */
+    for (size_t f = 0; f < b->nf; ++f) {
+        double v = b->row_of_fruit[f] ? x[b->row_of_fruit[f]] : 0.0;
+        if (v > LAMBDA_EPS && !(skip_open(b, f) && v > 1.0 - LAMBDA_EPS)) {
             return 0;
         }
+        skipped_ms += v > LAMBDA_EPS ? b->skip_ms[f] : 0.0;
     }
     for (size_t r = 0; r < b->n_crow; ++r) {
         if (x[b->crow[r].art] > LAMBDA_EPS) {
@@ -1348,7 +1424,15 @@ static int take_integral(bp_t *b, const double *x)
         }
     }
     double t;
-    if (hv_assignment_makespan(b->inst, &a, &t) == HV_OK && 1000.0 * t < b->ub_ms) {
+    if (b->skip_ms != NULL) { /* a plan with uncovered fruits: the master's own value */
+        t = b->travel_ms + skipped_ms;
+        for (size_t k = 0; k < b->n_pat; ++k) {
+            t += x[b->pat[k].col] > 0.5 ? b->pat[k].cost_ms : 0.0;
+        }
+        if (t < b->ub_ms) {
+            set_incumbent(b, &a, t / 1000.0);
+        }
+    } else if (hv_assignment_makespan(b->inst, &a, &t) == HV_OK && 1000.0 * t < b->ub_ms) {
         set_incumbent(b, &a, t);
     }
     hv_assignment_free(&a);
@@ -1440,6 +1524,16 @@ static hv_status_t choose_split(bp_t *b, const double *x, split_t *best)
             m[n++] = (mass_t){f, b->pat[k].stop, v, binds ? v : 0.0};
         }
     }
+    for (size_t f = 0; b->skip_ms != NULL && f < b->nf; ++f) {
+        double v = b->row_of_fruit[f] ? x[b->row_of_fruit[f]] : 0.0;
+        if (skip_open(b, f) && v > LAMBDA_EPS) { /* uncovered: mass at the virtual stop */
+            if (!hv_grow((void **)&m, &cap, n + 1, sizeof *m)) {
+                free(m);
+                return HV_ERR_PLAN_NOMEM;
+            }
+            m[n++] = (mass_t){(uint32_t)f, (uint32_t)b->ns, v, 0.0};
+        }
+    }
     qsort(m, n, sizeof *m, by_fruit_stop);
     if (b->share != NULL && b->opt->pseudocost) {
         hv_share_pc_get(b->share, &b->pc); /* what both workers learnt */
@@ -1508,16 +1602,18 @@ static hv_status_t improve_plan(bp_t *b, hv_assignment_t *a, unsigned kicks)
     return st == HV_OK ? offer_plan(b, a, t) : st;
 }
 
-/* Round a fractional master point to a plan (each fruit at the stop holding most of its
- * mass), improve it by local search and keep it when it beats the incumbent. */
-static hv_status_t round_and_improve(bp_t *b, const double *x)
+/* The master point x rounded into a (fresh) assignment: each fruit at the stop holding most
+ * of its mass, or left out (HV_NO_STOP) when it has none there or, where it may be left
+ * out (hv_price_bound), its artificial holds more. */
+static hv_status_t round_point(const bp_t *b, const double *x, hv_assignment_t *a)
 {
-    double t0 = hv_milp_now_s();
-    hv_assignment_t a;
-    double *mass = calloc(b->nf + 1, sizeof *mass);
-    if (mass == NULL || hv_assignment_alloc(&a, b->nf) != HV_OK) {
+    double *mass = malloc((b->nf + 1) * sizeof *mass);
+    if (mass == NULL || hv_assignment_alloc(a, b->nf) != HV_OK) {
         free(mass);
         return HV_ERR_PLAN_NOMEM;
+    }
+    for (size_t f = 0; f < b->nf; ++f) {
+        mass[f] = skippable(b, f) && b->row_of_fruit[f] ? x[b->row_of_fruit[f]] : 0.0;
     }
     for (size_t k = 0; k < b->n_pat; ++k) {
         double v = x[b->pat[k].col];
@@ -1525,9 +1621,22 @@ static hv_status_t round_and_improve(bp_t *b, const double *x)
             uint32_t f = b->pf[b->pat[k].first + q];
             if (v > mass[f]) {
                 mass[f] = v;
-                a.fruit_stop[f] = b->pat[k].stop;
+                a->fruit_stop[f] = b->pat[k].stop;
             }
         }
+    }
+    free(mass);
+    return HV_OK;
+}
+
+/* Round a fractional master point to a plan (round_point), improve it by local search and
+ * keep it when it beats the incumbent. */
+static hv_status_t round_and_improve(bp_t *b, const double *x)
+{
+    double t0 = hv_milp_now_s();
+    hv_assignment_t a;
+    if (round_point(b, x, &a) != HV_OK) {
+        return HV_ERR_PLAN_NOMEM;
     }
     int complete = 1;
     for (size_t f = 0; f < b->nf; ++f) {
@@ -1537,8 +1646,45 @@ static hv_status_t round_and_improve(bp_t *b, const double *x)
     }
     hv_status_t st = complete ? improve_plan(b, &a, 20) : HV_OK;
     hv_assignment_free(&a);
-    free(mass);
     b->t_heur += hv_milp_now_s() - t0;
+    return st;
+}
+
+/* hv_price_bound's rounding, at every node (round_point), valued as the master values it
+ * (the local search knows no fruit left out). */
+static hv_status_t round_skip(bp_t *b, const double *x)
+{
+    hv_assignment_t a;
+    double *arm = calloc(2 * b->ns + 1, sizeof *arm);
+    unsigned char *used = calloc(b->ns + 1, 1);
+    if (arm == NULL || used == NULL || round_point(b, x, &a) != HV_OK) {
+        free(arm);
+        free(used);
+        return HV_ERR_PLAN_NOMEM;
+    }
+    double t = b->travel_ms;
+    int complete = 1;
+    for (size_t f = 0; f < b->nf && complete; ++f) {
+        if (a.fruit_stop[f] == HV_NO_STOP) {
+            complete = !b->row_of_fruit[f] || skippable(b, f);
+            t += complete && b->row_of_fruit[f] ? b->skip_ms[f] : 0.0;
+        }
+    }
+    stop_arms(b, a.fruit_stop, arm, used);
+    for (size_t p = 0; p < b->ns; ++p) {
+        t += used[p] ? b->tau_ms + fmax(arm[2 * p], arm[2 * p + 1]) : 0.0;
+    }
+    hv_status_t st = HV_OK;
+    if (complete && t < b->ub_ms - 1e-6) {
+        set_incumbent(b, &a, t / 1000.0);
+        b->heur_wins++;
+        if (add_assignment_columns(b, b->best) < 0) {
+            st = HV_ERR_PLAN_NOMEM;
+        }
+    }
+    hv_assignment_free(&a);
+    free(arm);
+    free(used);
     return st;
 }
 
@@ -2022,6 +2168,226 @@ static void progress(bp_t *b, double lb_ms, int force)
             lb_ms / 1000.0, g);
 }
 
+/* ---- regional bounds (milp_region.h) ------------------------------------------------------ */
+
+/* At the root's converged master, before any cut: its best duals, their stop terms and
+ * bound, which the regional bound uses (the cuts' duals would need their penalties in the
+ * stretch's sub-problem, which it leaves out: measured, a rise of 0 where these give one). */
+static hv_status_t region_capture(bp_t *b)
+{
+    if (b->opt->region_stops <= 0 || b->skip_ms != NULL || b->n_crow > 0) {
+        return HV_OK;
+    }
+    double lag;
+    int added;
+    hv_status_t st = price_at(b, b->pi_c, b->sg_c, &lag, &added);
+    if (st == HV_OK) {
+        memcpy(b->region_pi, b->pi_c, b->nf * sizeof *b->region_pi);
+        memcpy(b->region_v, b->stop_v, b->ns * sizeof *b->region_v);
+        b->region_lag0 = lag;
+    }
+    return st;
+}
+
+/* The incumbent's gap over the captured bound, per stop: its pattern's cost less its fruits'
+ * duals less the stop's term (0 where the plan does not stop: its term then). They sum to
+ * incumbent - bound, so where they lie is where a stretch's rise can close the gap. */
+static hv_status_t region_gaps(bp_t *b, double *g)
+{
+    double *arm = calloc(2 * b->ns + 1, sizeof *arm); /* per stop: the left, right arm's time */
+    unsigned char *used = calloc(b->ns + 1, 1);
+    if (arm == NULL || used == NULL) {
+        free(arm);
+        free(used);
+        return HV_ERR_PLAN_NOMEM;
+    }
+    for (size_t p = 0; p < b->ns; ++p) {
+        g[p] = -b->region_v[p];
+    }
+    for (size_t f = 0; f < b->nf; ++f) {
+        if (b->best[f] != HV_NO_STOP) {
+            g[b->best[f]] -= b->region_pi[f];
+        }
+    }
+    stop_arms(b, b->best, arm, used);
+    for (size_t p = 0; p < b->ns; ++p) {
+        g[p] += used[p] ? b->tau_ms + fmax(arm[2 * p], arm[2 * p + 1]) : 0.0;
+        g[p] = fmax(0.0, g[p]); /* round-off, or a pair the pricing left out as fixed */
+    }
+    free(arm);
+    free(used);
+    return HV_OK;
+}
+
+/* A plan from the stretch [s0, s1]'s best solution `plan` (HV_NO_STOP outside it and for the
+ * fruits it leaves out) and the incumbent's stops outside the stretch; a fruit neither
+ * places joins the used stop where it adds least to the stop's time (the cheapest stop when
+ * none reaches it), and a short local search polishes the result. At the optimum the
+ * stretch's best solution is often the optimal plan's part there. */
+static hv_status_t region_plan(bp_t *b, const uint32_t *plan, size_t s0, size_t s1)
+{
+    const hv_instance_t *in = b->inst;
+    hv_assignment_t a;
+    double *arm = calloc(2 * b->ns + 1, sizeof *arm);
+    unsigned char *used = calloc(b->ns + 1, 1);
+    if (arm == NULL || used == NULL || hv_assignment_alloc(&a, b->nf) != HV_OK) {
+        free(arm);
+        free(used);
+        return HV_ERR_PLAN_NOMEM;
+    }
+    for (size_t f = 0; f < b->nf; ++f) {
+        a.fruit_stop[f] = plan[f] != HV_NO_STOP ? plan[f]
+                          : (b->best[f] != HV_NO_STOP && (b->best[f] < s0 || b->best[f] > s1))
+                              ? b->best[f]
+                              : HV_NO_STOP;
+    }
+    stop_arms(b, a.fruit_stop, arm, used);
+    for (size_t f = 0; f < b->nf; ++f) {
+        if (a.fruit_stop[f] != HV_NO_STOP || in->fruit_begin[f] == in->fruit_begin[f + 1]) {
+            continue;
+        }
+        size_t side = in->fruits[f].side == HV_SIDE_LEFT ? 0 : 1, best = SIZE_MAX;
+        double best_add = INFINITY;
+        for (size_t k = in->fruit_begin[f]; k < in->fruit_begin[f + 1]; ++k) {
+            uint32_t p = in->pairs[k].stop;
+            double t = arm[2 * p + side] + 1000.0 * in->pairs[k].cost_s;
+            double add = used[p] ? fmax(0.0, t - fmax(arm[2 * p], arm[2 * p + 1]))
+                                 : b->tau_ms + t;
+            if (add < best_add) {
+                best_add = add;
+                best = k;
+            }
+        }
+        uint32_t p = in->pairs[best].stop;
+        a.fruit_stop[f] = p;
+        arm[2 * p + side] += 1000.0 * in->pairs[best].cost_s;
+        used[p] = 1;
+    }
+    free(arm);
+    free(used);
+    hv_status_t st = improve_plan(b, &a, REGION_KICKS);
+    hv_assignment_free(&a);
+    return st;
+}
+
+/* [*s0, *s1] grown by REGION_GROW stops on either side, within the row. */
+static void region_grow(const bp_t *b, size_t *s0, size_t *s1)
+{
+    *s0 = *s0 > REGION_GROW ? *s0 - REGION_GROW : 0;
+    *s1 = *s1 + REGION_GROW < b->ns ? *s1 + REGION_GROW : b->ns - 1;
+}
+
+/* What the regional bound must prove for the incumbent to be optimal, above region_lag0. */
+static double region_need(const bp_t *b)
+{
+    double target = b->whole_ms ? b->ub_ms - 1.0 + 1e-6 : b->ub_ms * (1.0 - b->opt->rel_gap);
+    return target - b->region_lag0 + REGION_EPS_MS;
+}
+
+/* The stretch to try first: the shortest run of stops holding `need` of the incumbent's gap
+ * (region_gaps), widened to every stop a fruit of those stops reaches, so that all of them
+ * must be covered inside it (else the stretch's optimum leaves them out at no cost). 0 when
+ * the gap lies nowhere shorter than the row. */
+static int region_stretch(bp_t *b, double need, size_t *s0, size_t *s1)
+{
+    double *g = malloc((b->ns + 1) * sizeof *g);
+    if (g == NULL || region_gaps(b, g) != HV_OK) {
+        free(g);
+        return 0; /* no memory: no regional bound, the tree goes on */
+    }
+    size_t best_lo = 0, best_len = SIZE_MAX, lo = 0;
+    double sum = 0.0;
+    for (size_t hi = 0; hi < b->ns; ++hi) { /* the shortest [lo, hi] with sum >= need */
+        sum += g[hi];
+        while (lo < hi && sum - g[lo] >= need) {
+            sum -= g[lo++];
+        }
+        if (sum >= need && hi - lo + 1 < best_len) {
+            best_lo = lo;
+            best_len = hi - lo + 1;
+        }
+    }
+    free(g);
+    *s0 = SIZE_MAX;
+    *s1 = 0;
+    for (size_t p = best_lo; best_len != SIZE_MAX && p < best_lo + best_len; ++p) {
+        for (size_t q = b->stop_begin[p]; q < b->stop_begin[p + 1]; ++q) {
+            uint32_t f = b->inst->pairs[b->stop_pair[q]].fruit;
+            const hv_pair_t *first = &b->inst->pairs[b->inst->fruit_begin[f]];
+            const hv_pair_t *last = &b->inst->pairs[b->inst->fruit_begin[f + 1] - 1];
+            *s0 = first->stop < *s0 ? first->stop : *s0;
+            *s1 = last->stop > *s1 ? last->stop : *s1;
+        }
+    }
+    return *s0 <= *s1;
+}
+
+/* Try to prove the incumbent optimal by regional bounds: over region_stretch's stretch (or,
+ * when that lies inside the last stretch whose exact rise is known, over that one grown),
+ * and while a stretch's exact rise falls short but rose, over that stretch grown by
+ * REGION_GROW stops on either side, up to opt->region_stops stops. Each sub-solve (hv_region_rise) may take
+ * REGION_SHARE of the time left; one that runs out of it ends the tries for the solve. The
+ * best solution of each stretch is made a plan (region_plan). Once per incumbent. */
+static hv_status_t region_try(bp_t *b)
+{
+    b->region_tried_ub = b->ub_ms;
+    size_t s0, s1;
+    if (!region_stretch(b, region_need(b), &s0, &s1)) {
+        return HV_OK;
+    }
+    if (b->region_s0 <= s0 && s1 <= b->region_s1) { /* inside one whose exact rise is known */
+        s0 = b->region_s0;
+        s1 = b->region_s1;
+        region_grow(b, &s0, &s1);
+    }
+    uint32_t *plan = malloc((b->nf + 1) * sizeof *plan);
+    if (plan == NULL) {
+        return HV_ERR_PLAN_NOMEM;
+    }
+    hv_status_t st = HV_OK;
+    double last_rise = -INFINITY;
+    while (st == HV_OK && s1 - s0 + 1 <= (size_t)b->opt->region_stops &&
+           !(s0 == b->region_s0 && s1 == b->region_s1) && !prunable(b, b->region_lb)) {
+        double t0 = hv_milp_now_s(), need = region_need(b);
+        hv_region_result_t rr;
+        st = hv_region_rise(b->inst, (uint32_t)s0, (uint32_t)s1, b->region_pi, b->region_v,
+                            need, b->opt, t0 + REGION_SHARE * (b->t_deadline - t0), plan, &rr);
+        if (st != HV_OK) {
+            break;
+        }
+        b->region_tries++;
+        b->region_nodes += rr.nodes;
+        b->region_lb = fmax(b->region_lb, b->region_lag0 + rr.rise_ms);
+        b->region_proofs += rr.rise_ms >= need - 1e-6;
+        if (b->share != NULL) {
+            hv_share_floor(b->share, b->region_lb);
+        }
+        if (b->opt->verbose >= 1) {
+            fprintf(stderr, "price: regional bound over stops %zu-%zu: %.3f of the %.3f ms "
+                    "needed above %.3f s (%.3f at its root), %ld nodes in %.2f s%s\n", s0, s1,
+                    rr.rise_ms, need, b->region_lag0 / 1000.0, rr.root_rise_ms, rr.nodes,
+                    hv_milp_now_s() - t0, rr.finished ? "" : ", stopped");
+        }
+        if (rr.has_plan && (st = region_plan(b, plan, s0, s1)) != HV_OK) {
+            break;
+        }
+        b->t_region += hv_milp_now_s() - t0;
+        if (!rr.finished) {
+            b->region_stalled = 1; /* too hard for the time left */
+            break;
+        }
+        b->region_s0 = s0; /* its exact rise is in region_lb: not again */
+        b->region_s1 = s1;
+        if (rr.rise_ms <= last_rise + REGION_EPS_MS) {
+            break; /* growing did not raise it: the incumbent is likely not optimal */
+        }
+        last_rise = rr.rise_ms;
+        region_grow(b, &s0, &s1);
+    }
+    free(plan);
+    return st;
+}
+
 /* The helper's (from_helper) or else the other tree worker's better plan, if there is one,
  * becomes the incumbent. */
 static hv_status_t take_plan(bp_t *b, int from_helper)
@@ -2040,6 +2406,9 @@ static hv_status_t take_plan(bp_t *b, int from_helper)
     }
     hv_status_t st = got ? offer_plan(b, &a, t) : HV_OK;
     hv_assignment_free(&a);
+    if (b->share != NULL) { /* the other worker's regional bound */
+        b->region_lb = fmax(b->region_lb, hv_share_floor_get(b->share));
+    }
     return st;
 }
 
@@ -2113,6 +2482,9 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
         if (lag > b->nodes[k].lb_ms) {
             b->nodes[k].lb_ms = lag;
         }
+        if (b->share != NULL) { /* the other worker may have proved a regional bound */
+            b->region_lb = fmax(b->region_lb, hv_share_floor_get(b->share));
+        }
         if (prunable(b, b->nodes[k].lb_ms)) {
             *end = NODE_PRUNED;
             return HV_OK;
@@ -2131,6 +2503,10 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
             continue;
         }
         /* the master is optimal over all columns of this node (or tails off, below it) */
+        if (b->nodes[k].parent < 0 && !isfinite(b->root_lag) && b->sr_rounds == 0 &&
+            !isfinite(b->region_lag0) && (st = region_capture(b)) != HV_OK) {
+            return st;
+        }
         if (b->nodes[k].parent < 0 && !isfinite(b->root_lag) && b->sr_rounds < b->sr_max) {
             size_t n_cuts;
             if (b->sr_rounds == 0) {
@@ -2207,8 +2583,11 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
          * PRIMAL_ROOT_GAP above the root's bound (node 0's; the second worker's node 0 is a
          * copy of the root): alpha 2.5 seed 4 found its optimal plan only so (SOLVER.md) */
         int far = b->ub_ms - b->nodes[0].lb_ms > PRIMAL_ROOT_GAP * b->ub_ms;
-        if (st == HV_OK && (far || b->nodes[k].depth <= 2 || b->n_nodes % ROUND_EVERY == 0) &&
-            !must_stop(b)) {
+        if (st == HV_OK && b->skip_ms != NULL) {
+            st = round_skip(b, x);
+        } else if (st == HV_OK &&
+                   (far || b->nodes[k].depth <= 2 || b->n_nodes % ROUND_EVERY == 0) &&
+                   !must_stop(b)) {
             st = round_and_improve(b, x);
         }
         if (st == HV_OK && !far && b->opt->rins_every > 0 &&
@@ -3068,6 +3447,15 @@ static hv_status_t tree_search(bp_t *b, double *root_lb, long *nodes_done)
         if (b->share != NULL && b->opt->balance_workers && balance_shared(b) < 0) {
             return HV_ERR_PLAN_NOMEM;
         }
+        if (!b->is_worker && b->opt->region_stops > 0 && isfinite(b->region_lag0) &&
+            !b->region_stalled && isfinite(b->ub_ms) && b->ub_ms < b->region_tried_ub - 0.5 &&
+            *nodes_done >= REGION_AFTER_NODES &&
+            !prunable(b, b->region_lb)) {
+            hv_status_t st = region_try(b);
+            if (st != HV_OK) {
+                return st;
+            }
+        }
         if (k >= 0) {
             dive = -1;
         } else if (b->heap_len > 0) {
@@ -3150,14 +3538,22 @@ static hv_status_t tree_search(bp_t *b, double *root_lb, long *nodes_done)
     return HV_OK;
 }
 
+/* bp_init, and the solve's clock started towards t_deadline_s. */
+static hv_status_t bp_start(bp_t *b, const hv_instance_t *inst, const hv_milp_options_t *opt,
+                            double t_deadline_s)
+{
+    hv_status_t st = bp_init(b, inst, opt);
+    b->t_deadline = b->pricer.t_deadline_s = t_deadline_s;
+    b->t_start = b->t_print = hv_milp_now_s();
+    return st;
+}
+
 hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *opt,
                            const hv_assignment_t *inc, double inc_t, double t_deadline_s,
                            hv_assignment_t *out, hv_milp_result_t *res)
 {
     bp_t b;
-    hv_status_t st = bp_init(&b, inst, opt);
-    b.t_deadline = b.pricer.t_deadline_s = t_deadline_s;
-    b.t_start = b.t_print = hv_milp_now_s();
+    hv_status_t st = bp_start(&b, inst, opt, t_deadline_s);
     if (st == HV_OK && inc != NULL) {
         memcpy(b.best, inc->fruit_stop, b.nf * sizeof *b.best);
         b.ub_ms = 1000.0 * inc_t;
@@ -3216,9 +3612,10 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
         }
         if (opt->verbose >= 1) {
             fprintf(stderr, "price: %ld relaxation-induced neighbourhoods (%ld better, %.1f "
-                    "fruits freed each) in %.2f s\n", b.rins.calls, b.rins.better,
+                    "fruits freed each) in %.2f s; %ld regional bounds (%ld proofs, %ld nodes) "
+                    "in %.2f s\n", b.rins.calls, b.rins.better,
                     (double)b.rins.freed / (double)(b.rins.calls ? b.rins.calls : 1),
-                    b.rins.t_s);
+                    b.rins.t_s, b.region_tries, b.region_proofs, b.region_nodes, b.t_region);
         }
         res->nodes = nodes;
         res->worker_nodes = b.nodes_done;
@@ -3242,6 +3639,40 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
                 res->bound_s = res->objective_s; /* every open node was pruned */
                 res->gap = 0.0;
             }
+        }
+    }
+    bp_free(&b);
+    return st;
+}
+
+hv_status_t hv_price_bound(const hv_instance_t *inst, const hv_milp_options_t *opt,
+                           const double *skip_ms, double cutoff_ms, double t_deadline_s,
+                           uint32_t *plan, hv_price_bound_result_t *res)
+{
+    hv_milp_options_t o; /* what the virtual stops and the cutoff allow */
+    hv_milp_subsolve_options(opt, t_deadline_s - hv_milp_now_s(), &o);
+    o.column_dive = 0;   /* it fixes patterns of b.best, which may not be a plan yet */
+    o.rel_gap = 0.0;     /* the cutoff is what may be left */
+    o.helper_thread = 0; /* its plans cover every fruit */
+    bp_t b;
+    hv_status_t st = bp_start(&b, inst, &o, t_deadline_s);
+    b.skip_ms = skip_ms;
+    b.whole_ms = 0; /* the skip costs are duals, not whole ms */
+    b.ub_ms = cutoff_ms; /* no plan yet: b.best is written by a better one only */
+    *res = (hv_price_bound_result_t){-INFINITY, -INFINITY, 0, 0, 0};
+    if (st == HV_OK && add_start_columns(&b) < 0) {
+        st = HV_ERR_PLAN_NOMEM;
+    }
+    if (st == HV_OK) {
+        st = search(&b, &res->root_lb_ms, &res->nodes);
+    }
+    if (st == HV_OK) {
+        size_t n_open;
+        res->lb_ms = fmin(b.ub_ms, open_bound(&b, &n_open));
+        res->finished = n_open == 0;
+        res->has_plan = b.ub_ms < cutoff_ms;
+        if (res->has_plan && plan != NULL) {
+            memcpy(plan, b.best, b.nf * sizeof *plan);
         }
     }
     bp_free(&b);

@@ -31,6 +31,7 @@ struct hv_share {
     size_t nf;
     uint32_t *best;
     double best_ms;
+    double floor_ms; /* hv_share_floor */
     queued_t *q;
     size_t n_q, q_cap;
     hv_share_step_t *steps; /* of the queued nodes; reset when the queue empties */
@@ -67,6 +68,7 @@ hv_status_t hv_share_create(size_t n_workers, size_t n_fruits, hv_share_t **out)
     s->n_workers = n_workers;
     s->nf = n_fruits;
     s->best_ms = INFINITY;
+    s->floor_ms = -INFINITY;
     *out = s;
     return HV_OK;
 }
@@ -297,6 +299,21 @@ double hv_share_open_lb(hv_share_t *s, size_t *n)
         lb = fmin(lb, s->q[i].lb_ms);
     }
     *n = s->n_q;
+    pthread_mutex_unlock(&s->mu);
+    return lb;
+}
+
+void hv_share_floor(hv_share_t *s, double lb_ms)
+{
+    pthread_mutex_lock(&s->mu);
+    s->floor_ms = lb_ms > s->floor_ms ? lb_ms : s->floor_ms;
+    pthread_mutex_unlock(&s->mu);
+}
+
+double hv_share_floor_get(hv_share_t *s)
+{
+    pthread_mutex_lock(&s->mu);
+    double lb = s->floor_ms;
     pthread_mutex_unlock(&s->mu);
     return lb;
 }

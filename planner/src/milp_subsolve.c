@@ -12,4 +12,5 @@ void hv_milp_subsolve_options(const hv_milp_options_t *opt, double limit_s,
     out->window_width = 0;
     out->polish_work = 0;
     out->rins_every = 0;
+    out->region_stops = 0;
 }

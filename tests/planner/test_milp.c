@@ -25,103 +25,20 @@
 #include "hv/milp_rins.h"
 #include "hv/milp_window.h"
 #include "hv/plan_eval.h"
+#include "random_instance.h"
 
-static uint64_t rng_next(uint64_t *s)
-{
-    uint64_t z = (*s += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
-
-/* n_fruits fruits over n_stops stops; fruit f reaches each stop of a window of `window`
- * stops around a random centre with probability 3/4 (at least one); costs of
- * cost_lo_ms + [0, cost_span_ms) in whole ms. `unreachable` fruits at the end get no pair. */
-static void make_instance_costs(hv_instance_t *in, size_t nf, size_t ns, size_t window,
-                                size_t unreachable, uint64_t seed, uint64_t cost_lo_ms,
-                                uint64_t cost_span_ms)
-{
-    memset(in, 0, sizeof *in);
-    in->n_fruits = nf;
-    in->n_stops = ns;
-    in->fruits = calloc(nf + 1, sizeof *in->fruits);
-    in->stop_y_m = calloc(ns + 1, sizeof *in->stop_y_m);
-    in->pairs = calloc(nf * ns + 1, sizeof *in->pairs);
-    in->fruit_begin = calloc(nf + 1, sizeof *in->fruit_begin);
-    assert_non_null(in->pairs);
-    in->stop_penalty_s = 5.0;
-    in->travel_time_s = 20.0;
-    for (size_t p = 0; p < ns; ++p) {
-        in->stop_y_m[p] = 0.01 * (double)p;
-    }
-    uint64_t s = seed;
-    for (size_t f = 0; f < nf; ++f) {
-        hv_fruit_t *fr = &in->fruits[f];
-        snprintf(fr->id, sizeof fr->id, "f%zu", f);
-        fr->side = (rng_next(&s) & 1) ? HV_SIDE_RIGHT : HV_SIDE_LEFT;
-        size_t centre = (size_t)(rng_next(&s) % ns);
-        fr->y_m = 0.01 * (double)centre;
-        in->fruit_begin[f] = in->n_pairs;
-        if (f >= nf - unreachable) {
-            continue;
-        }
-        size_t lo = centre >= window / 2 ? centre - window / 2 : 0;
-        size_t hi = lo + window > ns ? ns : lo + window;
-        size_t first = in->n_pairs;
-        for (size_t p = lo; p < hi; ++p) {
-            if (rng_next(&s) % 4 != 0 || (p + 1 == hi && in->n_pairs == first)) {
-                hv_pair_t *pr = &in->pairs[in->n_pairs++];
-                pr->fruit = (uint32_t)f;
-                pr->stop = (uint32_t)p;
-                pr->cost_s = (double)(cost_lo_ms + rng_next(&s) % cost_span_ms) / 1000.0;
-            }
-        }
-    }
-    in->fruit_begin[nf] = in->n_pairs;
-}
-
-/* make_instance_costs with costs of 1..15 s */
+/* hv_test_random_instance with costs of 1..15 s */
 static void make_instance(hv_instance_t *in, size_t nf, size_t ns, size_t window,
                           size_t unreachable, uint64_t seed)
 {
-    make_instance_costs(in, nf, ns, window, unreachable, seed, 1000, 14001);
+    hv_test_random_instance(in, nf, ns, window, unreachable, seed, 1000, 14001);
+    assert_non_null(in->pairs);
 }
 
-/* Optimum by enumeration: every fruit on every one of its stops. */
+/* Optimum (s) by enumeration: every fruit on every one of its stops. */
 static double brute_force(const hv_instance_t *in, uint32_t *best_stop)
 {
-    size_t nf = in->n_fruits;
-    size_t *idx = calloc(nf + 1, sizeof *idx);
-    hv_assignment_t a;
-    assert_int_equal(hv_assignment_alloc(&a, nf), HV_OK);
-    double best = INFINITY;
-    for (;;) {
-        for (size_t f = 0; f < nf; ++f) {
-            size_t b = in->fruit_begin[f];
-            a.fruit_stop[f] = b == in->fruit_begin[f + 1] ? HV_NO_STOP : in->pairs[b + idx[f]].stop;
-        }
-        double t;
-        assert_int_equal(hv_assignment_makespan(in, &a, &t), HV_OK);
-        if (t < best) {
-            best = t;
-            memcpy(best_stop, a.fruit_stop, nf * sizeof *best_stop);
-        }
-        size_t f = 0; /* odometer over the choices */
-        while (f < nf) {
-            size_t n = in->fruit_begin[f + 1] - in->fruit_begin[f];
-            if (n > 0 && ++idx[f] < n) {
-                break;
-            }
-            idx[f] = 0;
-            ++f;
-        }
-        if (f == nf) {
-            break;
-        }
-    }
-    free(idx);
-    hv_assignment_free(&a);
-    return best;
+    return hv_test_brute_force_ms(in, NULL, best_stop) / 1000.0;
 }
 
 static void expect_optimal(const hv_instance_t *in, const hv_milp_options_t *opt, double best)
@@ -440,7 +357,7 @@ static void test_binding_splits(void **state)
     int differ = 0, branched = 0;
     for (uint64_t seed = 700; seed < 712; ++seed) {
         hv_instance_t in;
-        make_instance_costs(&in, 40 + seed % 10, 40, 12, 0, seed, 2000, 301);
+        hv_test_random_instance(&in, 40 + seed % 10, 40, 12, 0, seed, 2000, 301);
         for (size_t f = 0; f < in.n_fruits; ++f) {
             in.fruits[f].side = f % 5 == 0 ? HV_SIDE_LEFT : HV_SIDE_RIGHT;
         }
@@ -474,7 +391,7 @@ static void test_interval_branching_and_tail(void **state)
         hv_instance_t in;
         /* picks of 2.0-2.3 s, as on the robot: many patterns at one cost, whose column
          * generation tails off as on the paper's instances */
-        make_instance_costs(&in, 24 + seed % 10, 30, 12, 0, seed, 2000, 301);
+        hv_test_random_instance(&in, 24 + seed % 10, 30, 12, 0, seed, 2000, 301);
         hv_assignment_t out;
         assert_int_equal(hv_assignment_alloc(&out, in.n_fruits), HV_OK);
         hv_milp_options_t o;
@@ -689,14 +606,14 @@ static void test_rins_improve(void **state)
         uint64_t r = seed;
         memset(freed, 0, nf);
         for (size_t n = 0; n < 5;) {
-            size_t f = (size_t)(rng_next(&r) % nf);
+            size_t f = (size_t)(hv_test_rng_next(&r) % nf);
             if (!freed[f] && poor.fruit_stop[f] != HV_NO_STOP) {
                 freed[f] = 1;
                 ++n;
             }
         }
         for (size_t k = 0; k < in.n_pairs; ++k) {
-            open[k] = rng_next(&r) & 1;
+            open[k] = hv_test_rng_next(&r) & 1;
         }
         memcpy(a.fruit_stop, poor.fruit_stop, nf * sizeof *a.fruit_stop);
         double want = neighbourhood_best(&in, freed, open, &a, 0);

@@ -175,6 +175,18 @@ static void test_only_better_plans(void **state)
     hv_share_destroy(s);
 }
 
+static void test_floor_only_rises(void **state)
+{
+    (void)state;
+    hv_share_t *s;
+    assert_int_equal(hv_share_create(2, 3, &s), HV_OK);
+    assert_true(isinf(hv_share_floor_get(s)) && hv_share_floor_get(s) < 0.0); /* none yet */
+    hv_share_floor(s, 803066.0);
+    hv_share_floor(s, 802000.0); /* a lower bound from the other worker: kept out */
+    assert_true(hv_share_floor_get(s) == 803066.0);
+    hv_share_destroy(s);
+}
+
 static void test_pseudocosts_pooled(void **state)
 {
     (void)state;
@@ -205,6 +217,7 @@ int main(void)
         cmocka_unit_test(test_balance_asks_when_behind),
         cmocka_unit_test(test_only_better_plans),
         cmocka_unit_test(test_pseudocosts_pooled),
+        cmocka_unit_test(test_floor_only_rises),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -100,6 +100,11 @@ typedef struct hv_milp_options {
     int rins_every;          /* price: once the plan is within 0.2 % of the root's bound, every
                                 this many nodes the fruits on which the node's LP point and
                                 the plan disagree are re-planned exactly (milp_rins.h); 0 never */
+    int region_stops;        /* price: after 16 nodes, try once per incumbent to prove it
+                                optimal by a regional bound (milp_region.h, SOLVER.md): a
+                                sub-solve over a stretch of at most this many stops around
+                                where its gap over the root's bound (before the cuts) lies;
+                                0 never */
     int tree_threads;        /* price: 2 (default) a second thread searches the tree too
                                 once the incumbent is within 0.2 % of the bound, the
                                 helper thread stopping then (milp_share.h); 1 one thread.

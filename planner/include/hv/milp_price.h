@@ -31,6 +31,28 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
                            const hv_assignment_t *inc, double inc_t, double t_deadline_s,
                            hv_assignment_t *out, hv_milp_result_t *res);
 
+/* What hv_price_bound found. */
+typedef struct hv_price_bound_result {
+    double lb_ms;      /* min(cutoff, the least open bound): the optimum when finished and a
+                          solution below the cutoff was found */
+    double root_lb_ms; /* the root's bound */
+    long nodes;        /* nodes solved */
+    int finished;      /* every node was closed (not stopped by the deadline) */
+    int has_plan;      /* a solution below the cutoff was found: the best one is in `plan` */
+} hv_price_bound_result_t;
+
+/* A lower bound on the optimum of `inst` with some fruits optional: leaving fruit f
+ * uncovered costs skip_ms[f] (INFINITY: f must be covered), and the value of a solution is
+ * its patterns' costs plus T_travel plus the skip costs of the fruits it leaves out. The
+ * search prunes at cutoff_ms (as if a plan of that value were known) and ends there or at
+ * t_deadline_s, with `opt`'s choices as a sub-solve's (milp_subsolve.h), no column dive,
+ * no gap and no helper thread (no centre ascent: it runs in hv_price_solve only). `plan`
+ * (may be NULL, else n_fruits entries) receives the best solution's stop per fruit,
+ * HV_NO_STOP for one left out. */
+hv_status_t hv_price_bound(const hv_instance_t *inst, const hv_milp_options_t *opt,
+                           const double *skip_ms, double cutoff_ms, double t_deadline_s,
+                           uint32_t *plan, hv_price_bound_result_t *res);
+
 #ifdef __cplusplus
 }
 #endif

@@ -102,6 +102,11 @@ void hv_share_pc_add(hv_share_t *s, uint32_t fruit, int d, double g);
 /* pc (arrays of n_fruits entries) becomes a copy of the pool. */
 void hv_share_pc_get(hv_share_t *s, hv_share_pc_t *pc);
 
+/* A bound valid at every node (the regional bound, milp_region.h): raised to lb_ms when
+ * that is higher; hv_share_floor_get reads it (-INFINITY until set). */
+void hv_share_floor(hv_share_t *s, double lb_ms);
+double hv_share_floor_get(hv_share_t *s);
+
 /* The least bound of the nodes still queued (INFINITY when none); their number in *n. */
 double hv_share_open_lb(hv_share_t *s, size_t *n);
 

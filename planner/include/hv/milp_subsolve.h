@@ -13,8 +13,9 @@ extern "C" {
 /* `opt`'s choices for a sub-solve of at most limit_s: quiet, no LP export, one tree
  * thread (the caller's: a worker of its own would take a third core), and none of the
  * primal heuristics that start solves of their own or run long (row windows and their
- * helper thread, the polish, which would not see opt->stop, and the neighbourhoods): a
- * sub-instance is small and its plan near its optimum from the start. */
+ * helper thread, the polish, which would not see opt->stop, and the neighbourhoods), nor
+ * the regional bound, which starts solves of its own too: a sub-instance is small and its
+ * plan near its optimum from the start. */
 void hv_milp_subsolve_options(const hv_milp_options_t *opt, double limit_s,
                               hv_milp_options_t *out);
 
