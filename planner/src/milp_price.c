@@ -2325,9 +2325,10 @@ static int region_stretch(bp_t *b, double need, size_t *s0, size_t *s1)
 /* Try to prove the incumbent optimal by regional bounds: over region_stretch's stretch (or,
  * when that lies inside the last stretch whose exact rise is known, over that one grown),
  * and while a stretch's exact rise falls short but rose, over that stretch grown by
- * REGION_GROW stops on either side, up to opt->region_stops stops. Each sub-solve (hv_region_rise) may take
- * REGION_SHARE of the time left; one that runs out of it ends the tries for the solve. The
- * best solution of each stretch is made a plan (region_plan). Once per incumbent. */
+ * REGION_GROW stops on either side, up to opt->region_stops stops. Each sub-solve
+ * (hv_region_rise) may take REGION_SHARE of the time left; one that runs out of it ends the
+ * tries for the solve. The best solution of each stretch is made a plan (region_plan).
+ * Once per incumbent. */
 static hv_status_t region_try(bp_t *b)
 {
     b->region_tried_ub = b->ub_ms;
@@ -2388,6 +2389,14 @@ static hv_status_t region_try(bp_t *b)
     return st;
 }
 
+/* The regional bound the other tree worker proved, if higher. */
+static void region_floor(bp_t *b)
+{
+    if (b->share != NULL) {
+        b->region_lb = fmax(b->region_lb, hv_share_floor_get(b->share));
+    }
+}
+
 /* The helper's (from_helper) or else the other tree worker's better plan, if there is one,
  * becomes the incumbent. */
 static hv_status_t take_plan(bp_t *b, int from_helper)
@@ -2406,9 +2415,7 @@ static hv_status_t take_plan(bp_t *b, int from_helper)
     }
     hv_status_t st = got ? offer_plan(b, &a, t) : HV_OK;
     hv_assignment_free(&a);
-    if (b->share != NULL) { /* the other worker's regional bound */
-        b->region_lb = fmax(b->region_lb, hv_share_floor_get(b->share));
-    }
+    region_floor(b);
     return st;
 }
 
@@ -2482,9 +2489,7 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
         if (lag > b->nodes[k].lb_ms) {
             b->nodes[k].lb_ms = lag;
         }
-        if (b->share != NULL) { /* the other worker may have proved a regional bound */
-            b->region_lb = fmax(b->region_lb, hv_share_floor_get(b->share));
-        }
+        region_floor(b);
         if (prunable(b, b->nodes[k].lb_ms)) {
             *end = NODE_PRUNED;
             return HV_OK;
@@ -3449,8 +3454,7 @@ static hv_status_t tree_search(bp_t *b, double *root_lb, long *nodes_done)
         }
         if (!b->is_worker && b->opt->region_stops > 0 && isfinite(b->region_lag0) &&
             !b->region_stalled && isfinite(b->ub_ms) && b->ub_ms < b->region_tried_ub - 0.5 &&
-            *nodes_done >= REGION_AFTER_NODES &&
-            !prunable(b, b->region_lb)) {
+            *nodes_done >= REGION_AFTER_NODES && !prunable(b, b->region_lb)) {
             hv_status_t st = region_try(b);
             if (st != HV_OK) {
                 return st;
