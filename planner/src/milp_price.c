@@ -397,6 +397,13 @@ static void stop_arms(const bp_t *b, const uint32_t *stop_of, double *arm, unsig
     }
 }
 
+/* Stop p's cost (ms) from stop_arms' arrays: tau + its slower arm's time, 0 when unused. */
+static double stop_cost_ms(const bp_t *b, const double *arm, const unsigned char *used,
+                           size_t p)
+{
+    return used[p] ? b->tau_ms + fmax(arm[2 * p], arm[2 * p + 1]) : 0.0;
+}
+
 /* The arms' pick times (ms, indexed by hv_side_t) of the pattern of fruits f[0 .. n) at
  * `stop` into w. Returns 0 when one of the fruits is not reachable from there. */
 static int pattern_times(const bp_t *b, uint32_t stop, const uint32_t *f, uint32_t n,
@@ -1672,7 +1679,7 @@ static hv_status_t round_skip(bp_t *b, const double *x)
     }
     stop_arms(b, a.fruit_stop, arm, used);
     for (size_t p = 0; p < b->ns; ++p) {
-        t += used[p] ? b->tau_ms + fmax(arm[2 * p], arm[2 * p + 1]) : 0.0;
+        t += stop_cost_ms(b, arm, used, p);
     }
     hv_status_t st = HV_OK;
     if (complete && t < b->ub_ms - 1e-6) {
@@ -2175,7 +2182,7 @@ static void progress(bp_t *b, double lb_ms, int force)
  * stretch's sub-problem, which it leaves out: measured, a rise of 0 where these give one). */
 static hv_status_t region_capture(bp_t *b)
 {
-    if (b->opt->region_stops <= 0 || b->skip_ms != NULL || b->n_crow > 0) {
+    if (b->opt->region_stops <= 0) { /* also in hv_price_bound's own solves (subsolve options) */
         return HV_OK;
     }
     double lag;
@@ -2211,7 +2218,7 @@ static hv_status_t region_gaps(bp_t *b, double *g)
     }
     stop_arms(b, b->best, arm, used);
     for (size_t p = 0; p < b->ns; ++p) {
-        g[p] += used[p] ? b->tau_ms + fmax(arm[2 * p], arm[2 * p + 1]) : 0.0;
+        g[p] += stop_cost_ms(b, arm, used, p);
         g[p] = fmax(0.0, g[p]); /* round-off, or a pair the pricing left out as fixed */
     }
     free(arm);
@@ -2387,6 +2394,15 @@ static hv_status_t region_try(bp_t *b)
     }
     free(plan);
     return st;
+}
+
+/* A regional bound is to be tried now: the main search, a captured root, a plan new since
+ * the last try, REGION_AFTER_NODES nodes done, no sub-solve out of time, the gap open. */
+static int region_due(const bp_t *b, long nodes_done)
+{
+    return !b->is_worker && isfinite(b->region_lag0) && !b->region_stalled &&
+           b->ub_ms < b->region_tried_ub - 0.5 && nodes_done >= REGION_AFTER_NODES &&
+           !prunable(b, b->region_lb);
 }
 
 /* The regional bound the other tree worker proved, if higher. */
@@ -3452,9 +3468,7 @@ static hv_status_t tree_search(bp_t *b, double *root_lb, long *nodes_done)
         if (b->share != NULL && b->opt->balance_workers && balance_shared(b) < 0) {
             return HV_ERR_PLAN_NOMEM;
         }
-        if (!b->is_worker && b->opt->region_stops > 0 && isfinite(b->region_lag0) &&
-            !b->region_stalled && isfinite(b->ub_ms) && b->ub_ms < b->region_tried_ub - 0.5 &&
-            *nodes_done >= REGION_AFTER_NODES && !prunable(b, b->region_lb)) {
+        if (region_due(b, *nodes_done)) {
             hv_status_t st = region_try(b);
             if (st != HV_OK) {
                 return st;
