@@ -62,7 +62,7 @@ typedef struct hv_milp_options {
     int helper_thread;       /* price, with window_width > 0: 1 a second thread, from the
                                 start of the solve, first runs the polish (polish_work)
                                 and then re-plans windows for the rest of the solve,
-                                cycling through widths 4, 3, 5, 6, 2 (milp_helper.h) */
+                                cycling through widths 5, 4, 3, 6, 2 (milp_helper.h) */
     int sr_cuts;             /* price: rounds of subset-row cuts on fruit triples at the root
                                 (milp_srcuts.h); 0 none */
     int sr_cuts_large;       /* price: the same on instances of 9,000+ pairs (alpha 4), where

@@ -3,7 +3,7 @@
  *
  * The helper first polishes its starting plan by a long local search (the polish the
  * search would otherwise run in its own thread after the root), then re-plans row windows
- * of the best plan it knows (milp_window.h), with widths 4, 3, 5, 6, 2 in turn, until it
+ * of the best plan it knows (milp_window.h), with widths 5, 4, 3, 6, 2 in turn, until it
  * is stopped or its deadline passes. The search offers it
  * every better plan it finds and takes the helper's better plans at each pricing round. Each
  * thread has its own GLPK environment (GLPK keeps it thread-local).
