@@ -13,6 +13,7 @@
 #define HELPER_KICKS 200          /* local-search kicks after a round of widths found nothing */
 #define HELPER_KICKS_CHUNK 20     /* ... run this many at a time (~10-30 ms) */
 #define POLISH_CHUNK 50           /* the first polish's kicks between two looks at the clock */
+#define HELPER_MEMO 1024          /* windows remembered as solved without gain (5-20 a pass) */
 
 /* 5 first: within a window's 0.5 s it leaves local optima of 4 (SOLVER.md, the widths' row) */
 static const unsigned widths[] = {5, 4, 3, 6, 2};
@@ -90,7 +91,12 @@ static void *helper_main(void *arg)
     hv_helper_t *h = arg;
     size_t nf = h->inst->n_fruits;
     hv_assignment_t a;
-    hv_status_t st = hv_assignment_alloc(&a, nf);
+    hv_window_memo_t memo;
+    hv_status_t st = hv_window_memo_init(&memo, HELPER_MEMO);
+    int have_memo = st == HV_OK;
+    if (st == HV_OK) {
+        st = hv_assignment_alloc(&a, nf);
+    }
     int have_a = st == HV_OK;
     unsigned round = 0, idle = 0; /* widths tried since the last improvement */
     if (st == HV_OK) {
@@ -103,11 +109,12 @@ static void *helper_main(void *arg)
         pthread_mutex_unlock(&h->mu);
         hv_window_stats_t ws;
         st = hv_window_improve(h->inst, &h->opt, widths[round++ % N_WIDTHS],
-                               HELPER_WINDOW_LIMIT_S, h->t_deadline, &a, &t, &ws,
+                               HELPER_WINDOW_LIMIT_S, h->t_deadline, &a, &t, &ws, &memo,
                                publish_window, h);
         h->stats.windows += ws.windows; /* only this thread writes the counts */
         h->stats.improved += ws.improved;
         h->stats.proven += ws.proven;
+        h->stats.repeats += ws.repeats;
         idle = t < t0 ? 0 : idle + 1;
         if (st == HV_OK && idle >= N_WIDTHS) {
             /* no width helps: move the plan by a kicked local search and start again */
@@ -128,6 +135,9 @@ static void *helper_main(void *arg)
     }
     if (have_a) {
         hv_assignment_free(&a);
+    }
+    if (have_memo) {
+        hv_window_memo_free(&memo);
     }
     pthread_mutex_lock(&h->mu);
     h->err = st;

@@ -2822,7 +2822,7 @@ static hv_status_t window_reopt(bp_t *b)
     hv_window_stats_t ws;
     hv_status_t st = hv_window_improve(b->inst, b->opt, (unsigned)b->opt->window_width,
                                        WINDOW_LIMIT_S, t0 + WINDOW_SHARE * (b->t_deadline - t0),
-                                       &a, &t, &ws, NULL, NULL);
+                                       &a, &t, &ws, NULL, NULL, NULL);
     if (st == HV_OK) {
         st = offer_plan(b, &a, t);
     }
@@ -3421,8 +3421,11 @@ static hv_status_t helper_finish(bp_t *b, int take)
     double tj = hv_milp_now_s();
     hv_status_t stj = hv_helper_stop(b->helper, &ws);
     if (b->opt->verbose >= 1) {
-        fprintf(stderr, "price: helper thread joined after %.2f s in %.3f s\n",
-                tj - b->t_start, hv_milp_now_s() - tj);
+        fprintf(stderr,
+                "price: helper thread joined after %.2f s in %.3f s: %ld windows (%ld better, "
+                "%ld proven), %ld repeated windows skipped\n",
+                tj - b->t_start, hv_milp_now_s() - tj, ws.windows, ws.improved, ws.proven,
+                ws.repeats);
     }
     b->helper = NULL;
     b->windows += ws.windows;

@@ -486,8 +486,8 @@ static void test_window_improve(void **state)
         hv_window_stats_t ws;
         t = t0;
         window_reports_t rep = {&in, t0, 0, 0};
-        assert_int_equal(hv_window_improve(&in, &o, 2, 5.0, 1e12, &a, &t, &ws, record_window,
-                                           &rep), HV_OK);
+        assert_int_equal(hv_window_improve(&in, &o, 2, 5.0, 1e12, &a, &t, &ws, NULL,
+                                           record_window, &rep), HV_OK);
         assert_int_equal(hv_assignment_makespan(&in, &a, &check), HV_OK);
         assert_true(fabs(check - t) < 1e-9);
         assert_true(t <= t0 + 1e-9);
@@ -502,7 +502,8 @@ static void test_window_improve(void **state)
         assert_int_equal(res.status, HV_SOLVE_OPTIMAL);
         assert_true(t >= res.objective_s - 1e-6);
         /* a window as wide as the plan is the whole problem: nothing to do */
-        assert_int_equal(hv_window_improve(&in, &o, 1000, 5.0, 1e12, &a, &t, &ws, NULL, NULL),
+        assert_int_equal(hv_window_improve(&in, &o, 1000, 5.0, 1e12, &a, &t, &ws, NULL, NULL,
+                                           NULL),
                          HV_OK);
         assert_int_equal(ws.windows, 0);
         hv_assignment_free(&a);
@@ -510,6 +511,64 @@ static void test_window_improve(void **state)
         hv_instance_free(&in);
     }
     assert_true(improved >= 20);
+}
+
+/* A memo of windows solved without gain: the plan a pass ends with has every window in it,
+ * so a second call solves none of them; from the poor plan again, the memo changes nothing
+ * (the windows that gained were not recorded); a full memo forgets its oldest. */
+static void test_window_memo(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 300; seed < 310; ++seed) {
+        hv_instance_t in;
+        make_instance(&in, 14 + seed % 6, 40, 10, 0, seed);
+        hv_assignment_t a;
+        assert_int_equal(hv_assignment_alloc(&a, in.n_fruits), HV_OK);
+        hv_milp_options_t o;
+        hv_milp_options_default(&o);
+        hv_window_memo_t memo;
+        assert_int_equal(hv_window_memo_init(&memo, 1000), HV_OK);
+        hv_window_stats_t ws, ws2;
+        double t1, t2, t3;
+        plan_at_end_stops(&in, &a, 1);
+        assert_int_equal(hv_assignment_makespan(&in, &a, &t1), HV_OK);
+        assert_int_equal(hv_window_improve(&in, &o, 3, 5.0, 1e12, &a, &t1, &ws, &memo, NULL,
+                                           NULL),
+                         HV_OK);
+        assert_true(ws.windows > ws.improved);
+        assert_int_equal(ws.proven, ws.windows); /* tiny windows: all proven */
+        t2 = t1;
+        assert_int_equal(hv_window_improve(&in, &o, 3, 5.0, 1e12, &a, &t2, &ws2, &memo, NULL,
+                                           NULL),
+                         HV_OK);
+        assert_int_equal(ws2.windows, 0);
+        long pass = ws2.repeats; /* the windows of one pass over the final plan */
+        assert_true(pass > 0);
+        assert_true(t2 == t1);
+        plan_at_end_stops(&in, &a, 1);
+        assert_int_equal(hv_assignment_makespan(&in, &a, &t3), HV_OK);
+        assert_int_equal(hv_window_improve(&in, &o, 3, 5.0, 1e12, &a, &t3, &ws2, &memo, NULL,
+                                           NULL),
+                         HV_OK);
+        assert_true(fabs(t3 - t1) < 1e-9);
+        assert_int_equal(ws2.windows, ws.improved); /* only the windows that gained */
+        assert_int_equal(ws2.windows + ws2.repeats, ws.windows + ws.repeats);
+        hv_window_memo_free(&memo);
+        /* a memo of one window holds the pass's last, forgotten for the next pass's first */
+        assert_int_equal(hv_window_memo_init(&memo, 1), HV_OK);
+        for (int call = 0; call < 2; ++call) {
+            t2 = t1;
+            assert_int_equal(hv_window_improve(&in, &o, 3, 5.0, 1e12, &a, &t2, &ws2, &memo,
+                                               NULL, NULL),
+                             HV_OK);
+            assert_int_equal(ws2.repeats, call == 1 && pass == 1);
+            assert_int_equal(ws2.windows, pass - ws2.repeats);
+        }
+        hv_window_memo_free(&memo);
+        assert_int_equal(hv_window_memo_init(&memo, 0), HV_ERR_ARG);
+        hv_assignment_free(&a);
+        hv_instance_free(&in);
+    }
 }
 
 /* The best makespan of `a` with the freed fruits each over its open pairs and its stop in
@@ -1026,6 +1085,7 @@ int main(void)
         cmocka_unit_test(test_interval_branching_and_tail),
         cmocka_unit_test(test_binding_splits),
         cmocka_unit_test(test_window_improve),
+        cmocka_unit_test(test_window_memo),
         cmocka_unit_test(test_rins_improve),
         cmocka_unit_test(test_helper_thread),
         cmocka_unit_test(test_stop_callback),
