@@ -30,6 +30,9 @@ static size_t used_stops(const hv_instance_t *inst, const hv_assignment_t *plan,
 
 hv_status_t hv_window_memo_init(hv_window_memo_t *memo, size_t cap)
 {
+    if (memo == NULL) {
+        return HV_ERR_ARG;
+    }
     memset(memo, 0, sizeof *memo);
     if (cap == 0) {
         return HV_ERR_ARG;

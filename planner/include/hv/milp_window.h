@@ -40,7 +40,8 @@ typedef struct hv_window_memo {
     size_t cap, n, next;
 } hv_window_memo_t;
 
-/* Room for `cap` windows (cap > 0); HV_ERR_PLAN_NOMEM when it cannot be allocated. */
+/* Room for `cap` windows: HV_ERR_ARG for cap 0 or no memo, HV_ERR_PLAN_NOMEM when it cannot
+ * be allocated. */
 hv_status_t hv_window_memo_init(hv_window_memo_t *memo, size_t cap);
 void hv_window_memo_free(hv_window_memo_t *memo);
 
