@@ -92,8 +92,7 @@ static void *helper_main(void *arg)
     size_t nf = h->inst->n_fruits;
     hv_assignment_t a;
     hv_window_memo_t memo;
-    hv_status_t st = hv_window_memo_init(&memo, HELPER_MEMO);
-    int have_memo = st == HV_OK;
+    hv_status_t st = hv_window_memo_init(&memo, HELPER_MEMO); /* freeable even on failure */
     if (st == HV_OK) {
         st = hv_assignment_alloc(&a, nf);
     }
@@ -136,9 +135,7 @@ static void *helper_main(void *arg)
     if (have_a) {
         hv_assignment_free(&a);
     }
-    if (have_memo) {
-        hv_window_memo_free(&memo);
-    }
+    hv_window_memo_free(&memo);
     pthread_mutex_lock(&h->mu);
     h->err = st;
     pthread_mutex_unlock(&h->mu);

@@ -9,23 +9,33 @@
 #include "hv/plan_eval.h"
 #include "hv/plan_status.h"
 
-/* The plan's used stops, ascending, into used[]; returns their number. */
+/* The plan's fruits per stop into count[], its used stops, ascending, into used[];
+ * returns their number. */
 static size_t used_stops(const hv_instance_t *inst, const hv_assignment_t *plan,
-                         unsigned char *mark, uint32_t *used)
+                         uint32_t *count, uint32_t *used)
 {
-    memset(mark, 0, inst->n_stops);
+    memset(count, 0, inst->n_stops * sizeof *count);
     for (size_t f = 0; f < inst->n_fruits; ++f) {
         if (plan->fruit_stop[f] != HV_NO_STOP) {
-            mark[plan->fruit_stop[f]] = 1;
+            count[plan->fruit_stop[f]]++;
         }
     }
     size_t k = 0;
     for (size_t p = 0; p < inst->n_stops; ++p) {
-        if (mark[p]) {
+        if (count[p] > 0) {
             used[k++] = (uint32_t)p;
         }
     }
     return k;
+}
+
+/* The candidate stops [*lo, *hi) of the window of used[i .. i + width): those strictly
+ * between its neighbouring used stops (the row's ends where it has none). */
+static void window_range(const hv_instance_t *inst, const uint32_t *used, size_t k, size_t i,
+                         unsigned width, size_t *lo, size_t *hi)
+{
+    *lo = i > 0 ? used[i - 1] + 1u : 0u;
+    *hi = i + width < k ? used[i + width] : inst->n_stops;
 }
 
 hv_status_t hv_window_memo_init(hv_window_memo_t *memo, size_t cap)
@@ -86,8 +96,8 @@ static hv_status_t window_once(const hv_instance_t *inst, const hv_milp_options_
                                int full_limit)
 {
     *better = 0;
-    size_t lo = i > 0 ? used[i - 1] + 1u : 0u;
-    size_t hi = i + width < k ? used[i + width] : inst->n_stops; /* exclusive */
+    size_t lo, hi;
+    window_range(inst, used, k, i, width, &lo, &hi);
     uint32_t first = used[i], last = used[i + width - 1];
     uint64_t key = key_mix(key_mix(0xcbf29ce484222325ull, (uint32_t)lo), (uint32_t)hi);
     for (size_t f = 0; f < inst->n_fruits; ++f) {
@@ -149,23 +159,17 @@ static hv_status_t window_once(const hv_instance_t *inst, const hv_milp_options_
  * re-planned twice a pass), the cheapest sub-problem first (candidate stops times fruits): a
  * window at alpha 2.5-4 takes 0.02-0.5 s, and the dear ones often run out their limit
  * without a gain (SOLVER.md). Returns the number of windows. */
-static size_t pass_order(const hv_instance_t *inst, const hv_assignment_t *plan,
-                         const uint32_t *used, size_t k, unsigned width, uint32_t *count,
-                         uint32_t *order, double *cost)
+static size_t pass_order(const hv_instance_t *inst, const uint32_t *count,
+                         const uint32_t *used, size_t k, unsigned width, uint32_t *order,
+                         double *cost)
 {
     if (k <= width) {
         return 0;
     }
-    memset(count, 0, inst->n_stops * sizeof *count);
-    for (size_t f = 0; f < inst->n_fruits; ++f) {
-        if (plan->fruit_stop[f] != HV_NO_STOP) {
-            count[plan->fruit_stop[f]]++;
-        }
-    }
     size_t step = width > 1 ? width / 2 : 1, n = 0;
     for (size_t i = 0; i + width <= k; i += step) {
-        size_t lo = i > 0 ? used[i - 1] + 1u : 0u;
-        size_t hi = i + width < k ? used[i + width] : inst->n_stops;
+        size_t lo, hi;
+        window_range(inst, used, k, i, width, &lo, &hi);
         double fruits = 0.0;
         for (size_t j = i; j < i + width; ++j) {
             fruits += count[used[j]];
@@ -197,7 +201,6 @@ hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t
         return HV_ERR_ARG;
     }
     size_t ns = inst->n_stops + 1;
-    unsigned char *mark = malloc(ns);
     uint32_t *used = malloc(ns * sizeof *used);
     uint32_t *count = malloc(ns * sizeof *count);
     uint32_t *order = malloc(ns * sizeof *order);
@@ -207,8 +210,8 @@ hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t
     hv_window_memo_t own = {NULL, 0, 0, 0}; /* the call's own, when the caller keeps none */
     hv_assignment_t saved;
     hv_status_t st = HV_ERR_PLAN_NOMEM;
-    if (mark != NULL && used != NULL && count != NULL && order != NULL && cost != NULL &&
-        keep != NULL && back != NULL &&
+    if (used != NULL && count != NULL && order != NULL && cost != NULL && keep != NULL &&
+        back != NULL &&
         (memo != NULL || hv_window_memo_init(&own, 4 * ns) == HV_OK) &&
         hv_assignment_alloc(&saved, inst->n_fruits) == HV_OK) {
         st = HV_OK;
@@ -223,8 +226,8 @@ hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t
         while (again && st == HV_OK && hv_milp_now_s() < t_deadline_s &&
                !(opt->stop != NULL && opt->stop(opt->stop_ctx))) {
             again = 0;
-            size_t k = used_stops(inst, plan, mark, used);
-            size_t n = pass_order(inst, plan, used, k, width, count, order, cost);
+            size_t k = used_stops(inst, plan, count, used);
+            size_t n = pass_order(inst, count, used, k, width, order, cost);
             for (size_t w = 0; w < n && st == HV_OK && !again; ++w) {
                 double left = t_deadline_s - hv_milp_now_s();
                 if (left <= 0.0 || (opt->stop != NULL && opt->stop(opt->stop_ctx))) {
@@ -255,7 +258,6 @@ hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t
         hv_assignment_free(&saved);
     }
     hv_window_memo_free(&own);
-    free(mark);
     free(used);
     free(count);
     free(order);

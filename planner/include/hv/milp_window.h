@@ -43,6 +43,7 @@ typedef struct hv_window_memo {
 /* Room for `cap` windows: HV_ERR_ARG for cap 0 or no memo, HV_ERR_PLAN_NOMEM when it cannot
  * be allocated. */
 hv_status_t hv_window_memo_init(hv_window_memo_t *memo, size_t cap);
+/* Also safe after a failed hv_window_memo_init (it leaves the memo empty). */
 void hv_window_memo_free(hv_window_memo_t *memo);
 
 /* Called after each window that improved the plan, with the whole plan and its makespan,
