@@ -38,8 +38,9 @@
                               within +-CAND_WINDOW stops */
 #define CENTRE_MIN_PAIRS 9000 /* from this many pairs, without ascent_steps, the root starts
                                  from the paper's LP duals (SOLVER.md), cover_rows 2
-                                 makes the fruit rows ">= 1", and the root separates
-                                 sr_cuts_large rounds of cuts */
+                                 makes the fruit rows ">= 1", the root separates
+                                 sr_cuts_large rounds of cuts, and column_dive 1 does
+                                 not dive */
 #define PRIMAL_ROOT_GAP 2e-3 /* polish, column dive, row windows and rounding at every node
                                 when the root leaves more than 0.2 % (SOLVER.md) */
 #define POLISH_MAX_KICKS 1000 /* ~0.15 s at 60 fruits */
@@ -2449,6 +2450,8 @@ static hv_status_t take_plan(bp_t *b, int from_helper)
 
 /* Column generation at node k until the master is optimal, the node is pruned, or time is
  * up. On NODE_BRANCH `sp` says where. */
+static hv_status_t give_if_hungry(bp_t *b);
+
 static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp)
 {
     if (b->helper != NULL || b->share != NULL) {
@@ -2514,6 +2517,9 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
             return st;
         }
         b->cg_iters++;
+        if ((st = give_if_hungry(b)) != HV_OK) {
+            return st; /* an idle worker waited out whole nodes of 0.3-1 s (SOLVER.md) */
+        }
         if (lag > b->nodes[k].lb_ms) {
             b->nodes[k].lb_ms = lag;
         }
@@ -3542,7 +3548,8 @@ static hv_status_t tree_search(bp_t *b, double *root_lb, long *nodes_done)
          * ones than the branch dive (SOLVER.md) */
         if (k == root &&
             (b->opt->column_dive == 2 ||
-             (b->opt->column_dive == 1 && b->ub_ms - lb > PRIMAL_ROOT_GAP * b->ub_ms)) &&
+             (b->opt->column_dive == 1 && b->ub_ms - lb > PRIMAL_ROOT_GAP * b->ub_ms &&
+              b->inst->n_pairs < CENTRE_MIN_PAIRS)) &&
             (st = column_dive(b, root)) != HV_OK) {
             return st;
         }

@@ -55,7 +55,8 @@ typedef struct hv_milp_options {
     int pattern_cuts;        /* tree depth down to which stop-pattern cuts are separated
                                 (milp_cuts.h); -1: none */
     int column_dive;         /* price: a primal dive by column fixing after the root;
-                                0 never, 1 when the root leaves > 0.2 %, 2 always */
+                                0 never, 1 when the root leaves > 0.2 % on instances of
+                                fewer than 9,000 (fruit, stop) pairs, 2 always */
     int window_width;        /* price: when the root leaves > 0.2 %, re-plan windows of this
                                 many consecutive stops of the incumbent exactly
                                 (milp_window.h) for up to a quarter of the limit; 0 never */
