@@ -8,6 +8,7 @@
 #include "hv/milp_clock.h"
 #include "hv/milp_pricing.h"
 #include "hv/milp_status.h"
+#include "hv/weighted_select.h"
 
 #define CLOCK_EVERY_POINTS 4096u /* points made between two readings of the clock */
 
@@ -270,15 +271,10 @@ static void other_sums(const hv_price_item_t *it, size_t n, double lam, front_bo
     }
 }
 
-static int by_breakpoint(const void *x, const void *y)
-{
-    const double *u = x, *v = y;
-    return u[0] < v[0] ? -1 : u[0] > v[0];
-}
-
 /* The weight l of arm A that maximises the bound of the empty pattern,
  *     F(l) = sum_A min(0, l w - p) + sum_B min(0, (1 - l) w - p),
- * concave and piecewise linear: walk its breakpoints while the slope is positive. */
+ * concave and piecewise linear: its slope falls from F'(0) by w at each breakpoint, and l
+ * is the first breakpoint where it is no longer positive (1 if none, 0 if F'(0) <= 0). */
 static int best_weight(hv_pricer_t *pr, const hv_price_item_t *a, size_t na,
                        const hv_price_item_t *b, size_t nb, double *lam)
 {
@@ -304,15 +300,12 @@ static int best_weight(hv_pricer_t *pr, const hv_price_item_t *a, size_t na,
             pr->brk[2 * n++ + 1] = b[k].w_ms;
         }
     }
-    qsort(pr->brk, n, 2 * sizeof *pr->brk, by_breakpoint);
-    *lam = 0.0;
-    for (size_t i = 0; i < n && slope > 0.0; ++i) {
-        *lam = pr->brk[2 * i];
-        slope -= pr->brk[2 * i + 1];
+    if (slope <= 0.0) {
+        *lam = 0.0;
+        return 1;
     }
-    if (slope > 0.0) {
-        *lam = 1.0; /* still rising at the last breakpoint */
-    }
+    double r = hv_weighted_select(pr->brk, n, slope);
+    *lam = isfinite(r) ? r : 1.0; /* still rising at the last breakpoint */
     return 1;
 }
 
