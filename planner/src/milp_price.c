@@ -2448,10 +2448,10 @@ static hv_status_t take_plan(bp_t *b, int from_helper)
     return st;
 }
 
-/* Column generation at node k until the master is optimal, the node is pruned, or time is
- * up. On NODE_BRANCH `sp` says where. */
 static hv_status_t give_if_hungry(bp_t *b);
 
+/* Column generation at node k until the master is optimal, the node is pruned, or time is
+ * up. On NODE_BRANCH `sp` says where. */
 static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp)
 {
     if (b->helper != NULL || b->share != NULL) {
