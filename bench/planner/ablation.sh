@@ -13,7 +13,7 @@ alphas="${2:-1,4}"
 seeds="${3:-3}"
 limit="${4:-10}"
 [ -x "$bench" ] || { echo "ablation.sh: $bench not built" >&2; exit 1; }
-# the default (branch-and-price), its incumbent, interval branching, tailing off (or only
+# the default (branch-and-price), its incumbent, interval branching (or its pseudocosts), tailing off (or only
 # its branching of stalled masters the incumbent does not prune), the binding-arm weighting
 # of fruit splits, the workers' balancing or their warm starts switched off, then
 # GLPK's branch-and-cut on the paper's model (algorithm=0) and that with one of its
@@ -23,6 +23,7 @@ for variant in \
     "" \
     "--set heuristic_incumbent=0" \
     "--set interval_branching=0" \
+    "--set iv_pseudocost=0" \
     "--set tail_off_ms=0" \
     "--set tail_off_open=0" \
     "--set binding_splits=0" \

@@ -56,6 +56,8 @@ static void usage(FILE *f)
             "                       binding_splits (1: split scores weighted by the mass\n"
             "                       where the fruit's arm binds, 0: unweighted),\n"
             "                       interval_branching (widest stop interval counted, 0 off),\n"
+            "                       iv_pseudocost (1: interval counts weighted by their\n"
+            "                       children's bound rises, 0: by fractionality alone),\n"
             "                       tail_off_ms (tailing-off branching margin, ms, 0 off),\n"
             "                       tail_off_open (1: a stalled master the incumbent does\n"
             "                       not prune is branched on too, 0: only within the margin),\n"
@@ -120,6 +122,7 @@ static int set_option(hv_milp_options_t *o, const char *kv)
         {"pseudocost", &o->pseudocost},
         {"binding_splits", &o->binding_splits},
         {"interval_branching", &o->interval_branching},
+        {"iv_pseudocost", &o->iv_pseudocost},
         {"tail_off_ms", &o->tail_off_ms},
         {"tail_off_open", &o->tail_off_open},
         {"warm_transfer", &o->warm_transfer},
@@ -293,14 +296,14 @@ int main(int argc, char **argv)
            "side_bounds=%d ms=%d decompose=%d cuts=%d pcost=%d limit=%.0fs; price: "
            "sr_cuts=%d/%d sr_purge=%d sr_cross=%d cover_rows=%d pseudocost=%d tree_threads=%d "
            "helper_thread=%d ascent_steps=%d auto_smoothing=%d interval_branching=%d "
-           "tail_off_ms=%d tail_off_open=%d binding_splits=%d balance_workers=%d "
+           "iv_pseudocost=%d tail_off_ms=%d tail_off_open=%d binding_splits=%d balance_workers=%d "
            "warm_transfer=%d rins_every=%d region_stops=%d\n",
            mo.algorithm == HV_MILP_ALG_PRICE ? "price" : "compact", mo.link_disaggregated,
            mo.heuristic_incumbent, mo.branch_stops_first, mo.side_bounds, mo.ms_granularity,
            mo.decompose, mo.glpk_cuts, mo.pcost_branching, mo.time_limit_s, mo.sr_cuts,
            mo.sr_cuts_large, mo.sr_purge, mo.sr_cross, mo.cover_rows, mo.pseudocost,
            mo.tree_threads, mo.helper_thread, mo.ascent_steps, mo.auto_smoothing,
-           mo.interval_branching, mo.tail_off_ms, mo.tail_off_open, mo.binding_splits,
+           mo.interval_branching, mo.iv_pseudocost, mo.tail_off_ms, mo.tail_off_open, mo.binding_splits,
            mo.balance_workers, mo.warm_transfer, mo.rins_every, mo.region_stops);
     printf("%-5s %-4s %4s %6s | %-9s %9s %9s %8s %7s %7s %5s | %9s %9s | %-9s %8s %7s | %9s %5s | %9s\n",
            "alpha", "seed", "nf", "pairs", "milp", "T_s", "bound_s", "gap", "time_s", "nodes",

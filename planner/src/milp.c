@@ -45,6 +45,7 @@ void hv_milp_options_default(hv_milp_options_t *opt)
     opt->sr_cross = 0;
     opt->pseudocost = 1;
     opt->binding_splits = 1;
+    opt->iv_pseudocost = 1;
     opt->balance_workers = 1;
     opt->interval_branching = 50;
     opt->tail_off_ms = 20;

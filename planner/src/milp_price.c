@@ -69,6 +69,7 @@
 #define IV_MIN_FRAC 0.1     /* interval branching: the least fractional count considered */
 #define IV_GAP_WEIGHT 0.01  /* ... the weight of the empty stops around the interval */
 #define IV_EDGE_GAP 1000u   /* ... the empty run counted beyond an end of the row */
+#define IV_PC_FLOOR_MS 1e-3 /* ... the least estimated rise of a child (iv_pseudocost) */
 #define TAIL_ROUNDS 10      /* tailing off: rounds without a fall of the master value */
 #define TAIL_FALL_MS 1e-3   /* ... that counts as one */
 #define BIND_MIN_WEIGHT 1e-3 /* binding_splits: the weight of a fruit whose arm never binds */
@@ -256,6 +257,14 @@ typedef struct bp {
      * of (child bound - parent bound) / frac and the count, and over all fruits; with two
      * workers read from and added to the pool they share (milp_share.h) */
     hv_share_pc_t pc;
+    /* pseudocosts of count splits per interval [lo, hi] of up to ivpc_w stops (index
+     * lo * ivpc_w + hi - lo), [0] the child "<= rhs", [1] ">= rhs + 1": the sum of
+     * (child bound - parent bound) / the count's distance it forbade, and the count */
+    double *ivpc_sum[2];
+    uint32_t *ivpc_n[2];
+    double ivpc_all[2];
+    long ivpc_all_n[2];
+    size_t ivpc_w;
     /* two tree workers (milp_share.h): the main search holds the second in `worker` */
     hv_share_t *share;   /* NULL while one worker searches */
     struct worker *worker; /* the second worker, NULL none */
@@ -568,6 +577,8 @@ static void bp_free(bp_t *b)
     for (int d = 0; d < 2; ++d) {
         free(b->pc.sum[d]);
         free(b->pc.n[d]);
+        free(b->ivpc_sum[d]);
+        free(b->ivpc_n[d]);
     }
     free(b->hi);
     hv_pricer_free(&b->pricer);
@@ -624,9 +635,12 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
     b->row_of_stop = calloc(ns + 1, sizeof *b->row_of_stop);
     b->fixed_pat = malloc((ns + 1) * sizeof *b->fixed_pat);
     b->lo = malloc((nf + 1) * sizeof *b->lo);
+    b->ivpc_w = opt->interval_branching > 0 ? (size_t)opt->interval_branching : 0;
     for (int d = 0; d < 2; ++d) {
         b->pc.sum[d] = calloc(nf + 1, sizeof *b->pc.sum[d]);
         b->pc.n[d] = calloc(nf + 1, sizeof *b->pc.n[d]);
+        b->ivpc_sum[d] = calloc(ns * b->ivpc_w + 1, sizeof *b->ivpc_sum[d]);
+        b->ivpc_n[d] = calloc(ns * b->ivpc_w + 1, sizeof *b->ivpc_n[d]);
     }
     b->hi = malloc((nf + 1) * sizeof *b->hi);
     b->itl = malloc((nf + 1) * sizeof *b->itl);
@@ -673,6 +687,8 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
         b->pair_dead == NULL || b->root_pi == NULL || b->src_row == NULL ||
         b->src_hit == NULL || b->src_bit == NULL || hv_src_init(&b->src, nf) != HV_OK ||
         b->pc.sum[0] == NULL || b->pc.sum[1] == NULL || b->pc.n[0] == NULL || b->pc.n[1] == NULL ||
+        b->ivpc_sum[0] == NULL || b->ivpc_sum[1] == NULL || b->ivpc_n[0] == NULL ||
+        b->ivpc_n[1] == NULL ||
         b->ind == NULL || b->val == NULL || b->best == NULL || b->sigma_stop == NULL ||
         !hash_rebuild(b, 1024)) {
         return HV_ERR_PLAN_NOMEM;
@@ -1492,11 +1508,27 @@ static double pseudocost(const bp_t *b, uint32_t f, int d)
 static void pseudocost_record(bp_t *b, int32_t k)
 {
     const node_t *c = &b->nodes[k];
-    if (c->kind != KIND_FRUIT || c->frac <= LAMBDA_EPS || c->parent < 0) {
+    if (c->frac <= LAMBDA_EPS || c->parent < 0) {
         return;
     }
     double plb = b->nodes[c->parent].lb_ms, lb = fmin(c->lb_ms, b->ub_ms);
     if (!isfinite(plb) || !isfinite(lb)) {
+        return;
+    }
+    if (c->kind == KIND_COUNT_LE || c->kind == KIND_COUNT_GE) {
+        if ((c->lo == 0 && c->hi + 1 == b->ns) || c->hi - c->lo >= b->ivpc_w) {
+            return; /* the whole row: branched on first, whatever its pseudocosts */
+        }
+        int d = c->kind == KIND_COUNT_GE;
+        size_t i = (size_t)c->lo * b->ivpc_w + (c->hi - c->lo);
+        double g = fmax(0.0, lb - plb) / c->frac;
+        b->ivpc_sum[d][i] += g;
+        b->ivpc_n[d][i]++;
+        b->ivpc_all[d] += g;
+        b->ivpc_all_n[d]++;
+        return;
+    }
+    if (c->kind != KIND_FRUIT) {
         return;
     }
     int d = c->rhs == 1; /* the "> stop" child */
@@ -1875,8 +1907,12 @@ static int stop_has_mass(const double *m, size_t p)
  * master mass and its count is at least IV_MIN_FRAC from an integer; among those the score
  * q + IV_GAP_WEIGHT * g prefers the most fractional count q, then the interval with the
  * widest run g of empty stops on its sides: a cluster of stops the LP mixes, isolated from
- * the rest (SOLVER.md: of the rules tried, this one proved the most instances). score 0
- * when no count is fractional. */
+ * the rest (SOLVER.md: of the rules tried, this one proved the most instances). With
+ * opt->iv_pseudocost, once both kinds of count child have been solved somewhere, that
+ * score is multiplied, per child, by the rise its interval's pseudocost predicts at this
+ * count over the rise of an average interval's: the same intervals come back in many
+ * subtrees, and those whose children rose steeply are branched on sooner (an interval
+ * not yet branched on keeps its score). score 0 when no count is fractional. */
 static void choose_count(bp_t *b, const double *x, split_t *best)
 {
     double *m = b->stop_mass; /* m[p + 1] - m[p]: the master's mass at stop p */
@@ -1905,7 +1941,12 @@ static void choose_count(bp_t *b, const double *x, split_t *best)
         er[p] = stop_has_mass(m, p) ? 0 : (after == IV_EDGE_GAP ? IV_EDGE_GAP : after + 1);
     }
     size_t wmax = (size_t)b->opt->interval_branching;
-    double bs = 0.0, bc = 0.0;
+    double bs = 0.0, bc = 0.0, bsc = 0.0;
+    int use_pc = b->opt->iv_pseudocost && b->ivpc_all_n[0] > 0 && b->ivpc_all_n[1] > 0;
+    double avg[2] = {0.0, 0.0};
+    for (int d = 0; d < 2 && use_pc; ++d) {
+        avg[d] = b->ivpc_all[d] / (double)b->ivpc_all_n[d];
+    }
     /* narrowest first, then leftmost: the first of equal scores is kept */
     for (size_t w = 1; w <= wmax && w <= b->ns; ++w) {
         for (size_t a = 0, e = w - 1; e < b->ns; ++a, ++e) {
@@ -1918,8 +1959,16 @@ static void choose_count(bp_t *b, const double *x, split_t *best)
             }
             uint32_t gl = a == 0 ? IV_EDGE_GAP : el[a - 1];
             uint32_t gr = e + 1 == b->ns ? IV_EDGE_GAP : er[e + 1];
-            double s = q + IV_GAP_WEIGHT * (double)(gl < gr ? gl : gr);
-            if (s > bs + 1e-9) {
+            double s = q + IV_GAP_WEIGHT * (double)(gl < gr ? gl : gr), sc = s;
+            for (int d = 0; d < 2 && use_pc; ++d) {
+                /* each child's estimated rise over an average interval's at this count */
+                size_t i = a * b->ivpc_w + (e - a);
+                double pc = b->ivpc_n[d][i] > 0 ? b->ivpc_sum[d][i] / b->ivpc_n[d][i] : avg[d];
+                double dist = d == 0 ? f : 1.0 - f;
+                sc *= fmax(IV_PC_FLOOR_MS, pc * dist) / fmax(IV_PC_FLOOR_MS, avg[d] * dist);
+            }
+            if (sc > bsc * (1.0 + 1e-9) + 1e-12) {
+                bsc = sc;
                 bs = s;
                 bc = c;
                 best->lo = (uint32_t)a;
@@ -1931,6 +1980,8 @@ static void choose_count(bp_t *b, const double *x, split_t *best)
         best->rhs = (int32_t)floor(bc);
         best->score = bs;
         best->up = bc - floor(bc) >= 0.5;
+        best->mass_lo = bc - floor(bc);
+        best->mass_hi = 1.0 - best->mass_lo;
     }
 }
 
@@ -2874,6 +2925,10 @@ static hv_status_t branch(bp_t *b, int32_t k, const split_t *sp, int diving, int
     } else {
         c1 = node_new(b, k, KIND_COUNT_LE, 0, sp->lo, sp->hi, sp->rhs, lb);
         c2 = node_new(b, k, KIND_COUNT_GE, 0, sp->lo, sp->hi, sp->rhs + 1, lb);
+        if (c1 >= 0 && c2 >= 0) {
+            b->nodes[c1].frac = sp->mass_lo; /* the count's distance each child forbids */
+            b->nodes[c2].frac = sp->mass_hi;
+        }
         b->iv_branches += sp->lo > 0 || sp->hi + 1 < b->ns;
     }
     if (c1 < 0 || c2 < 0) {
@@ -3285,6 +3340,12 @@ static hv_status_t bp_clone(bp_t *w, const bp_t *b)
     w->root_lag = b->root_lag;
     w->fixed_ub = b->fixed_ub;
     memcpy(w->best, b->best, nf * sizeof *w->best);
+    for (int d = 0; d < 2; ++d) { /* the count pseudocosts so far; from here each learns its own */
+        memcpy(w->ivpc_sum[d], b->ivpc_sum[d], b->ns * b->ivpc_w * sizeof *w->ivpc_sum[d]);
+        memcpy(w->ivpc_n[d], b->ivpc_n[d], b->ns * b->ivpc_w * sizeof *w->ivpc_n[d]);
+        w->ivpc_all[d] = b->ivpc_all[d];
+        w->ivpc_all_n[d] = b->ivpc_all_n[d];
+    }
     w->ub_ms = b->ub_ms;
     memcpy(w->warm_pair, b->warm_pair, np * sizeof *w->warm_pair);
     memcpy(w->warm_n, b->warm_n, b->ns * sizeof *w->warm_n);

@@ -91,6 +91,9 @@ typedef struct hv_milp_options {
     int binding_splits;      /* price, with pseudocost: 1 a fruit's split score is weighted
                                 by the share of its master mass in patterns where its
                                 arm's time is the pattern's max (SOLVER.md); 0 unweighted */
+    int iv_pseudocost;       /* price, with interval_branching: 1 an interval's count score
+                                is weighted by the bound rises its count children showed
+                                (pseudocosts per interval, SOLVER.md); 0 the score alone */
     int balance_workers;     /* price, with two tree workers: 1 a worker whose best open bound
                                 lies well above the other's asks for the other's best node
                                 (milp_share.h); 0 only a worker without nodes asks */
