@@ -13,9 +13,10 @@ alphas="${2:-1,4}"
 seeds="${3:-3}"
 limit="${4:-10}"
 [ -x "$bench" ] || { echo "ablation.sh: $bench not built" >&2; exit 1; }
-# the default (branch-and-price), its incumbent, interval branching (or its pseudocosts), tailing off (or only
-# its branching of stalled masters the incumbent does not prune), the binding-arm weighting
-# of fruit splits, the workers' balancing or their warm starts switched off, then
+# the default (branch-and-price), its incumbent, interval branching (or its pseudocosts),
+# tailing off (or only its branching of stalled masters the incumbent does not prune), the
+# binding-arm weighting of fruit splits, the workers' balancing or their warm starts
+# switched off, then
 # GLPK's branch-and-cut on the paper's model (algorithm=0) and that with one of its
 # choices switched
 c="--set algorithm=0"

@@ -296,15 +296,15 @@ int main(int argc, char **argv)
            "side_bounds=%d ms=%d decompose=%d cuts=%d pcost=%d limit=%.0fs; price: "
            "sr_cuts=%d/%d sr_purge=%d sr_cross=%d cover_rows=%d pseudocost=%d tree_threads=%d "
            "helper_thread=%d ascent_steps=%d auto_smoothing=%d interval_branching=%d "
-           "iv_pseudocost=%d tail_off_ms=%d tail_off_open=%d binding_splits=%d balance_workers=%d "
-           "warm_transfer=%d rins_every=%d region_stops=%d\n",
+           "iv_pseudocost=%d tail_off_ms=%d tail_off_open=%d binding_splits=%d "
+           "balance_workers=%d warm_transfer=%d rins_every=%d region_stops=%d\n",
            mo.algorithm == HV_MILP_ALG_PRICE ? "price" : "compact", mo.link_disaggregated,
            mo.heuristic_incumbent, mo.branch_stops_first, mo.side_bounds, mo.ms_granularity,
            mo.decompose, mo.glpk_cuts, mo.pcost_branching, mo.time_limit_s, mo.sr_cuts,
            mo.sr_cuts_large, mo.sr_purge, mo.sr_cross, mo.cover_rows, mo.pseudocost,
            mo.tree_threads, mo.helper_thread, mo.ascent_steps, mo.auto_smoothing,
-           mo.interval_branching, mo.iv_pseudocost, mo.tail_off_ms, mo.tail_off_open, mo.binding_splits,
-           mo.balance_workers, mo.warm_transfer, mo.rins_every, mo.region_stops);
+           mo.interval_branching, mo.iv_pseudocost, mo.tail_off_ms, mo.tail_off_open,
+           mo.binding_splits, mo.balance_workers, mo.warm_transfer, mo.rins_every, mo.region_stops);
     printf("%-5s %-4s %4s %6s | %-9s %9s %9s %8s %7s %7s %5s | %9s %9s | %-9s %8s %7s | %9s %5s | %9s\n",
            "alpha", "seed", "nf", "pairs", "milp", "T_s", "bound_s", "gap", "time_s", "nodes",
            "stops", "root_s", "heur_T_s", "plain", "plain_gap", "plain_s", "fov_T_s", "stops", "serial_T");

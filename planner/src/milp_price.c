@@ -257,13 +257,10 @@ typedef struct bp {
      * of (child bound - parent bound) / frac and the count, and over all fruits; with two
      * workers read from and added to the pool they share (milp_share.h) */
     hv_share_pc_t pc;
-    /* pseudocosts of count splits per interval [lo, hi] of up to ivpc_w stops (index
-     * lo * ivpc_w + hi - lo), [0] the child "<= rhs", [1] ">= rhs + 1": the sum of
-     * (child bound - parent bound) / the count's distance it forbade, and the count */
-    double *ivpc_sum[2];
-    uint32_t *ivpc_n[2];
-    double ivpc_all[2];
-    long ivpc_all_n[2];
+    /* pseudocosts of count splits, as pc but per interval [lo, hi] of up to ivpc_w stops
+     * (index lo * ivpc_w + hi - lo) and per unit of the count's distance a child forbade,
+     * [0] the child "<= rhs", [1] ">= rhs + 1"; each worker keeps its own */
+    hv_share_pc_t ivpc;
     size_t ivpc_w;
     /* two tree workers (milp_share.h): the main search holds the second in `worker` */
     hv_share_t *share;   /* NULL while one worker searches */
@@ -577,8 +574,8 @@ static void bp_free(bp_t *b)
     for (int d = 0; d < 2; ++d) {
         free(b->pc.sum[d]);
         free(b->pc.n[d]);
-        free(b->ivpc_sum[d]);
-        free(b->ivpc_n[d]);
+        free(b->ivpc.sum[d]);
+        free(b->ivpc.n[d]);
     }
     free(b->hi);
     hv_pricer_free(&b->pricer);
@@ -639,8 +636,8 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
     for (int d = 0; d < 2; ++d) {
         b->pc.sum[d] = calloc(nf + 1, sizeof *b->pc.sum[d]);
         b->pc.n[d] = calloc(nf + 1, sizeof *b->pc.n[d]);
-        b->ivpc_sum[d] = calloc(ns * b->ivpc_w + 1, sizeof *b->ivpc_sum[d]);
-        b->ivpc_n[d] = calloc(ns * b->ivpc_w + 1, sizeof *b->ivpc_n[d]);
+        b->ivpc.sum[d] = calloc(ns * b->ivpc_w + 1, sizeof *b->ivpc.sum[d]);
+        b->ivpc.n[d] = calloc(ns * b->ivpc_w + 1, sizeof *b->ivpc.n[d]);
     }
     b->hi = malloc((nf + 1) * sizeof *b->hi);
     b->itl = malloc((nf + 1) * sizeof *b->itl);
@@ -687,8 +684,8 @@ static hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_opt
         b->pair_dead == NULL || b->root_pi == NULL || b->src_row == NULL ||
         b->src_hit == NULL || b->src_bit == NULL || hv_src_init(&b->src, nf) != HV_OK ||
         b->pc.sum[0] == NULL || b->pc.sum[1] == NULL || b->pc.n[0] == NULL || b->pc.n[1] == NULL ||
-        b->ivpc_sum[0] == NULL || b->ivpc_sum[1] == NULL || b->ivpc_n[0] == NULL ||
-        b->ivpc_n[1] == NULL ||
+        b->ivpc.sum[0] == NULL || b->ivpc.sum[1] == NULL || b->ivpc.n[0] == NULL ||
+        b->ivpc.n[1] == NULL ||
         b->ind == NULL || b->val == NULL || b->best == NULL || b->sigma_stop == NULL ||
         !hash_rebuild(b, 1024)) {
         return HV_ERR_PLAN_NOMEM;
@@ -1492,19 +1489,35 @@ static int by_fruit_stop(const void *a, const void *c)
     return u->stop < v->stop ? -1 : (u->stop > v->stop);
 }
 
+/* Entry i's average pseudocost in direction d: its own when it has records, else the
+ * average over all entries, else `none`. */
+static double pc_mean(const hv_share_pc_t *pc, size_t i, int d, double none)
+{
+    if (pc->n[d][i] > 0) {
+        return pc->sum[d][i] / (double)pc->n[d][i];
+    }
+    return pc->all_n[d] > 0 ? pc->all[d] / (double)pc->all_n[d] : none;
+}
+
+static void pc_add(hv_share_pc_t *pc, size_t i, int d, double g)
+{
+    pc->sum[d][i] += g;
+    pc->n[d][i]++;
+    pc->all[d] += g;
+    pc->all_n[d]++;
+}
+
 /* The average pseudocost of fruit f's split in direction d (0 "<= stop", 1 "> stop"): its
  * own when it was branched on in that direction, else the average over all fruits, else 1. */
 static double pseudocost(const bp_t *b, uint32_t f, int d)
 {
-    if (b->pc.n[d][f] > 0) {
-        return b->pc.sum[d][f] / (double)b->pc.n[d][f];
-    }
-    return b->pc.all_n[d] > 0 ? b->pc.all[d] / (double)b->pc.all_n[d] : 1.0;
+    return pc_mean(&b->pc, f, d, 1.0);
 }
 
-/* Child k of a fruit split is solved: its bound rise over its parent's, per unit of mass
- * its restriction forbade, goes to the pseudocosts (capped at the incumbent, where a child
- * is pruned however far its bound would have risen). */
+/* Child k of a fruit or interval-count split is solved: its bound rise over its parent's,
+ * per unit of mass (or count) its restriction forbade, goes to the pseudocosts (capped at
+ * the incumbent, where a child is pruned however far its bound would have risen). The
+ * whole row's count children forbid nothing recorded (frac 0). */
 static void pseudocost_record(bp_t *b, int32_t k)
 {
     const node_t *c = &b->nodes[k];
@@ -1515,32 +1528,20 @@ static void pseudocost_record(bp_t *b, int32_t k)
     if (!isfinite(plb) || !isfinite(lb)) {
         return;
     }
-    if (c->kind == KIND_COUNT_LE || c->kind == KIND_COUNT_GE) {
-        if ((c->lo == 0 && c->hi + 1 == b->ns) || c->hi - c->lo >= b->ivpc_w) {
-            return; /* the whole row: branched on first, whatever its pseudocosts */
-        }
-        int d = c->kind == KIND_COUNT_GE;
-        size_t i = (size_t)c->lo * b->ivpc_w + (c->hi - c->lo);
-        double g = fmax(0.0, lb - plb) / c->frac;
-        b->ivpc_sum[d][i] += g;
-        b->ivpc_n[d][i]++;
-        b->ivpc_all[d] += g;
-        b->ivpc_all_n[d]++;
-        return;
-    }
-    if (c->kind != KIND_FRUIT) {
-        return;
-    }
-    int d = c->rhs == 1; /* the "> stop" child */
     double g = fmax(0.0, lb - plb) / c->frac;
-    if (b->share != NULL) {
-        hv_share_pc_add(b->share, c->fruit, d, g); /* both workers learn from it */
-        return;
+    if (c->kind == KIND_COUNT_LE || c->kind == KIND_COUNT_GE) {
+        if (c->hi - c->lo < b->ivpc_w) {
+            pc_add(&b->ivpc, (size_t)c->lo * b->ivpc_w + (c->hi - c->lo),
+                   c->kind == KIND_COUNT_GE, g);
+        }
+    } else if (c->kind == KIND_FRUIT) {
+        int d = c->rhs == 1; /* the "> stop" child */
+        if (b->share != NULL) {
+            hv_share_pc_add(b->share, c->fruit, d, g); /* both workers learn from it */
+        } else {
+            pc_add(&b->pc, c->fruit, d, g);
+        }
     }
-    b->pc.sum[d][c->fruit] += g;
-    b->pc.n[d][c->fruit]++;
-    b->pc.all[d] += g;
-    b->pc.all_n[d]++;
 }
 
 /* The fruit whose stop is split most evenly by the master point, at the stop that halves
@@ -1942,10 +1943,10 @@ static void choose_count(bp_t *b, const double *x, split_t *best)
     }
     size_t wmax = (size_t)b->opt->interval_branching;
     double bs = 0.0, bc = 0.0, bsc = 0.0;
-    int use_pc = b->opt->iv_pseudocost && b->ivpc_all_n[0] > 0 && b->ivpc_all_n[1] > 0;
+    int use_pc = b->opt->iv_pseudocost && b->ivpc.all_n[0] > 0 && b->ivpc.all_n[1] > 0;
     double avg[2] = {0.0, 0.0};
     for (int d = 0; d < 2 && use_pc; ++d) {
-        avg[d] = b->ivpc_all[d] / (double)b->ivpc_all_n[d];
+        avg[d] = b->ivpc.all[d] / (double)b->ivpc.all_n[d];
     }
     /* narrowest first, then leftmost: the first of equal scores is kept */
     for (size_t w = 1; w <= wmax && w <= b->ns; ++w) {
@@ -1962,8 +1963,7 @@ static void choose_count(bp_t *b, const double *x, split_t *best)
             double s = q + IV_GAP_WEIGHT * (double)(gl < gr ? gl : gr), sc = s;
             for (int d = 0; d < 2 && use_pc; ++d) {
                 /* each child's estimated rise over an average interval's at this count */
-                size_t i = a * b->ivpc_w + (e - a);
-                double pc = b->ivpc_n[d][i] > 0 ? b->ivpc_sum[d][i] / b->ivpc_n[d][i] : avg[d];
+                double pc = pc_mean(&b->ivpc, a * b->ivpc_w + (e - a), d, avg[d]);
                 double dist = d == 0 ? f : 1.0 - f;
                 sc *= fmax(IV_PC_FLOOR_MS, pc * dist) / fmax(IV_PC_FLOOR_MS, avg[d] * dist);
             }
@@ -3340,12 +3340,7 @@ static hv_status_t bp_clone(bp_t *w, const bp_t *b)
     w->root_lag = b->root_lag;
     w->fixed_ub = b->fixed_ub;
     memcpy(w->best, b->best, nf * sizeof *w->best);
-    for (int d = 0; d < 2; ++d) { /* the count pseudocosts so far; from here each learns its own */
-        memcpy(w->ivpc_sum[d], b->ivpc_sum[d], b->ns * b->ivpc_w * sizeof *w->ivpc_sum[d]);
-        memcpy(w->ivpc_n[d], b->ivpc_n[d], b->ns * b->ivpc_w * sizeof *w->ivpc_n[d]);
-        w->ivpc_all[d] = b->ivpc_all[d];
-        w->ivpc_all_n[d] = b->ivpc_all_n[d];
-    }
+    hv_share_pc_copy(&w->ivpc, &b->ivpc, b->ns * b->ivpc_w); /* from here each its own */
     w->ub_ms = b->ub_ms;
     memcpy(w->warm_pair, b->warm_pair, np * sizeof *w->warm_pair);
     memcpy(w->warm_n, b->warm_n, b->ns * sizeof *w->warm_n);

@@ -256,12 +256,11 @@ int hv_share_failed(hv_share_t *s)
     return f;
 }
 
-/* dst's arrays (nf entries) and totals become src's. */
-static void pc_copy(hv_share_pc_t *dst, const hv_share_pc_t *src, size_t nf)
+void hv_share_pc_copy(hv_share_pc_t *dst, const hv_share_pc_t *src, size_t n)
 {
     for (int d = 0; d < 2; ++d) {
-        memcpy(dst->sum[d], src->sum[d], nf * sizeof *dst->sum[d]);
-        memcpy(dst->n[d], src->n[d], nf * sizeof *dst->n[d]);
+        memcpy(dst->sum[d], src->sum[d], n * sizeof *dst->sum[d]);
+        memcpy(dst->n[d], src->n[d], n * sizeof *dst->n[d]);
         dst->all[d] = src->all[d];
         dst->all_n[d] = src->all_n[d];
     }
@@ -270,7 +269,7 @@ static void pc_copy(hv_share_pc_t *dst, const hv_share_pc_t *src, size_t nf)
 void hv_share_pc_set(hv_share_t *s, const hv_share_pc_t *pc)
 {
     pthread_mutex_lock(&s->mu);
-    pc_copy(&s->pc, pc, s->nf);
+    hv_share_pc_copy(&s->pc, pc, s->nf);
     pthread_mutex_unlock(&s->mu);
 }
 
@@ -287,7 +286,7 @@ void hv_share_pc_add(hv_share_t *s, uint32_t fruit, int d, double g)
 void hv_share_pc_get(hv_share_t *s, hv_share_pc_t *pc)
 {
     pthread_mutex_lock(&s->mu);
-    pc_copy(pc, &s->pc, s->nf);
+    hv_share_pc_copy(pc, &s->pc, s->nf);
     pthread_mutex_unlock(&s->mu);
 }
 

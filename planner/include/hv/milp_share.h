@@ -94,6 +94,9 @@ typedef struct hv_share_pc {
 } hv_share_pc_t;
 
 /* The pool becomes a copy of pc (the first worker's, when the second starts). */
+/* dst's first n entries per direction and its totals become src's (no lock). */
+void hv_share_pc_copy(hv_share_pc_t *dst, const hv_share_pc_t *src, size_t n);
+
 void hv_share_pc_set(hv_share_t *s, const hv_share_pc_t *pc);
 
 /* One observation: rise g of fruit's child in direction d. */
