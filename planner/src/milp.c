@@ -47,7 +47,7 @@ void hv_milp_options_default(hv_milp_options_t *opt)
     opt->binding_splits = 1;
     opt->iv_pseudocost = 1;
     opt->balance_workers = 1;
-    opt->interval_branching = 50;
+    opt->interval_branching = 30;
     opt->tail_off_ms = 20;
     opt->tail_off_open = 1;
     opt->warm_transfer = 1;
