@@ -103,7 +103,8 @@ typedef struct hv_milp_options {
                                 only, the taker starting from its own last basis */
     int rins_every;          /* price: once the plan is within 0.2 % of the root's bound, every
                                 this many nodes the fruits on which the node's LP point and
-                                the plan disagree are re-planned exactly (milp_rins.h); 0 never */
+                                the plan disagree are re-planned exactly (milp_rins.h), and
+                                at the solved root while it is further; 0 never */
     int region_stops;        /* price: after 16 nodes, try once per incumbent to prove it
                                 optimal by a regional bound (milp_region.h, SOLVER.md): a
                                 sub-solve over a stretch of at most this many stops around
