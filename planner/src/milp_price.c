@@ -2692,8 +2692,8 @@ static hv_status_t node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp
          * and at the root while it is far: there alpha 4 seed 4 found its optimum 2-3 s
          * sooner (SOLVER.md) */
         int root_far = far && b->nodes[k].parent < 0 && !b->is_worker;
-        if (st == HV_OK && b->opt->rins_every > 0 && !must_stop(b) &&
-            (root_far || (!far && ++b->rins_wait >= b->opt->rins_every))) {
+        if (st == HV_OK && b->opt->rins_every > 0 &&
+            (root_far || (!far && ++b->rins_wait >= b->opt->rins_every)) && !must_stop(b)) {
             b->rins_wait = 0;
             st = rins_at(b, x, ncol);
         }
