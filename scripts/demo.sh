@@ -50,7 +50,9 @@ if ((inner)); then
   pids=()
   cleanup() { for p in "${pids[@]}"; do kill -INT "$p" 2>/dev/null || true; done; wait || true; }
   trap cleanup EXIT
-  "$py" -m harvest sim --interface udp_multicast --channel "$group" --time-scale "$time_scale" \
+  # the vehicle waits at the start of its course (docs/PLAN_FORMAT.md: row start - stop margin)
+  vstart=$("$py" -c "import json, sys; p = json.load(open(sys.argv[1]))['params']; print(p['row_start_m'] - p['stop_margin_m'])" "$out/plan.json")
+  "$py" -m harvest sim --interface udp_multicast --channel "$group" --time-scale "$time_scale" --vehicle-start "$vstart" \
         --record "$out/sim.jsonl" >"$out/sim.log" 2>&1 &
   pids+=($!)
   rm -f "$out/telemetry.lcmlog" "$out/logger.ready" "$out/run.journal"

@@ -287,9 +287,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench_milp: %s\n", err);
         return 1;
     }
-    bench_tables_t tabs;
-    fprintf(stderr, "bench_milp: building both cost tables from the arm model...\n");
-    if (bench_tables_build(&cfg, &tabs) != 0) {
+    bench_model_t pm;
+    if (bench_model_init(&cfg, &pm) != 0) {
         return 1;
     }
     printf("# MILP options: algorithm=%s disaggregated=%d heuristic=%d stops_first=%d "
@@ -316,7 +315,7 @@ int main(int argc, char **argv)
         size_t n_right = (size_t)lround(alphas[ai] * 50.0);
         for (size_t seed = 0; seed < n_seeds; ++seed) {
             hv_instance_t inst;
-            if (bench_instance_make(&cfg, &tabs, 50, n_right, first_seed + seed, &inst) != 0) {
+            if (bench_instance_make(&cfg, &pm, 50, n_right, first_seed + seed, &inst) != 0) {
                 return 1;
             }
             size_t nf = inst.n_fruits - hv_instance_unreachable_count(&inst);
@@ -452,6 +451,5 @@ int main(int argc, char **argv)
                    max_of(r->t_given, r->n_given), r->n_given_opt, r->n_given);
         }
     }
-    bench_tables_free(&tabs);
     return failures ? 1 : 0;
 }

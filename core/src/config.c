@@ -49,6 +49,7 @@ static const key_spec_t keys[] = {
     {"row.canopy_z_min", F(canopy_z_min_m), 1, 0.0, 5.0, K_REAL},
     {"row.canopy_height", F(canopy_height_m), 1, POS, 5.0, K_REAL},
     {"row.pick_yaw_max_deg", F(pick_yaw_max_rad), 1, 0.0, 180.0, K_DEG},
+    {"row.stops_beyond_ends", F(stops_beyond_ends), 1, 0.0, 1.0, K_BOOL},
     {"vehicle.speed", F(vehicle_speed_mps), 1, POS, 10.0, K_REAL},
     {"vehicle.accel", F(vehicle_accel_mps2), 1, POS, 10.0, K_REAL},
     {"vehicle.stop_penalty", F(stop_penalty_s), 1, 0.0, 1000.0, K_REAL},

@@ -355,6 +355,66 @@ hv_status_t hv_costtab_expect(const hv_costtab_t *tab, hv_side_t side,
     return HV_OK;
 }
 
+/* The header and the config may compute the same mount in a different order of
+ * operations: 1e-6 (um, urad) tells a rounding from another arm. */
+static int near_1e6(double a, double b)
+{
+    return fabs(a - b) <= 1e-6;
+}
+
+/* The first field in which two arms differ, or NULL. */
+static const char *arm_difference(const hv_arm_t *a, const hv_arm_t *b)
+{
+    if (a->elbow_free != b->elbow_free) {
+        return "elbow_free";
+    }
+    for (int j = 0; j < HV_NJOINTS; j++) {
+        if (!near_1e6(a->home[j], b->home[j])) {
+            return "home";
+        }
+        if (!near_1e6(a->limit[j].min, b->limit[j].min) ||
+            !near_1e6(a->limit[j].max, b->limit[j].max) ||
+            !near_1e6(a->limit[j].vmax, b->limit[j].vmax) ||
+            !near_1e6(a->limit[j].amax, b->limit[j].amax)) {
+            return "joint_limits";
+        }
+    }
+    for (int i = 0; i < 3; i++) {
+        if (!near_1e6(a->base_m[i], b->base_m[i])) {
+            return "mount.base";
+        }
+    }
+    if (!near_1e6(a->base_yaw_rad, b->base_yaw_rad)) {
+        return "mount.heading";
+    }
+    for (int l = 0; l < 5; l++) {
+        for (int i = 0; i < 3; i++) {
+            if (!near_1e6(a->origin_m[l][i], b->origin_m[l][i])) {
+                return "link_origins";
+            }
+        }
+    }
+    return NULL;
+}
+
+hv_status_t hv_costtab_expect_arm(const hv_costtab_t *tab, const hv_arm_t *arm,
+                                  const hv_grid_t *expected, hv_diag_t *diag)
+{
+    if (tab == NULL || arm == NULL) {
+        return HV_ERR_ARG;
+    }
+    hv_status_t st = hv_costtab_expect(tab, arm->side, expected, diag);
+    if (st != HV_OK) {
+        return st;
+    }
+    const char *field = arm_difference(&tab->arm, arm);
+    if (field != NULL) {
+        return fail(diag, HV_ERR_TAB_MISMATCH, field,
+                    "the table was built for another arm or mount than the configured one");
+    }
+    return HV_OK;
+}
+
 long hv_axis_index(const hv_axis_t *axis, double value)
 {
     if (!isfinite(value)) {

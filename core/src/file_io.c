@@ -158,6 +158,32 @@ hv_status_t hv_costtab_load(const char *path, hv_costtab_file_t *file, char *err
     return HV_OK;
 }
 
+hv_status_t hv_costtab_load_for(const char *path, const hv_config_t *cfg, hv_side_t side,
+                                hv_costtab_file_t *file, char *err, size_t errlen)
+{
+    if (cfg == NULL) {
+        return HV_ERR_ARG;
+    }
+    hv_status_t st = hv_costtab_load(path, file, err, errlen);
+    if (st != HV_OK) {
+        return st;
+    }
+    hv_arm_t arm;
+    hv_grid_t grid;
+    hv_config_arm(cfg, side, &arm);
+    hv_config_grid(cfg, side, &grid);
+    hv_diag_t d;
+    memset(&d, 0, sizeof d);
+    st = hv_costtab_expect_arm(&file->tab, &arm, &grid, &d);
+    if (st != HV_OK) {
+        char msg[sizeof d.message + 40];
+        snprintf(msg, sizeof msg, "%s (%s)", d.message, hv_status_name(st));
+        set_err(err, errlen, path, d.field, msg);
+        hv_costtab_unload(file);
+    }
+    return st;
+}
+
 void hv_costtab_unload(hv_costtab_file_t *file)
 {
     if (file != NULL) {

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "hv/exec_status.h"
+#include "hv/pick.h"
 
 double hv_exec_vehicle_move_s(double dist_m, double speed_mps, double accel_mps2)
 {
@@ -37,12 +38,10 @@ hv_status_t hv_exec_plan_prepare(hv_exec_plan_t *plan, const hv_arm_t arm[2],
         if (pk->stop >= plan->n_stops || (pk->side != HV_SIDE_LEFT && pk->side != HV_SIDE_RIGHT))
             return HV_ERR_ARG;
         const hv_arm_t *a = &arm[pk->side];
-        hv_pose_t pose = {pk->x_m, pk->y_m - plan->stops[pk->stop].y_m, pk->z_m,
-                          hv_side_normal_heading(pk->side) + pk->yaw_rad};
-        pk->ik_status = hv_scara_ik(a, &pose, pk->q);
+        pk->ik_status = hv_pick_solve(a, pk->x_m, pk->y_m - plan->stops[pk->stop].y_m, pk->z_m,
+                                      pk->yaw_rad, pk->q, &pk->move_s, NULL);
         pk->reachable = pk->ik_status == HV_OK;
         if (pk->reachable) {
-            pk->move_s = hv_scara_move_time(a, a->home, pk->q);
             /* return home is the same distances reversed: the same time */
             pk->cycle_s = 2.0 * pk->move_s + timing->cut_s + timing->release_s;
         } else {
@@ -53,7 +52,7 @@ hv_status_t hv_exec_plan_prepare(hv_exec_plan_t *plan, const hv_arm_t arm[2],
         }
     }
 
-    double total = 0.0, y_prev = plan->row_start_m;
+    double total = 0.0, y_prev = hv_exec_course_start(plan);
     for (uint16_t p = 0; p < plan->n_stops; p++) {
         hv_exec_stop_t *st = &plan->stops[p];
         for (int s = 0; s < 2; s++) {
@@ -69,13 +68,23 @@ hv_status_t hv_exec_plan_prepare(hv_exec_plan_t *plan, const hv_arm_t arm[2],
         y_prev = st->y_m;
         total += st->expected_s + st->drive_s;
     }
-    double row_end = plan->row_start_m + plan->row_length_m;
-    plan->final_drive_s = row_end > y_prev
-                              ? hv_exec_vehicle_move_s(row_end - y_prev, timing->vehicle_speed_mps,
+    double end = hv_exec_course_end(plan);
+    plan->final_drive_s = end > y_prev
+                              ? hv_exec_vehicle_move_s(end - y_prev, timing->vehicle_speed_mps,
                                                        timing->vehicle_accel_mps2)
                               : 0.0;
     plan->expected_makespan_s = total + plan->final_drive_s;
     return HV_OK;
+}
+
+double hv_exec_course_start(const hv_exec_plan_t *plan)
+{
+    return plan->row_start_m - plan->stop_margin_m;
+}
+
+double hv_exec_course_end(const hv_exec_plan_t *plan)
+{
+    return plan->row_start_m + plan->row_length_m + plan->stop_margin_m;
 }
 
 int hv_exec_plan_find(const hv_exec_plan_t *plan, hv_side_t side, const char *id)

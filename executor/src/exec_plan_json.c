@@ -60,6 +60,7 @@ static hv_status_t from_plan(const char *name, const hv_plan_t *p, hv_exec_plan_
     }
     plan->row_start_m = p->row_start_m;
     plan->row_length_m = p->row_length_m;
+    plan->stop_margin_m = p->stop_margin_m;
     plan->planned_makespan_s = p->makespan_s;
     plan->planned_pick_s = p->pick_time_s;
     for (size_t s = 0; s < p->n_stops; s++) {
@@ -68,6 +69,17 @@ static hv_status_t from_plan(const char *name, const hv_plan_t *p, hv_exec_plan_
         memset(st, 0, sizeof *st);
         st->plan_index = ps->index;
         st->y_m = ps->y_m;
+        /* the vehicle's course: the row and the plan's margin beyond each end (1 um for
+         * the decimal round trip) */
+        if (!(ps->y_m >= hv_exec_course_start(plan) - 1e-6 &&
+              ps->y_m <= hv_exec_course_end(plan) + 1e-6)) {
+            char field[32], msg[128];
+            snprintf(field, sizeof field, "stops[%zu].y_m", s);
+            snprintf(msg, sizeof msg, "%g m is outside the course [%g, %g] m (the row and "
+                     "params.stop_margin_m beyond each end)", ps->y_m,
+                     hv_exec_course_start(plan), hv_exec_course_end(plan));
+            return plan_err(err, errlen, name, HV_ERR_EXEC_PLAN_RANGE, field, msg);
+        }
         st->first[HV_SIDE_LEFT] = plan->n_picks;
         hv_status_t r = add_picks(name, ps->left, ps->n_left, HV_SIDE_LEFT, (uint16_t)s, plan,
                                   err, errlen);

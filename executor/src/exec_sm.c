@@ -335,7 +335,7 @@ static void next_stop(ctx_t *c)
         }
     }
     sm->stop = plan->n_stops;
-    send_move(c, plan->row_start_m + plan->row_length_m);
+    send_move(c, hv_exec_course_end(plan));
     set_phase(c, HV_PH_FINAL_DRIVE);
 }
 

@@ -16,8 +16,9 @@
 #include "hv/exec_status.h"
 #include "hv/exec_telemetry.h"
 #include "hv/file_io.h"
+#include "hv/pick.h"
 
-enum { EXIT_ROW_DONE = 0, EXIT_RUNTIME = 1, EXIT_USAGE = 2, EXIT_SAFE = 3 };
+enum { EXIT_ROW_DONE = 0, EXIT_RUNTIME = 1, EXIT_USAGE = 2, EXIT_SAFE = 3, EXIT_REFUSED = 4 };
 
 /* The only mutable global: a signal handler can reach nothing else. */
 static volatile sig_atomic_t stop_requested;
@@ -32,6 +33,7 @@ static void usage(FILE *out)
 {
     fprintf(out,
 "usage: harvest-exec --plan PLAN.json --config harvest.cfg --journal FILE [options]\n"
+"       harvest-exec --check-plan --plan PLAN.json --config harvest.cfg [tables]\n"
 "\n"
 "Run a harvest plan on the CAN bus: wait for the vehicle drive and both arms, enable and\n"
 "home them, drive to each stop, run both arms' pick cycles, and stop safely (e-stop) on\n"
@@ -41,8 +43,12 @@ static void usage(FILE *out)
 "input:\n"
 "  --plan FILE             plan file (docs/PLAN_FORMAT.md), required\n"
 "  --config FILE           harvest.cfg: arm, mount, vehicle speed/accel, required\n"
-"  --cost-table-left FILE  optional: take the left arm from this table's header (it must\n"
-"  --cost-table-right FILE   match the config's arm); same for the right\n"
+"  --cost-table-left FILE  optional: refused unless built for the config's left arm\n"
+"  --cost-table-right FILE   (mount, joint limits, home pose, grid); same for the right.\n"
+"                          Picks come from the exact IK either way.\n"
+"  --check-plan            only load the plan and solve every pick's IK as a run would:\n"
+"                          print the picks the IK refuses and the expected makespan, open\n"
+"                          no bus and no journal; exit 0 when every pick is accepted\n"
 "bus:\n"
 "  --transport T           socketcan | udp (default udp)\n"
 "  --channel C             socketcan: interface (vcan0); udp: multicast group\n"
@@ -66,15 +72,17 @@ static void usage(FILE *out)
 "  --quiet                 no progress lines on stderr\n"
 "  -h, --help              this text\n"
 "\n"
-"exit status: 0 row done, 3 stopped in the safe state, 2 bad input, 1 runtime error.\n"
+"exit status: 0 row done (--check-plan: every pick accepted), 3 stopped in the safe state,\n"
+"2 bad input, 1 runtime error, 4 --check-plan: the IK refuses a planned pick.\n"
 "Expected makespan (compared with the executed one): per stop the slower arm's sum of\n"
 "pick cycles (2 x IK move time home->fruit + cut + release) plus trapezoid vehicle moves\n"
-"between stops, from the row start and to the row end.\n");
+"between stops, from the course's start to its end (the row and the plan's stop margin\n"
+"beyond each end; the vehicle is expected at the course's start).\n");
 }
 
 typedef struct opts {
     const char *plan, *config, *table[2], *transport, *channel, *journal, *lcm_url, *summary;
-    int port, quiet;
+    int port, quiet, check_only;
     double time_scale, cut_s, release_s, margin, slack_s, startup_s, hb_timeout_s, latency_s;
     long max_retries;
 } opts_t;
@@ -108,6 +116,7 @@ static int parse_args(int argc, char **argv, opts_t *o)
         {"latency", required_argument, 0, 'a'},
         {"journal", required_argument, 0, 'j'},     {"lcm-url", required_argument, 0, 'l'},
         {"summary", required_argument, 0, 'S'},     {"quiet", no_argument, 0, 'q'},
+        {"check-plan", no_argument, 0, 'K'},
         {"help", no_argument, 0, 'h'},              {0, 0, 0, 0}};
     memset(o, 0, sizeof *o);
     o->transport = "udp";
@@ -152,6 +161,7 @@ static int parse_args(int argc, char **argv, opts_t *o)
         case 'l': o->lcm_url = optarg; break;
         case 'S': o->summary = optarg; break;
         case 'q': o->quiet = 1; break;
+        case 'K': o->check_only = 1; break;
         case 'h': usage(stdout); exit(0);
         default: return -1;
         }
@@ -160,7 +170,8 @@ static int parse_args(int argc, char **argv, opts_t *o)
         fprintf(stderr, "harvest-exec: unexpected argument '%s'\n", argv[optind]);
         return -1;
     }
-    const char *missing = !o->plan ? "--plan" : !o->config ? "--config" : !o->journal ? "--journal" : NULL;
+    const char *missing = !o->plan ? "--plan" : !o->config ? "--config"
+                        : !o->journal && !o->check_only ? "--journal" : NULL;
     if (missing) {
         fprintf(stderr, "harvest-exec: %s is required (see --help)\n", missing);
         return -1;
@@ -173,33 +184,6 @@ static int parse_args(int argc, char **argv, opts_t *o)
     if (!o->channel)
         o->channel = strcmp(o->transport, "udp") == 0 ? HV_CAN_UDP_DEFAULT_GROUP : "vcan0";
     return 0;
-}
-
-/* The arm a cost table was built for must be the configured one: the plan's costs and
- * the executor's IK would otherwise disagree. Tolerance 1e-6 (um, urad): the table's
- * header and the config may compute the same mount in a different order of operations. */
-static int near(double a, double b)
-{
-    return fabs(a - b) <= 1e-6;
-}
-
-static int same_arm(const hv_arm_t *a, const hv_arm_t *b, const char **field)
-{
-    for (int j = 0; j < HV_NJOINTS; j++) {
-        if (!near(a->home[j], b->home[j])) { *field = "home"; return 0; }
-        if (!near(a->limit[j].min, b->limit[j].min) || !near(a->limit[j].max, b->limit[j].max) ||
-            !near(a->limit[j].vmax, b->limit[j].vmax) || !near(a->limit[j].amax, b->limit[j].amax)) {
-            *field = "joint limits";
-            return 0;
-        }
-    }
-    for (int i = 0; i < 3; i++)
-        if (!near(a->base_m[i], b->base_m[i])) { *field = "mount base"; return 0; }
-    if (!near(a->base_yaw_rad, b->base_yaw_rad)) { *field = "mount heading"; return 0; }
-    for (int l = 0; l < 5; l++)
-        for (int i = 0; i < 3; i++)
-            if (!near(a->origin_m[l][i], b->origin_m[l][i])) { *field = "link origins"; return 0; }
-    return 1;
 }
 
 /* Everything the run needs, allocated once at start-up. */
@@ -279,26 +263,23 @@ int main(int argc, char **argv)
         fprintf(stderr, "harvest-exec: %s\n", err);
         return EXIT_USAGE;
     }
+    /* a table is checked, not used: the IK decides every pick (hv/pick.h) */
     hv_arm_t arms[2];
     for (int s = 0; s < 2; s++) {
         hv_config_arm(&cfg, (hv_side_t)s, &arms[s]);
-        if (!o.table[s])
-            continue;
         hv_costtab_file_t tf;
-        if (hv_costtab_load(o.table[s], &tf, err, sizeof err) != HV_OK) {
+        if (o.table[s] && hv_costtab_load_for(o.table[s], &cfg, (hv_side_t)s, &tf, err,
+                                              sizeof err) != HV_OK) {
             fprintf(stderr, "harvest-exec: %s\n", err);
             return EXIT_USAGE;
         }
-        const char *field = "";
-        int same = same_arm(&tf.tab.arm, &arms[s], &field);
-        int side_ok = tf.tab.arm.side == (hv_side_t)s;
-        hv_costtab_unload(&tf);
-        if (!side_ok || !same) {
-            fprintf(stderr, "harvest-exec: %s: %s: the table was built for another arm than "
-                    "%s's %s arm\n", o.table[s], side_ok ? field : "side", o.config,
-                    s ? "right" : "left");
-            return EXIT_USAGE;
-        }
+        if (o.table[s])
+            hv_costtab_unload(&tf);
+    }
+    double margin_m = 0.0;
+    if (hv_pick_stop_margin(&cfg, &margin_m) != HV_OK) {
+        fprintf(stderr, "harvest-exec: %s: an arm reaches none of its fruit area\n", o.config);
+        return EXIT_USAGE;
     }
 
     world_t *w = calloc(1, sizeof *w);
@@ -309,6 +290,14 @@ int main(int argc, char **argv)
     hv_status_t st = hv_exec_plan_load_json(o.plan, &w->plan, err, sizeof err);
     if (st != HV_OK) {
         fprintf(stderr, "harvest-exec: %s\n", err);
+        free(w);
+        return EXIT_USAGE;
+    }
+    if (w->plan.stop_margin_m > margin_m + 1e-9) {
+        fprintf(stderr, "harvest-exec: %s: params.stop_margin_m: %g m beyond the row's ends, "
+                "but from there no arm of %s reaches the row (at most %g m) (%s)\n", o.plan,
+                w->plan.stop_margin_m, o.config, margin_m,
+                hv_exec_status_name(HV_ERR_EXEC_PLAN_RANGE));
         free(w);
         return EXIT_USAGE;
     }
@@ -325,6 +314,15 @@ int main(int argc, char **argv)
                     "joint limits (%s): it will be skipped\n", o.plan, w->plan.picks[i].id,
                     w->plan.picks[i].side == HV_SIDE_LEFT ? 'L' : 'R',
                     hv_status_name(w->plan.picks[i].ik_status));
+    if (o.check_only) {
+        printf("harvest-exec: %s: %u stops, %u picks, %u refused by the IK; expected makespan "
+               "%.3f s (plan's objective %.3f s)\n", o.plan, (unsigned)w->plan.n_stops,
+               (unsigned)w->plan.n_picks, w->plan.n_unreachable, w->plan.expected_makespan_s,
+               w->plan.planned_makespan_s);
+        int rc = w->plan.n_unreachable ? EXIT_REFUSED : EXIT_ROW_DONE;
+        free(w);
+        return rc;
+    }
 
     if ((st = hv_exec_journal_open(&w->journal, o.journal, &w->plan, &w->prog, err, sizeof err)) != HV_OK) {
         fprintf(stderr, "harvest-exec: %s\n", err);

@@ -14,6 +14,7 @@
 #include "hv/fruit_map.h"
 #include "hv/horizon.h"
 #include "hv/milp.h"
+#include "hv/pick_model.h"
 #include "hv/plan_build.h"
 #include "hv/plan_check.h"
 #include "hv/plan_eval.h"
@@ -23,16 +24,22 @@ enum { EXIT_INPUT = 1, EXIT_USAGE = 2, EXIT_NO_SOLUTION = 3, EXIT_CHECK = 4,
        EXIT_INTERRUPTED = 5 };
 
 static const char k_usage[] =
-    "usage: harvest-plan --config CFG --left LEFT.tab --right RIGHT.tab --fruits MAP.csv\n"
-    "                    --method milp|fov|serial --out PLAN.json [options]\n"
-    "       harvest-plan check PLAN.json [--config CFG] [--left L.tab] [--right R.tab]\n"
+    "usage: harvest-plan --config CFG --fruits MAP.csv --method milp|fov|serial\n"
+    "                    --out PLAN.json [--left LEFT.bin --right RIGHT.bin] [options]\n"
+    "       harvest-plan check PLAN.json [--config CFG] [--left L.bin] [--right R.bin]\n"
     "                    [--fruits MAP.csv] [--quiet]\n"
     "\n"
     "Plans the vehicle's stops along a row and assigns every fruit to an arm at one stop,\n"
-    "minimising the makespan (DESIGN §1). Every plan written has passed the independent\n"
-    "checker; the file is written atomically. Plan format: docs/PLAN_FORMAT.md.\n"
+    "minimising the makespan (DESIGN §1). Every pick is solved by the exact IK the executor\n"
+    "uses, so no planned fruit is refused at its stop; with row.stops_beyond_ends the stops\n"
+    "extend beyond the row's ends as far as an arm reaches into the row. Every plan written\n"
+    "has passed the independent checker; the file is written atomically. Plan format:\n"
+    "docs/PLAN_FORMAT.md.\n"
     "\n"
     "options:\n"
+    "  --left, --right  cost tables (costgen): optional; when given, refused unless built\n"
+    "                   for the config's arm, mount, joint limits, home pose and grid, and\n"
+    "                   named in the plan's inputs\n"
     "  --time-limit S   solver time limit per solve, s (default 60)\n"
     "  --gap G          relative gap at which the MILP stops (default 1e-6)\n"
     "  --fov-width M    FOV baseline: camera field of view along the row, m (default 0.25)\n"
@@ -263,9 +270,8 @@ static int parse_args(int argc, char **argv, args_t *a)
             return usage_error("unknown option", f);
         }
     }
-    const char *missing = !a->config ? "--config" : !a->left ? "--left" : !a->right ? "--right"
-                        : !a->fruits ? "--fruits" : !a->method ? "--method" : !a->out ? "--out"
-                        : NULL;
+    const char *missing = !a->config ? "--config" : !a->fruits ? "--fruits"
+                        : !a->method ? "--method" : !a->out ? "--out" : NULL;
     if (missing != NULL) {
         return usage_error("missing required option", missing);
     }
@@ -352,24 +358,42 @@ static hv_status_t compare_single(const hv_instance_t *inst, const hv_milp_optio
     return st;
 }
 
-static int load_table(const char *path, hv_side_t side, const hv_config_t *cfg,
-                      hv_costtab_file_t *tf)
+/* A cost table given on the command line must fit the configuration; the plan itself is
+ * computed by the exact IK, so the table is only checked and named in the plan. */
+static int check_table(const char *path, hv_side_t side, const hv_config_t *cfg)
 {
+    if (path == NULL) {
+        return 0;
+    }
     char err[512];
-    if (hv_costtab_load(path, tf, err, sizeof err) != HV_OK) {
+    hv_costtab_file_t tf;
+    hv_status_t st = hv_costtab_load_for(path, cfg, side, &tf, err, sizeof err);
+    hv_costtab_unload(&tf);
+    if (st != HV_OK) {
         fprintf(stderr, "harvest-plan: %s\n", err);
         return EXIT_INPUT;
     }
-    hv_grid_t grid;
-    hv_diag_t d;
-    memset(&d, 0, sizeof d);
-    hv_config_grid(cfg, side, &grid);
-    if (hv_costtab_expect(&tf->tab, side, &grid, &d) != HV_OK) {
-        fprintf(stderr, "harvest-plan: %s: %s: %s\n", path, d.field, d.message);
-        hv_costtab_unload(tf);
-        return EXIT_INPUT;
-    }
     return 0;
+}
+
+/* "N height, N depth, ..." of the unreachable fruits, or "" when there are none. */
+static void why_counts(const hv_instance_t *inst, char *out, size_t len)
+{
+    size_t n[HV_WHY_ROW_END + 1] = {0};
+    for (size_t f = 0; f < inst->n_fruits; ++f) {
+        if (inst->fruit_begin[f] == inst->fruit_begin[f + 1]) {
+            ++n[inst->why[f] <= HV_WHY_ROW_END ? inst->why[f] : 0];
+        }
+    }
+    out[0] = '\0';
+    size_t used = 0;
+    for (int w = 1; w <= HV_WHY_ROW_END && used < len; ++w) {
+        if (n[w] > 0) {
+            int k = snprintf(out + used, len - used, "%s%zu %s", used ? ", " : ": ", n[w],
+                             hv_instance_why_name(w));
+            used += k > 0 ? (size_t)k : 0;
+        }
+    }
 }
 
 static int run_plan(const args_t *a)
@@ -380,13 +404,20 @@ static int run_plan(const args_t *a)
         fprintf(stderr, "harvest-plan: %s\n", err);
         return EXIT_INPUT;
     }
+    hv_ik_arms_t arms;
+    hv_pick_model_t model;
+    hv_status_t mst = hv_pick_model_ik(&cfg, &arms, &model);
+    if (mst != HV_OK) {
+        fprintf(stderr, "harvest-plan: %s: an arm reaches none of its fruit area (%s)\n",
+                a->config, hv_status_name(mst));
+        return EXIT_INPUT;
+    }
     hv_instance_params_t params;
-    hv_instance_params_from_config(&cfg, &params);
+    hv_instance_params_from_config(&cfg, &model, &params);
     if (a->row_length_m > 0) {
         params.row_length_m = a->row_length_m;
-        params.travel_time_s = a->row_length_m / cfg.vehicle_speed_mps;
+        params.travel_time_s = hv_instance_params_course_m(&params) / cfg.vehicle_speed_mps;
     }
-    hv_costtab_file_t lt = {0}, rt = {0};
     hv_fruitmap_t map = {0, NULL};
     hv_instance_t inst;
     memset(&inst, 0, sizeof inst);
@@ -394,9 +425,9 @@ static int run_plan(const args_t *a)
     unsigned char *passes = NULL;
     hv_plan_t plan;
     memset(&plan, 0, sizeof plan);
-    int rc = load_table(a->left, HV_SIDE_LEFT, &cfg, &lt);
+    int rc = check_table(a->left, HV_SIDE_LEFT, &cfg);
     if (rc == 0) {
-        rc = load_table(a->right, HV_SIDE_RIGHT, &cfg, &rt);
+        rc = check_table(a->right, HV_SIDE_RIGHT, &cfg);
     }
     if (rc == 0) {
         hv_fruitmap_limits_t lim;
@@ -410,7 +441,7 @@ static int run_plan(const args_t *a)
         hv_diag_t d;
         memset(&d, 0, sizeof d);
         double t0 = now_s();
-        hv_status_t st = hv_instance_build(&params, map.fruits, map.n, &lt.tab, &rt.tab, &inst, &d);
+        hv_status_t st = hv_instance_build(&params, map.fruits, map.n, &model, &inst, &d);
         if (st != HV_OK) {
             fprintf(stderr, "harvest-plan: instance: %s: %s\n", d.field, d.message);
             rc = EXIT_INPUT;
@@ -419,11 +450,15 @@ static int run_plan(const args_t *a)
             for (size_t f = 0; f < map.n; ++f) {
                 nl += map.fruits[f].side == HV_SIDE_LEFT;
             }
+            char why[128];
+            why_counts(&inst, why, sizeof why);
             fprintf(stderr,
-                    "harvest-plan: %zu fruits (%zu left, %zu right), %zu candidate stops, "
-                    "%zu reachable pairs, %zu unreachable fruits (%.3f s)\n",
-                    map.n, nl, map.n - nl, inst.n_stops, inst.n_pairs,
-                    hv_instance_unreachable_count(&inst), now_s() - t0);
+                    "harvest-plan: %zu fruits (%zu left, %zu right), %zu candidate stops "
+                    "(%.2f to %.2f m), %zu reachable pairs, %zu unreachable fruits%s "
+                    "(%.3f s)\n",
+                    map.n, nl, map.n - nl, inst.n_stops, inst.stop_y_m[0],
+                    inst.stop_y_m[inst.n_stops - 1], inst.n_pairs,
+                    hv_instance_unreachable_count(&inst), why, now_s() - t0);
         }
     }
     if (rc == 0 && hv_assignment_alloc(&sol, inst.n_fruits) != HV_OK) {
@@ -435,7 +470,7 @@ static int run_plan(const args_t *a)
     memset(&meta, 0, sizeof meta);
     meta.method = a->method;
     meta.fruit_map = a->fruits;
-    meta.cost_table_left = a->left;
+    meta.cost_table_left = a->left;   /* NULL: written as "" (none given) */
     meta.cost_table_right = a->right;
     meta.config = a->config;
     meta.params = params;
@@ -579,8 +614,6 @@ static int run_plan(const args_t *a)
     hv_assignment_free(&sol);
     hv_instance_free(&inst);
     hv_fruitmap_free(&map);
-    hv_costtab_unload(&lt);
-    hv_costtab_unload(&rt);
     return rc;
 }
 

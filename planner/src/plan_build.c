@@ -44,6 +44,7 @@ static hv_status_t copy_meta(hv_plan_t *plan, const hv_plan_meta_t *m)
     plan->row_length_m = m->params.row_length_m;
     plan->stop_penalty_s = m->params.stop_penalty_s;
     plan->travel_time_s = m->params.travel_time_s;
+    plan->stop_margin_m = m->params.stop_margin_m;
     plan->vehicle_speed_mps = m->vehicle_speed_mps;
     plan->gap = m->gap;
     plan->nodes = m->nodes;
@@ -88,7 +89,9 @@ hv_status_t hv_plan_build(const hv_instance_t *inst, const hv_assignment_t *a,
             hv_plan_unreachable_t *u = &plan->unreachable[plan->n_unreachable++];
             memcpy(u->id, fr->id, sizeof u->id);
             u->side = fr->side;
-            hv_plan_copy_str(u->reason, sizeof u->reason, "no stop reaches it");
+            /* instances built by hand carry no reasons: nothing in reach, as far as known */
+            hv_plan_copy_str(u->reason, sizeof u->reason,
+                             hv_instance_why_name(inst->why ? inst->why[f] : HV_PICK_DEPTH));
             continue;
         }
         slots[k].pass = passes ? passes[f] : 0;

@@ -1,5 +1,5 @@
 /* Independent plan checker (plan_check.h). Deliberately shares nothing with the instance
- * builder or the evaluator: costs come straight from hv_costtab_lookup. */
+ * builder or the evaluator: costs come straight from the pick model. */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -47,19 +47,25 @@ static long find_fruit(const id_ref_t *refs, size_t n, const char *id)
     return r ? (long)r->fruit : -1;
 }
 
-static const hv_costtab_t *table_of(hv_side_t side, const hv_costtab_t *l,
-                                    const hv_costtab_t *r)
+/* The reason an unreachable fruit may be listed with (hv_instance_why_name). */
+static int why_known(const char *reason)
 {
-    return side == HV_SIDE_LEFT ? l : r;
+    static const char *const names[] = {"height", "depth", "yaw", "row_end"};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i) {
+        if (strcmp(reason, names[i]) == 0) {
+            return 1;
+        }
+    }
+    return 0;
 }
 
 hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
-                          const hv_fruit_t *fruits, size_t n_fruits, const hv_costtab_t *left,
-                          const hv_costtab_t *right, char *err, size_t errlen)
+                          const hv_fruit_t *fruits, size_t n_fruits,
+                          const hv_pick_model_t *model, char *err, size_t errlen)
 {
     ck_t c = {err, errlen};
-    if (plan == NULL || cfg == NULL || (fruits == NULL && n_fruits > 0) || left == NULL ||
-        right == NULL) {
+    if (plan == NULL || cfg == NULL || (fruits == NULL && n_fruits > 0) || model == NULL ||
+        model->cost == NULL) {
         return ck_fail(&c, HV_ERR_ARG, "arguments", "NULL");
     }
     const double tol = HV_CHECK_TOL_S;
@@ -86,16 +92,28 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
         return ck_fail(&c, HV_ERR_PLAN_CHECK_PARAMS, "params.row_length_m", "invalid (%g)",
                        plan->row_length_m);
     }
-    double travel = plan->row_length_m / cfg->vehicle_speed_mps;
+    double margin = cfg->stops_beyond_ends ? hv_pick_margin_of_spans(model->y_rel_min,
+                                                                     model->y_rel_max,
+                                                                     cfg->grid_step_m)
+                                           : 0.0;
+    if (!near(plan->stop_margin_m, margin, 1e-9)) {
+        return ck_fail(&c, HV_ERR_PLAN_CHECK_PARAMS, "params.stop_margin_m",
+                       "%.9g, the configuration gives %.9g (row.stops_beyond_ends = %d)",
+                       plan->stop_margin_m, margin, cfg->stops_beyond_ends);
+    }
+    double course = plan->row_length_m + 2.0 * margin;
+    double travel = course / cfg->vehicle_speed_mps;
     if (!near(plan->travel_time_s, travel, tol)) {
         return ck_fail(&c, HV_ERR_PLAN_CHECK_PARAMS, "params.travel_time_s",
-                       "%.9g, row length / speed is %.9g", plan->travel_time_s, travel);
+                       "%.9g, (row length + 2 stop margin) / speed is %.9g",
+                       plan->travel_time_s, travel);
     }
+    double y0 = plan->row_start_m - margin;
     int serial = strcmp(plan->method, "serial") == 0;
     if (!serial && strcmp(plan->method, "milp") != 0 && strcmp(plan->method, "fov") != 0) {
         return ck_fail(&c, HV_ERR_PLAN_CHECK_PARAMS, "method", "unknown \"%s\"", plan->method);
     }
-    uint32_t n_cand = (uint32_t)floor(plan->row_length_m / plan->stop_step_m + 0.5) + 1u;
+    uint32_t n_cand = (uint32_t)floor(course / plan->stop_step_m + 0.5) + 1u;
 
     /* --- fruit index --- */
     id_ref_t *refs = malloc((n_fruits ? n_fruits : 1) * sizeof *refs);
@@ -127,7 +145,7 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
                          (unsigned)sp->index, (unsigned)n_cand);
             break;
         }
-        double y = plan->row_start_m + (double)sp->index * plan->stop_step_m;
+        double y = y0 + (double)sp->index * plan->stop_step_m;
         if (!near(sp->y_m, y, 1e-9)) {
             st = ck_fail(&c, HV_ERR_PLAN_CHECK_STOP, field,
                          "y_m %.9g is not candidate stop %u (y %.9g)", sp->y_m,
@@ -159,7 +177,6 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
         for (int side = 0; side < 2 && st == HV_OK; ++side) {
             const hv_plan_pick_t *picks = side == 0 ? sp->left : sp->right;
             size_t np = side == 0 ? sp->n_left : sp->n_right;
-            const hv_costtab_t *tab = table_of((hv_side_t)side, left, right);
             for (size_t k = 0; k < np; ++k) {
                 const hv_plan_pick_t *pk = &picks[k];
                 snprintf(field, sizeof field, "stops[%zu].%s[%zu] (id %s)", s,
@@ -186,19 +203,19 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
                     break;
                 }
                 seen[f] = 1;
-                uint16_t ms = 0;
-                hv_status_t ls = hv_costtab_lookup(tab, fr->x_m, fr->y_m - y, fr->z_m,
-                                                   fr->yaw_rad, &ms);
+                double cost = 0.0;
+                hv_pick_why_t why = HV_PICK_OK;
+                hv_status_t ls = model->cost(model->ctx, fr, y, &cost, &why);
                 if (ls != HV_OK) {
                     st = ck_fail(&c, HV_ERR_PLAN_CHECK_PAIR, field,
-                                 "stop %u (y %.3f) cannot reach it (%s)", (unsigned)sp->index,
-                                 y, hv_status_name(ls));
+                                 "stop %u (y %.3f) cannot reach it (%s: %s)",
+                                 (unsigned)sp->index, y, hv_pick_why_name(why),
+                                 hv_status_name(ls));
                     break;
                 }
-                double cost = (double)ms / 1000.0;
                 if (!near(pk->cost_s, cost, tol)) {
                     st = ck_fail(&c, HV_ERR_PLAN_CHECK_COST, field,
-                                 "cost_s %.9g, the table says %.9g", pk->cost_s, cost);
+                                 "cost_s %.9g, the pick model says %.9g", pk->cost_s, cost);
                     break;
                 }
                 if (!near(pk->start_s, arm_sum[side], tol)) {
@@ -251,15 +268,18 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
             break;
         }
         seen[f] = 1;
-        const hv_costtab_t *tab = table_of(fr->side, left, right);
+        if (!why_known(ur->reason)) {
+            st = ck_fail(&c, HV_ERR_PLAN_CHECK_REACHABLE, field,
+                         "reason \"%s\" is not height, depth, yaw or row_end", ur->reason);
+            break;
+        }
         for (uint32_t p = 0; p < n_cand; ++p) {
-            double y = plan->row_start_m + (double)p * plan->stop_step_m;
-            uint16_t ms = 0;
-            if (hv_costtab_lookup(tab, fr->x_m, fr->y_m - y, fr->z_m, fr->yaw_rad, &ms) ==
-                HV_OK) {
+            double y = y0 + (double)p * plan->stop_step_m, cost = 0.0;
+            hv_pick_why_t why = HV_PICK_OK;
+            if (model->cost(model->ctx, fr, y, &cost, &why) == HV_OK) {
                 st = ck_fail(&c, HV_ERR_PLAN_CHECK_REACHABLE, field,
                              "listed unreachable, but stop %u (y %.3f) reaches it in %.3f s",
-                             (unsigned)p, y, ms / 1000.0);
+                             (unsigned)p, y, cost);
                 break;
             }
         }
@@ -310,6 +330,13 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
     return st;
 }
 
+/* A table path given here or named by the plan; NULL when there is none. */
+static const char *table_path(const char *given, const char *in_plan)
+{
+    const char *p = given ? given : in_plan;
+    return p != NULL && p[0] != '\0' ? p : NULL;
+}
+
 hv_status_t hv_plan_check_files(const hv_plan_t *plan, const char *config_path,
                                 const char *left_path, const char *right_path,
                                 const char *fruits_path, char *err, size_t errlen)
@@ -318,43 +345,35 @@ hv_status_t hv_plan_check_files(const hv_plan_t *plan, const char *config_path,
         return HV_ERR_ARG;
     }
     config_path = config_path ? config_path : plan->config;
-    left_path = left_path ? left_path : plan->cost_table_left;
-    right_path = right_path ? right_path : plan->cost_table_right;
     fruits_path = fruits_path ? fruits_path : plan->fruit_map;
+    const char *tables[2] = {table_path(left_path, plan->cost_table_left),
+                             table_path(right_path, plan->cost_table_right)};
 
     hv_config_t cfg;
     hv_status_t st = hv_config_load(config_path, &cfg, err, errlen);
-    if (st != HV_OK) {
-        return st;
-    }
-    hv_costtab_file_t lt = {0}, rt = {0};
-    hv_fruitmap_t map = {0, NULL};
-    st = hv_costtab_load(left_path, &lt, err, errlen);
-    if (st == HV_OK) {
-        st = hv_costtab_load(right_path, &rt, err, errlen);
-    }
-    const char *paths[2] = {left_path, right_path};
-    const hv_costtab_file_t *tabs[2] = {&lt, &rt};
     for (int side = 0; side < 2 && st == HV_OK; ++side) {
-        hv_grid_t grid;
-        hv_diag_t d;
-        memset(&d, 0, sizeof d);
-        hv_config_grid(&cfg, (hv_side_t)side, &grid);
-        st = hv_costtab_expect(&tabs[side]->tab, (hv_side_t)side, &grid, &d);
-        if (st != HV_OK && err != NULL && errlen > 0) {
-            snprintf(err, errlen, "%s: %s: %s", paths[side], d.field, d.message);
+        if (tables[side] != NULL) {
+            hv_costtab_file_t tf;
+            st = hv_costtab_load_for(tables[side], &cfg, (hv_side_t)side, &tf, err, errlen);
+            hv_costtab_unload(&tf);
         }
     }
+    hv_ik_arms_t arms;
+    hv_pick_model_t model;
+    if (st == HV_OK && (st = hv_pick_model_ik(&cfg, &arms, &model)) != HV_OK &&
+        err != NULL && errlen > 0) {
+        snprintf(err, errlen, "%s: an arm reaches none of its fruit area (%s)", config_path,
+                 hv_status_name(st));
+    }
+    hv_fruitmap_t map = {0, NULL};
     if (st == HV_OK) {
         hv_fruitmap_limits_t lim;
         hv_fruitmap_limits_from_config(&cfg, plan->row_start_m, plan->row_length_m, &lim);
         st = hv_fruitmap_load(fruits_path, &lim, &map, err, errlen);
     }
     if (st == HV_OK) {
-        st = hv_plan_check(plan, &cfg, map.fruits, map.n, &lt.tab, &rt.tab, err, errlen);
+        st = hv_plan_check(plan, &cfg, map.fruits, map.n, &model, err, errlen);
     }
     hv_fruitmap_free(&map);
-    hv_costtab_unload(&lt);
-    hv_costtab_unload(&rt);
     return st;
 }

@@ -265,6 +265,46 @@ static void test_expect_side_and_grid(void **state)
     assert_string_equal(d.field, "grid.z");
 }
 
+/* The table's arm against the configured one: each kind of difference named. */
+static void test_expect_arm_names_the_difference(void **state)
+{
+    fixture_t *f = *state;
+    hv_costtab_t t;
+    hv_diag_t d;
+    assert_int_equal(hv_costtab_open(&t, f->file, f->file_len, NULL), HV_OK);
+    assert_int_equal(hv_costtab_expect_arm(&t, &f->arm, &f->grid, &d), HV_OK);
+    struct { const char *field; hv_arm_t arm; } cases[6];
+    for (int i = 0; i < 6; i++) {
+        cases[i].arm = f->arm;
+    }
+    cases[0].field = "mount.base";
+    cases[0].arm.base_m[0] += 0.01;
+    cases[1].field = "mount.heading";
+    cases[1].arm.base_yaw_rad += 0.001;
+    cases[2].field = "elbow_free";
+    cases[2].arm.elbow_free = !f->arm.elbow_free;
+    cases[3].field = "joint_limits";
+    cases[3].arm.limit[1].vmax *= 1.5;
+    cases[4].field = "home";
+    cases[4].arm.home[0] += 0.05;
+    cases[5].field = "link_origins";
+    cases[5].arm.origin_m[4][0] += 0.01;
+    for (int i = 0; i < 6; i++) {
+        memset(&d, 0, sizeof d);
+        assert_int_equal(hv_costtab_expect_arm(&t, &cases[i].arm, &f->grid, &d),
+                         HV_ERR_TAB_MISMATCH);
+        assert_string_equal(d.field, cases[i].field);
+    }
+    /* a rounding of the same mount is the same arm */
+    hv_arm_t near = f->arm;
+    near.base_m[1] += 1e-9;
+    assert_int_equal(hv_costtab_expect_arm(&t, &near, &f->grid, &d), HV_OK);
+    hv_arm_t left = f->arm;
+    left.side = HV_SIDE_LEFT;
+    assert_int_equal(hv_costtab_expect_arm(&t, &left, &f->grid, &d), HV_ERR_TAB_MISMATCH);
+    assert_string_equal(d.field, "side");
+}
+
 static void test_writer_rejects_bad_grid_and_small_buffer(void **state)
 {
     fixture_t *f = *state;
@@ -302,6 +342,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_every_single_bit_flip_in_header_is_caught, setup,
                                         teardown),
         cmocka_unit_test_setup_teardown(test_expect_side_and_grid, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_expect_arm_names_the_difference, setup, teardown),
         cmocka_unit_test_setup_teardown(test_writer_rejects_bad_grid_and_small_buffer, setup,
                                         teardown),
         cmocka_unit_test(test_crc32_known_value),

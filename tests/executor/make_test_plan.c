@@ -43,11 +43,11 @@ int main(int argc, char **argv)
     hv_config_arm(&cfg, HV_SIDE_LEFT, &arm[0]);
     hv_config_arm(&cfg, HV_SIDE_RIGHT, &arm[1]);
     double len = cfg.row_length_m, pick_total = 0.0, stop_total = 0.0;
-    fprintf(f, "{\"format\": \"harvest-plan\", \"version\": 1, \"method\": \"fov\",\n"
+    fprintf(f, "{\"format\": \"harvest-plan\", \"version\": 2, \"method\": \"fov\",\n"
                " \"inputs\": {\"fruit_map\": \"(make-test-plan)\", \"cost_table_left\": \"\","
                " \"cost_table_right\": \"\", \"config\": \"%s\"},\n"
                " \"params\": {\"stop_step_m\": %.3f, \"row_start_m\": 0.0, \"row_length_m\": %.3f,"
-               " \"stop_penalty_s\": %.3f, \"vehicle_speed_mps\": %.3f, \"travel_time_s\": %.3f},\n"
+               " \"stop_penalty_s\": %.3f, \"vehicle_speed_mps\": %.3f, \"travel_time_s\": %.3f, \"stop_margin_m\": 0.0},\n"
                " \"solver\": {\"status\": \"heuristic\", \"gap\": 0, \"nodes\": 0, \"runtime_s\": 0,"
                " \"time_limit_s\": 0},\n \"stops\": [\n",
             argv[1], cfg.grid_step_m, len, cfg.stop_penalty_s, cfg.vehicle_speed_mps,

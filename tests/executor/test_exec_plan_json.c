@@ -14,11 +14,12 @@
 #include "hv/exec_status.h"
 
 static const char *good =
-    "{\"format\": \"harvest-plan\", \"version\": 1, \"method\": \"milp\",\n"
+    "{\"format\": \"harvest-plan\", \"version\": 2, \"method\": \"milp\",\n"
     " \"inputs\": {\"fruit_map\": \"f.csv\", \"cost_table_left\": \"l.bin\",\n"
     "            \"cost_table_right\": \"r.bin\", \"config\": \"h.cfg\"},\n"
     " \"params\": {\"stop_step_m\": 0.01, \"row_start_m\": 0.0, \"row_length_m\": 2.0,\n"
-    "            \"stop_penalty_s\": 5, \"vehicle_speed_mps\": 0.1, \"travel_time_s\": 20},\n"
+    "            \"stop_penalty_s\": 5, \"vehicle_speed_mps\": 0.1, \"travel_time_s\": 20,\n"
+    "            \"stop_margin_m\": 0},\n"
     " \"solver\": {\"status\": \"optimal\", \"gap\": 0.0, \"nodes\": 1, \"runtime_s\": 0.1,\n"
     "            \"time_limit_s\": 60},\n"
     " \"totals\": {\"makespan_s\": 61.5, \"pick_time_s\": 31.5, \"stop_time_s\": 10,\n"
@@ -88,7 +89,7 @@ static void test_bad(void **state)
 {
     (void)state;
     expect("\"harvest-plan\"", "\"other\"", HV_ERR_EXEC_PLAN_FIELD, "format");
-    expect("\"version\": 1", "\"version\": 2", HV_ERR_EXEC_PLAN_FIELD, "version");
+    expect("\"version\": 2", "\"version\": 1", HV_ERR_EXEC_PLAN_FIELD, "version");
     expect("\"row_length_m\": 2.0", "\"row_length\": 2.0", HV_ERR_EXEC_PLAN_FIELD,
            "params.row_length");
     expect("\"cost_s\": 5,", "\"cost_s\": \"5\",", HV_ERR_EXEC_PLAN_FIELD,
@@ -101,9 +102,14 @@ static void test_bad(void **state)
            "stops[1].right[0].id");
     expect("\"right\": []}", "\"right\": {}}", HV_ERR_EXEC_PLAN_FIELD, "stops[0].right");
     expect("\"index\": 120", "\"index\": 1.5", HV_ERR_EXEC_PLAN_FIELD, "stops[1].index");
+    /* stops on the course only: the row and the plan's margin beyond each end */
+    expect("\"y_m\": 1.2,", "\"y_m\": -50,", HV_ERR_EXEC_PLAN_RANGE, "stops[1].y_m");
+    expect("\"y_m\": 0.4,", "\"y_m\": 2.01,", HV_ERR_EXEC_PLAN_RANGE, "stops[0].y_m");
+    expect("\"stop_margin_m\": 0", "\"stop_margin_m\": -0.1", HV_ERR_EXEC_PLAN_FIELD,
+           "params.stop_margin_m");
     expect("\"fruits_planned\": 3", "\"fruits_planned\": 4", HV_ERR_EXEC_PLAN_RANGE,
            "totals.fruits_planned");
-    expect("\"y_m\": 1.2,", "\"y_m\": 1.2,,", HV_ERR_EXEC_PLAN_SYNTAX, "line 17");
+    expect("\"y_m\": 1.2,", "\"y_m\": 1.2,,", HV_ERR_EXEC_PLAN_SYNTAX, "line 18");
     expect("\"z\": 0.5,", "\"z\": 05,", HV_ERR_EXEC_PLAN_SYNTAX, "leading zero");
     expect("\"unreachable\": []}", "\"unreachable\": []} x", HV_ERR_EXEC_PLAN_SYNTAX,
            "trailing");

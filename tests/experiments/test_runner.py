@@ -1,5 +1,6 @@
 """The experiment runner on the real planner CLI: the quick set, plots, report, resume."""
 import csv
+import json
 import os
 import re
 import signal
@@ -51,6 +52,23 @@ def test_every_plan_passes_the_planners_independent_check(quick_run):
         c = subprocess.run([PLANNER, "check", str(out / r["plan"]), "--quiet"],
                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         assert c.returncode == 0, (r["plan"], c.stdout)
+
+
+def test_the_paper_experiment_plans_on_the_papers_stops(quick_run):
+    """The run gives the planner the paper's N = 201 stops over the row, and the report says
+    so and why each unreachable fruit is one."""
+    out, _ = quick_run
+    assert "row.stops_beyond_ends = 0" in (out / "planner.cfg").read_text()
+    reasons = set()
+    for r in results.read(str(out / "results.csv")):
+        plan = json.loads((out / r["plan"]).read_text())
+        assert plan["params"]["stop_margin_m"] == 0
+        assert all(0.0 <= s["y_m"] <= plan["params"]["row_length_m"] for s in plan["stops"])
+        reasons |= {u["reason"] for u in plan["unreachable"]}
+    text = (out / "report.md").read_text()
+    assert "N = 201" in text
+    for why in reasons:
+        assert f" {why} (" in text
 
 
 def test_milp_never_worse_than_fov_or_serial(quick_run):

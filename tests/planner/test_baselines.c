@@ -26,10 +26,10 @@ static uint16_t behind_only(hv_side_t side, double y_rel, uint32_t ix, uint32_t 
 
 static hv_instance_t build(const tt_fixture_t *fx, const hv_fruit_t *fr, size_t n)
 {
-    hv_instance_params_t pr = {0.0, 1.0, 0.01, 5.0, 10.0};
+    hv_instance_params_t pr = {0.0, 1.0, 0.01, 5.0, 10.0, 0.0};
     hv_instance_t inst;
     hv_diag_t d;
-    assert_int_equal(hv_instance_build(&pr, fr, n, &fx->tab[0], &fx->tab[1], &inst, &d), HV_OK);
+    assert_int_equal(hv_instance_build(&pr, fr, n, &fx->model, &inst, &d), HV_OK);
     return inst;
 }
 

@@ -70,10 +70,10 @@ static void test_long_row_every_fruit_once(void **state)
     const size_t n = 150;
     const double length = 12.0;
     hv_fruit_t *fr = row_fruits(n, length, 7);
-    hv_instance_params_t pr = {0.0, length, 0.01, 5.0, length / 0.1};
+    hv_instance_params_t pr = {0.0, length, 0.01, 5.0, length / 0.1, 0.0};
     hv_instance_t inst;
     hv_diag_t d;
-    assert_int_equal(hv_instance_build(&pr, fr, n, &g_fx.tab[0], &g_fx.tab[1], &inst, &d), HV_OK);
+    assert_int_equal(hv_instance_build(&pr, fr, n, &g_fx.model, &inst, &d), HV_OK);
     hv_horizon_options_t ho;
     hv_horizon_options_default(&ho);
     ho.window_m = 2.0;
@@ -97,7 +97,7 @@ static void test_long_row_every_fruit_once(void **state)
     }
     hv_plan_t plan = plan_of(&inst, &a, &pr);
     char err[256] = "";
-    hv_status_t st = hv_plan_check(&plan, &g_fx.cfg, fr, n, &g_fx.tab[0], &g_fx.tab[1], err, sizeof err);
+    hv_status_t st = hv_plan_check(&plan, &g_fx.cfg, fr, n, &g_fx.model, err, sizeof err);
     if (st != HV_OK) {
         print_error("%s\n", err);
     }
@@ -115,10 +115,10 @@ static void test_horizon_vs_single_window(void **state)
     (void)state;
     const size_t n = 16;
     hv_fruit_t *fr = row_fruits(n, 2.0, 99);
-    hv_instance_params_t pr = {0.0, 2.0, 0.01, 5.0, 20.0};
+    hv_instance_params_t pr = {0.0, 2.0, 0.01, 5.0, 20.0, 0.0};
     hv_instance_t inst;
     hv_diag_t d;
-    assert_int_equal(hv_instance_build(&pr, fr, n, &g_fx.tab[0], &g_fx.tab[1], &inst, &d), HV_OK);
+    assert_int_equal(hv_instance_build(&pr, fr, n, &g_fx.model, &inst, &d), HV_OK);
     hv_milp_options_t mo;
     hv_milp_options_default(&mo);
     mo.time_limit_s = 30.0;

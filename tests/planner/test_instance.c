@@ -12,12 +12,14 @@
 #include "hv/plan_eval.h"
 #include "hv/plan_instance.h"
 #include "hv/plan_status.h"
+#include "hv/pick_model.h"
 #include "tiny_tables.h"
 
 typedef struct fx {
     hv_config_t cfg;
     uint8_t *buf[2];
     hv_costtab_t tab[2];
+    hv_pick_model_t model;
 } fx_t;
 
 /* Band model, but nothing above z = 0.70 m (iz > 30) is reachable. */
@@ -41,6 +43,7 @@ static int setup(void **state)
             return -1;
         }
     }
+    tt_table_model(fx.tab, &fx.model);
     *state = &fx;
     return 0;
 }
@@ -68,7 +71,7 @@ static hv_fruit_t fruit(const char *id, hv_side_t side, double y, double z)
 
 static hv_instance_params_t params_1m(void)
 {
-    hv_instance_params_t p = {0.0, 1.0, 0.01, 5.0, 10.0};
+    hv_instance_params_t p = {0.0, 1.0, 0.01, 5.0, 10.0, 0.0};
     return p;
 }
 
@@ -80,7 +83,7 @@ static void test_pairs(void **state)
     hv_instance_params_t pr = params_1m();
     hv_instance_t inst;
     hv_diag_t d;
-    assert_int_equal(hv_instance_build(&pr, fr, 4, &fx->tab[0], &fx->tab[1], &inst, &d), HV_OK);
+    assert_int_equal(hv_instance_build(&pr, fr, 4, &fx->model, &inst, &d), HV_OK);
     assert_int_equal(inst.n_stops, 101);
     assert_true(fabs(inst.stop_y_m[100] - 1.0) < 1e-12);
     /* A: stops 0.40..0.60 (21); B: 0.00..0.12 (13); C: none (z too high); D: 0.87..1.00 (14) */
@@ -120,7 +123,7 @@ static void test_eval(void **state)
     hv_instance_params_t pr = params_1m();
     hv_instance_t inst;
     hv_diag_t d;
-    assert_int_equal(hv_instance_build(&pr, fr, 4, &fx->tab[0], &fx->tab[1], &inst, &d), HV_OK);
+    assert_int_equal(hv_instance_build(&pr, fr, 4, &fx->model, &inst, &d), HV_OK);
     hv_assignment_t a;
     assert_int_equal(hv_assignment_alloc(&a, 4), HV_OK);
     a.fruit_stop[0] = 50; /* A: 2.200 (left) */
@@ -160,7 +163,7 @@ static void test_subset(void **state)
     hv_instance_params_t pr = params_1m();
     hv_instance_t inst, sub;
     hv_diag_t d;
-    assert_int_equal(hv_instance_build(&pr, fr, 3, &fx->tab[0], &fx->tab[1], &inst, &d), HV_OK);
+    assert_int_equal(hv_instance_build(&pr, fr, 3, &fx->model, &inst, &d), HV_OK);
     uint32_t back[3];
     /* stops 0.25 .. 0.54: A reaches 0.25..0.30, B 0.40..0.54, C none (dropped) */
     assert_int_equal(hv_instance_subset(&inst, 25, 55, NULL, 1, &sub, back), HV_OK);
@@ -184,6 +187,65 @@ static void test_subset(void **state)
     hv_instance_free(&inst);
 }
 
+/* The product's model: every pair is a pick the executor's IK accepts at that stop, with
+ * its time; every candidate stop without a pair is one the IK refuses; the stops reach
+ * beyond the row's ends, so the fruit at the ends are planned. */
+static void test_ik_model_is_the_executors(void **state)
+{
+    (void)state;
+    hv_config_t cfg;
+    assert_int_equal(tt_load_config(&cfg), 0);
+    cfg.stops_beyond_ends = 1;
+    hv_ik_arms_t arms;
+    hv_pick_model_t m;
+    assert_int_equal(hv_pick_model_ik(&cfg, &arms, &m), HV_OK);
+    hv_instance_params_t pr;
+    hv_instance_params_from_config(&cfg, &m, &pr);
+    assert_true(pr.stop_margin_m > 0.5 * cfg.base_spacing_m);
+    assert_float_equal(pr.travel_time_s,
+                       (cfg.row_length_m + 2 * pr.stop_margin_m) / cfg.vehicle_speed_mps, 1e-9);
+    hv_fruit_t fr[6] = {fruit("first", HV_SIDE_LEFT, 0.0, 0.6), fruit("last", HV_SIDE_RIGHT, 2.0, 0.6),
+                        fruit("a", HV_SIDE_LEFT, 1.0, 0.45), fruit("b", HV_SIDE_RIGHT, 0.7, 0.75),
+                        fruit("c", HV_SIDE_LEFT, 1.3, 0.6), fruit("d", HV_SIDE_RIGHT, 1.6, 0.5)};
+    fr[4].yaw_rad = 0.7;
+    fr[5].yaw_rad = -0.7;
+    fr[5].x_m = 0.49;
+    hv_instance_t inst;
+    hv_diag_t d;
+    assert_int_equal(hv_instance_build(&pr, fr, 6, &m, &inst, &d), HV_OK);
+    assert_true(inst.stop_y_m[0] < 0.0 && inst.stop_y_m[inst.n_stops - 1] > 2.0);
+    assert_int_equal(hv_instance_unreachable_count(&inst), 0);
+    size_t k = 0;
+    for (size_t f = 0; f < 6; ++f) {
+        const hv_arm_t *arm = &arms.arm[fr[f].side];
+        for (size_t p = 0; p < inst.n_stops; ++p) {
+            double t = 0.0;
+            hv_status_t st = hv_pick_solve(arm, fr[f].x_m, fr[f].y_m - inst.stop_y_m[p],
+                                           fr[f].z_m, fr[f].yaw_rad, NULL, &t, NULL);
+            int pair = k < inst.fruit_begin[f + 1] && inst.pairs[k].stop == p;
+            assert_int_equal(pair, st == HV_OK);
+            if (pair) {
+                assert_float_equal(inst.pairs[k].cost_s, t, 0.0);
+                ++k;
+            }
+        }
+    }
+    assert_int_equal(k, inst.n_pairs);
+    hv_instance_free(&inst);
+
+    /* the paper's stops over the row only: the end fruit are "row_end" */
+    cfg.stops_beyond_ends = 0;
+    hv_instance_params_from_config(&cfg, &m, &pr);
+    assert_float_equal(pr.stop_margin_m, 0.0, 0.0);
+    assert_int_equal(hv_instance_build(&pr, fr, 6, &m, &inst, &d), HV_OK);
+    assert_int_equal(inst.n_stops, 201);
+    assert_int_equal(hv_instance_unreachable_count(&inst), 2);
+    assert_string_equal(hv_instance_why_name(inst.why[0]), "row_end");
+    assert_string_equal(hv_instance_why_name(inst.why[1]), "row_end");
+    assert_int_equal(inst.why[2], 0);
+    hv_instance_free(&inst);
+}
+
 static void test_bad_params(void **state)
 {
     fx_t *fx = *state;
@@ -192,11 +254,11 @@ static void test_bad_params(void **state)
     hv_instance_t inst;
     hv_diag_t d;
     pr.stop_step_m = 0.0;
-    assert_int_equal(hv_instance_build(&pr, fr, 1, &fx->tab[0], &fx->tab[1], &inst, &d),
+    assert_int_equal(hv_instance_build(&pr, fr, 1, &fx->model, &inst, &d),
                      HV_ERR_PLAN_PARAMS);
     pr = params_1m();
     pr.stop_penalty_s = NAN;
-    assert_int_equal(hv_instance_build(&pr, fr, 1, &fx->tab[0], &fx->tab[1], &inst, &d),
+    assert_int_equal(hv_instance_build(&pr, fr, 1, &fx->model, &inst, &d),
                      HV_ERR_PLAN_PARAMS);
 }
 
@@ -206,6 +268,7 @@ int main(void)
         cmocka_unit_test(test_pairs),
         cmocka_unit_test(test_eval),
         cmocka_unit_test(test_subset),
+        cmocka_unit_test(test_ik_model_is_the_executors),
         cmocka_unit_test(test_bad_params),
     };
     return cmocka_run_group_tests(tests, setup, teardown);

@@ -61,10 +61,10 @@ static int teardown(void **state)
 static void make_plan(ctx_t *c, hv_plan_t *plan, const char *method)
 {
     hv_instance_params_t pr = {0.0, 1.0, c->fx.cfg.grid_step_m, c->fx.cfg.stop_penalty_s,
-                               1.0 / c->fx.cfg.vehicle_speed_mps};
+                               1.0 / c->fx.cfg.vehicle_speed_mps, 0.0};
     hv_instance_t inst;
     hv_diag_t d;
-    assert_int_equal(hv_instance_build(&pr, c->fruits, c->n, &c->fx.tab[0], &c->fx.tab[1], &inst, &d),
+    assert_int_equal(hv_instance_build(&pr, c->fruits, c->n, &c->fx.model, &inst, &d),
                      HV_OK);
     hv_assignment_t a;
     assert_int_equal(hv_assignment_alloc(&a, c->n), HV_OK);
@@ -89,7 +89,7 @@ static void make_plan(ctx_t *c, hv_plan_t *plan, const char *method)
 
 static hv_status_t check(ctx_t *c, const hv_plan_t *plan, char *err, size_t errlen)
 {
-    return hv_plan_check(plan, &c->fx.cfg, c->fruits, c->n, &c->fx.tab[0], &c->fx.tab[1], err,
+    return hv_plan_check(plan, &c->fx.cfg, c->fruits, c->n, &c->fx.model, err,
                          errlen);
 }
 

@@ -1,11 +1,13 @@
 """harvest-plan end to end: plans written and checked, bad input refused with one line,
-tampered plans caught by `harvest-plan check`. Tables are synthetic (band model,
-tests/planner/support) on the real configuration's grid."""
+tampered plans caught by `harvest-plan check`. Every pick is the real arm's exact IK; the
+cost tables given are synthetic (band model, tests/planner/support) on the configuration's
+arm and grid, so they pass the planner's table check without being used for costs."""
 import json
 import os
 import random
 import signal
 import subprocess
+import sys
 
 import pytest
 
@@ -15,6 +17,8 @@ BUILD = os.environ.get("HV_BUILD_DIR", os.path.join(SRC, "build"))
 PLAN = os.path.join(BUILD, "planner", "harvest-plan")
 SYNTH = os.path.join(BUILD, "tests", "planner", "planner_synth_tables")
 CONFIG = os.path.join(SRC, "config", "harvest.cfg")
+sys.path.insert(0, os.path.join(SRC, "host"))
+from harvest.scenario.config import derived_config_text  # noqa: E402
 
 pytestmark = pytest.mark.skipif(
     not (os.access(PLAN, os.X_OK) and os.access(SYNTH, os.X_OK)),
@@ -32,7 +36,7 @@ def run(*args, check=None):
 def tables(tmp_path_factory):
     d = tmp_path_factory.mktemp("tables")
     subprocess.run([SYNTH, CONFIG, str(d), "0.30"], check=True)
-    return str(d / "left.tab"), str(d / "right.tab")
+    return str(d / "left.bin"), str(d / "right.bin")
 
 
 def write_map(path, fruits):
@@ -76,7 +80,7 @@ def test_usage_errors(tables, tmp_path):
         (plan_args(tables, fruits, out, "fov", "--fov-width", "-1"), "--fov-width"),
         (plan_args(tables, fruits, out, "fov", "--horizon", "2"), "--horizon"),
         (plan_args(tables, fruits, out, "milp", "--gap", "abc"), "--gap"),
-        (["--config", CONFIG], "missing required option: --left"),
+        (["--config", CONFIG], "missing required option: --fruits"),
         (plan_args(tables, fruits, out, "milp", "--bogus"), "unknown option: --bogus"),
         (plan_args(tables, fruits, out, "milp", "--algorithm", "cplex"), "--algorithm"),
         (plan_args(tables, fruits, out, "fov", "--algorithm", "price"), "--algorithm"),
@@ -108,8 +112,12 @@ def test_methods_write_checked_plans(tables, tmp_path, method):
         assert plan["solver"]["status"] == "heuristic" and plan["solver"]["gap"] is None
     else:
         assert plan["solver"]["status"] in ("optimal", "feasible")
+    pa = plan["params"]
+    course = pa["row_length_m"] + 2 * pa["stop_margin_m"]
+    assert pa["stop_margin_m"] > 0.2  # the arm bases alone sit 0.235 m off the stop
+    assert pa["travel_time_s"] == pytest.approx(course / pa["vehicle_speed_mps"])
     if method == "serial":
-        assert t["travel_time_s"] == pytest.approx(40.0)
+        assert t["travel_time_s"] == pytest.approx(2 * pa["travel_time_s"])
         assert {s["pass"] for s in plan["stops"]} == {0, 1}
     q = run("check", out, check=0)
     assert "OK" in q.stdout
@@ -141,18 +149,59 @@ def test_algorithms_agree(tables, tmp_path):
     assert res["price1"] == pytest.approx(res["compact1"], abs=1e-6)
 
 
-def test_unreachable_listed(tables, tmp_path):
-    # the synthetic tables reach nothing above z = 0.75 m
-    fr = random_fruits(3, 3, seed=7) + [("high", "L", -0.4, 1.0, 0.78, 0.0)]
+def derived_config(tmp_path, name, **overrides):
+    path = tmp_path / name
+    path.write_text(derived_config_text(CONFIG, {k.replace("__", "."): v
+                                                 for k, v in overrides.items()}))
+    return str(path)
+
+
+@pytest.mark.parametrize("overrides,fruit,why", [
+    # the paper's stops over the row only: a fruit at the row's start is behind both bases
+    ({"row__stops_beyond_ends": 0}, ("end", "L", -0.42, 0.0, 0.6, 0.0), "row_end"),
+    # joint 1's stroke ends at z = 0.84 m: a canopy reaching higher holds a fruit no
+    # vehicle position helps with
+    ({"row__canopy_height": 0.5}, ("high", "L", -0.42, 1.0, 0.88, 0.0), "height"),
+    # a canopy 0.6 m deep: its far part is beyond the arm from every vehicle position
+    ({"row__canopy_depth": 0.6}, ("deep", "R", 0.93, 1.0, 0.6, 0.0), "depth"),
+    # joint 4 held near its home: the far fruit's -45 deg stem is in reach, but the wrist
+    # cannot turn to it from any vehicle position
+    ({"joint4__min": -0.1, "joint4__max": 0.1}, ("askew", "R", 0.5, 1.0, 0.6, -0.785), "yaw"),
+])
+def test_unreachable_listed_with_reason(tmp_path, overrides, fruit, why):
+    cfg = derived_config(tmp_path, "h.cfg", **overrides)
+    fr = random_fruits(3, 3, seed=7)
+    fr = [f for f in fr if 0.3 < f[3] < 1.7] + [fruit]
     fruits = write_map(tmp_path / "m.csv", fr)
     out = str(tmp_path / "p.json")
     for method in ("fov", "milp"):
-        run(*plan_args(tables, fruits, out, method, "--quiet"), check=0)
+        p = run("--config", cfg, "--fruits", fruits, "--method", method, "--out", out)
+        assert p.returncode == 0, p.stderr
         plan = json.load(open(out))
+        assert plan["unreachable"] == [{"id": fruit[0], "side": fruit[1], "reason": why}]
         assert plan["totals"]["fruits_unreachable"] == 1
-        assert plan["unreachable"] == [{"id": "high", "side": "L", "reason": "no stop reaches it"}]
-        assert plan["totals"]["fruits_planned"] == 6
+        assert f"1 {why}" in p.stderr  # the instance line counts the reasons
         run("check", out, check=0)
+
+
+def test_stops_beyond_the_row_ends(tmp_path):
+    """The fruit at both ends are planned from vehicle positions beyond the row, and the
+    same map on the paper's stops leaves them unreachable."""
+    fr = [("first", "L", -0.42, 0.0, 0.6, 0.0), ("last", "R", 0.42, 2.0, 0.6, 0.0),
+          ("mid", "R", 0.42, 1.0, 0.6, 0.0)]
+    fruits = write_map(tmp_path / "m.csv", fr)
+    out = str(tmp_path / "p.json")
+    run("--config", CONFIG, "--fruits", fruits, "--method", "milp", "--out", out, check=0)
+    plan = json.load(open(out))
+    assert plan["totals"]["fruits_planned"] == 3
+    ys = [s["y_m"] for s in plan["stops"]]
+    assert min(ys) < 0.0 and max(ys) > 2.0
+    paper = derived_config(tmp_path, "paper.cfg", row__stops_beyond_ends=0)
+    run("--config", paper, "--fruits", fruits, "--method", "milp", "--out", out, check=0)
+    plan = json.load(open(out))
+    assert plan["params"]["stop_margin_m"] == 0
+    assert sorted(u["id"] for u in plan["unreachable"]) == ["first", "last"]
+    assert {u["reason"] for u in plan["unreachable"]} == {"row_end"}
 
 
 BAD_MAPS = [
@@ -184,15 +233,49 @@ def test_bad_tables(tables, tmp_path):
     swapped = (tables[1], tables[0])
     p = run(*plan_args(swapped, fruits, out, "fov"), check=1)
     assert tables[1] in p.stderr and "side" in p.stderr
-    broken = tmp_path / "broken.tab"
+    broken = tmp_path / "broken.bin"
     data = bytearray(open(tables[0], "rb").read())
     data[-1] ^= 0xFF
     broken.write_bytes(bytes(data))
     p = run(*plan_args((str(broken), tables[1]), fruits, out, "fov"), check=1)
     assert str(broken) in p.stderr
-    p = run(*plan_args((str(tmp_path / "none.tab"), tables[1]), fruits, out, "fov"), check=1)
-    assert "none.tab" in p.stderr
+    p = run(*plan_args((str(tmp_path / "none.bin"), tables[1]), fruits, out, "fov"), check=1)
+    assert "none.bin" in p.stderr
     assert not os.path.exists(out)
+
+
+EXEC = os.path.join(BUILD, "executor", "harvest-exec")
+
+
+@pytest.mark.parametrize("overrides,field", [
+    ({"mount__offset": 0.20}, "mount.base"),
+    ({"arm__elbow_free": 1}, "elbow_free"),
+    ({"joint2__vmax": 0.3}, "joint_limits"),
+    ({"arm__home": "0.2 0.0 1.4 0.0"}, "home"),
+    ({"grid__y_half_span": 0.7}, "grid.y"),
+])
+def test_table_for_another_arm_refused(tmp_path, overrides, field):
+    """A table built for another mount, elbow mode, joint limits, home pose or grid: the
+    planner refuses it with the same one line as the executor."""
+    other = tmp_path / "other"
+    other.mkdir()
+    subprocess.run([SYNTH, derived_config(tmp_path, "o.cfg", **overrides), str(other)],
+                   check=True)
+    left = str(other / "left.bin")
+    fruits = write_map(tmp_path / "m.csv", random_fruits(2, 2))
+    out = str(tmp_path / "p.json")
+    p = run("--config", CONFIG, "--fruits", fruits, "--method", "fov", "--out", out,
+            "--left", left, check=1)
+    line = p.stderr.strip()
+    assert f"{left}: {field}:" in line and "HV_ERR_TAB_MISMATCH" in line, line
+    assert not os.path.exists(out)
+    if os.access(EXEC, os.X_OK):  # the executor's check is the same function
+        run("--config", CONFIG, "--fruits", fruits, "--method", "fov", "--out", out, check=0)
+        e = subprocess.run([EXEC, "--plan", out, "--config", CONFIG, "--journal",
+                            str(tmp_path / "j"), "--cost-table-left", left],
+                           capture_output=True, text=True, timeout=60)
+        assert e.returncode == 2
+        assert line.replace("harvest-plan:", "harvest-exec:") == e.stderr.strip()
 
 
 def test_check_catches_tampering(tables, tmp_path):

@@ -91,10 +91,10 @@ static void test_serial_matches_brute_force(void **state)
                 fr[n++] = tt_fruit(id, (hv_side_t)s, y, 0.40 + 0.01 * (double)((seed >> 8) % 30));
             }
         }
-        hv_instance_params_t pr = {0.0, 0.09, 0.01, 5.0, 0.9};
+        hv_instance_params_t pr = {0.0, 0.09, 0.01, 5.0, 0.9, 0.0};
         hv_instance_t inst;
         hv_diag_t d;
-        assert_int_equal(hv_instance_build(&pr, fr, n, &fx.tab[0], &fx.tab[1], &inst, &d), HV_OK);
+        assert_int_equal(hv_instance_build(&pr, fr, n, &fx.model, &inst, &d), HV_OK);
         assert_int_equal(inst.n_stops, 10);
         hv_milp_options_t opt;
         hv_milp_options_default(&opt);
@@ -121,7 +121,7 @@ static void test_serial_matches_brute_force(void **state)
         assert_int_equal(hv_plan_build(&inst, &a, passes, &m, &plan), HV_OK);
         assert_true(fabs(plan.makespan_s - want) < 1e-6);
         char err[256] = "";
-        hv_status_t st = hv_plan_check(&plan, &fx.cfg, fr, n, &fx.tab[0], &fx.tab[1], err, sizeof err);
+        hv_status_t st = hv_plan_check(&plan, &fx.cfg, fr, n, &fx.model, err, sizeof err);
         if (st != HV_OK) {
             print_error("%s\n", err);
         }

@@ -44,6 +44,9 @@ typedef struct hv_config {
     double canopy_z_min_m;    /* row.canopy_z_min: lowest fruit height above the floor */
     double canopy_height_m;   /* row.canopy_height */
     double pick_yaw_max_rad;  /* row.pick_yaw_max_deg: stem cutting needs |yaw| <= this */
+    int stops_beyond_ends;    /* row.stops_beyond_ends (0/1): 1 lets the vehicle stop beyond
+                                 the row's ends as far as an arm reaches into the row
+                                 (hv_pick_stop_margin); 0 keeps stops in [0, row.length] */
 
     /* vehicle */
     double vehicle_speed_mps;  /* vehicle.speed */

@@ -1,4 +1,4 @@
-/* The precomputed pick-cost table G(x, y, z, yaw) of one arm (DESIGN §4).
+/* The precomputed pick-cost table G(x, y, z, yaw) of one arm (docs/COST_TABLE_FORMAT.md).
  *
  * File layout (little-endian):
  *   [0, HV_COSTTAB_HEADER_BYTES)  fixed header, see hv_costtab_header_t and cost_table.c
@@ -12,7 +12,15 @@
  * pick heading relative to the side's inward row normal (rad; 0 = straight into the row).
  *
  * The loader works on a caller-supplied buffer (no OS calls, no allocation): read the file
- * into memory (see hv/costtab_file.h) or mmap it, then hv_costtab_open().
+ * into memory or mmap it, then hv_costtab_open(); hosted programs use hv_costtab_load() /
+ * hv_costtab_load_for() of hv/file_io.h. Files are named *.bin (costgen writes
+ * costtab_left.bin and costtab_right.bin).
+ *
+ * The planner and the executor do not take their pick costs from the table: both solve
+ * each pick's exact IK (hv/pick.h), because the nearest cell disagrees with it at the edge
+ * of the workspace (docs/PLAN_FORMAT.md). The table is the paper's G for the coverage
+ * maps, the mount search and the experiments; a table given to a program is checked
+ * against the configured arm (hv_costtab_expect_arm).
  */
 #ifndef HV_COST_TABLE_H
 #define HV_COST_TABLE_H
@@ -78,6 +86,13 @@ hv_status_t hv_costtab_open(hv_costtab_t *tab, const void *buf, size_t len, hv_d
  * `expected` when not NULL). HV_ERR_TAB_MISMATCH with diag naming the field. */
 hv_status_t hv_costtab_expect(const hv_costtab_t *tab, hv_side_t side,
                               const hv_grid_t *expected, hv_diag_t *diag);
+
+/* hv_costtab_expect() for arm->side and `expected`, then the arm the table was built for
+ * against `arm`: elbow mode, home pose, joint limits, mount (base position and heading)
+ * and link origins, each to 1e-6 (m, rad, m/s, ...). HV_ERR_TAB_MISMATCH with diag->field
+ * naming the first that differs ("mount.base", "joint_limits", "grid.y", ...). */
+hv_status_t hv_costtab_expect_arm(const hv_costtab_t *tab, const hv_arm_t *arm,
+                                  const hv_grid_t *expected, hv_diag_t *diag);
 
 /* Nearest-cell index of a value on one axis; -1 when outside the grid or non-finite. */
 long hv_axis_index(const hv_axis_t *axis, double value);

@@ -8,11 +8,12 @@
  *
  * The executor's expected time (what "planned vs executed" compares against):
  *   pick cycle   = t(home -> fruit) + cut_s + t(fruit -> home) + release_s
- *                  (t from the IK solution on trapezoid profiles, core's hv_scara_move_time;
- *                   the plan's G is the first term looked up in a cost table, nearest cell)
+ *                  (t: core's hv_pick_solve, the exact IK and move time the planner's
+ *                   pick model uses, so the plan's G is the first term)
  *   stop time    = max over the two arms of the sum of their pick cycles at that stop
- *   vehicle time = trapezoid moves (vehicle speed, accel) from the row start to each stop in
- *                  turn and from the last stop to the row end
+ *   vehicle time = trapezoid moves (vehicle speed, accel) from the course start (row start
+ *                  - stop margin) to each stop in turn and from the last stop to the
+ *                  course end (row end + stop margin)
  *   expected makespan = sum of stop times + sum of vehicle times.
  */
 #ifndef HV_EXEC_PLAN_H
@@ -37,7 +38,7 @@ typedef struct hv_exec_pick {
     uint16_t stop;           /* index into hv_exec_plan_t.stops */
     double x_m, y_m, z_m;    /* fruit position: x, z vehicle frame, y along the row */
     double yaw_rad;          /* pick heading relative to the side's inward normal */
-    double cost_s;           /* the plan's G (home -> fruit, cost table) */
+    double cost_s;           /* the plan's G (home -> fruit) */
     double start_s;          /* the plan's start of this pick after arrival at the stop */
     /* filled by hv_exec_plan_prepare() */
     int reachable;           /* 1: IK found a solution within the joint limits */
@@ -64,6 +65,7 @@ typedef struct hv_exec_plan {
     hv_exec_stop_t stops[HV_EXEC_MAX_STOPS];
     hv_exec_pick_t picks[HV_EXEC_MAX_PICKS];
     double row_start_m, row_length_m;
+    double stop_margin_m;       /* the course runs this far beyond both row ends (m) */
     double planned_makespan_s;  /* the plan's totals.makespan_s (paper's objective) */
     double planned_pick_s;      /* the plan's totals.pick_time_s */
     /* filled by hv_exec_plan_prepare() */
@@ -86,6 +88,12 @@ typedef struct hv_exec_timing {
  * with reachable = 0 (the executor skips it with a reason); it does not fail the call. */
 hv_status_t hv_exec_plan_prepare(hv_exec_plan_t *plan, const hv_arm_t arm[2],
                                  const hv_exec_timing_t *timing);
+
+/* Where the vehicle's course starts and ends (m along the row): the row and the plan's
+ * stop margin beyond each end. The vehicle starts the row at the start and leaves it at the
+ * end. */
+double hv_exec_course_start(const hv_exec_plan_t *plan);
+double hv_exec_course_end(const hv_exec_plan_t *plan);
 
 /* Index of a pick by (side, id); -1 when the plan has no such pick. */
 int hv_exec_plan_find(const hv_exec_plan_t *plan, hv_side_t side, const char *id);

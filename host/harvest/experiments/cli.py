@@ -57,6 +57,11 @@ def build_parser():
     p.add_argument("--distribution", choices=("uniform", "clustered", "gradient"),
                    default="uniform", help="fruit distribution of the instances "
                    "(default: the paper's uniform rows; see 'python -m harvest scenario --help')")
+    p.add_argument("--stops-beyond-ends", action="store_true",
+                   help="let the vehicle stop beyond the row's ends as far as an arm reaches "
+                        "into the row (the product's default, row.stops_beyond_ends = 1); "
+                        "without it the planner gets the paper's N = 201 candidate stops over "
+                        "the row")
     p.add_argument("--retry-errors", action="store_true",
                    help="run again the rows whose plan failed (they are kept as final otherwise)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
@@ -88,7 +93,8 @@ def _settings(args, need_planner):
     return Settings(config=os.path.abspath(args.config), out_dir=os.path.abspath(args.out),
                     planner=planner, costgen=costgen, alphas=alphas, seeds=seeds,
                     methods=methods, distribution=args.distribution, time_limit_s=args.time_limit, fov_width_m=args.fov_width,
-                    jobs=args.jobs, progress=not args.no_progress)
+                    jobs=args.jobs, stops_beyond_ends=args.stops_beyond_ends,
+                    progress=not args.no_progress)
 
 
 def _rows(out):
@@ -159,6 +165,15 @@ def _show_path(path):
     return path if rel.startswith("..") else rel
 
 
+def _run_info(out):
+    """OUT/run.json (what the run was started with), {} before a run."""
+    path = os.path.join(out, "run.json")
+    if not os.path.exists(path):
+        return {}
+    with open(path, encoding="utf-8") as f:
+        return json.load(f)
+
+
 def do_report(args, s):
     out = os.path.abspath(args.out)
     rows = _rows(out)
@@ -174,12 +189,10 @@ def do_report(args, s):
         p = os.path.join(fig_dir, stem + ".png")
         if os.path.exists(p):
             figures[cap] = p
-    run_info = os.path.join(out, "run.json")
     tl = "the planner's default"
     build = ""
-    if os.path.exists(run_info):
-        with open(run_info, encoding="utf-8") as f:
-            info = json.load(f)
+    info = _run_info(out)
+    if info:
         if info.get("time_limit_s") is not None:
             tl = f"{info['time_limit_s']:g} s"
         b = info.get("planner_build") or {}
@@ -193,12 +206,23 @@ def do_report(args, s):
     settings_text = (
         f"- Instances: {_DIST_TEXT.get(rows[0]['distribution'], rows[0]['distribution'])}, m^L = {rows[0]['n_left']}, alpha in "
         f"{{{', '.join(f'{a:g}' for a in alphas)}}}, seeds {seeds[0]}..{seeds[-1]} "
-        f"({len(seeds)} per alpha); config `{_show_path(s.config)}`.\n"
+        f"({len(seeds)} per alpha); config `{_show_path(s.config)}`, "
+        + ("candidate stops beyond the row's ends as far as an arm reaches "
+           "(row.stops_beyond_ends = 1)" if info.get("stops_beyond_ends") else
+           "the paper's candidate stops (N = 201 on a 2 m row): stop p is the vehicle at "
+           "y = p x grid.step along the row, its arm bases half mount.base_spacing ahead of "
+           "and behind it (row.stops_beyond_ends = 0)") + ".\n"
         f"- Planner: `harvest-plan` (GLPK), MILP time limit {tl}{build}; {os.cpu_count()} CPU(s), "
         f"{platform.machine()}, Python {platform.python_version()}.\n"
         "- Paper: Gurobi on an AMD 7950, 128 GB.")
+    reasons = {}
+    for r in rows:
+        if r["method"] == "milp" and r["plan"] and r["status"] != "error":
+            for u in plan_file.load(os.path.join(out, r["plan"])).get("unreachable", []):
+                reasons[u.get("reason", "?")] = reasons.get(u.get("reason", "?"), 0) + 1
     path = report.write(os.path.join(out, "report.md"), rows, settings_text, figures,
-                        report.analysis_section(os.path.join(out, "analysis.json")))
+                        report.analysis_section(os.path.join(out, "analysis.json")),
+                        unreachable_reasons=reasons)
     print(f"experiments: report {path}")
     return path
 

@@ -3,6 +3,9 @@ import json
 import math
 
 
+PLAN_VERSION = 2  # planner/include/hv/plan.h HV_PLAN_FORMAT_VERSION
+
+
 class PlanError(ValueError):
     """A plan that cannot be used: the message names the file and the field."""
 
@@ -17,8 +20,8 @@ def load(path):
         raise PlanError(f"{path}: not JSON: {e}") from None
     if plan.get("format") != "harvest-plan":
         raise PlanError(f"{path}: field 'format' must be 'harvest-plan', got {plan.get('format')!r}")
-    if plan.get("version") != 1:
-        raise PlanError(f"{path}: field 'version' must be 1, got {plan.get('version')!r}")
+    if plan.get("version") != PLAN_VERSION:
+        raise PlanError(f"{path}: field 'version' must be {PLAN_VERSION}, got {plan.get('version')!r}")
     for key in ("solver", "totals", "stops"):
         if key not in plan:
             raise PlanError(f"{path}: missing field '{key}'")

@@ -254,7 +254,25 @@ def analysis_section(path):
     return "\n".join(lines)
 
 
-def write(path, rows, settings_text, figures, analysis=None, methods=("fov", "serial", "milp")):
+# What each reason of a plan's unreachable list means (docs/PLAN_FORMAT.md).
+WHY_TEXT = {"row_end": "reachable only from vehicle positions beyond the row's ends, which "
+                       "the candidate stops exclude (row.stops_beyond_ends = 0)",
+            "height": "outside joint 1's stroke",
+            "depth": "out of the arm's reach from every vehicle position",
+            "yaw": "in reach, but not at its pick heading within the joint limits"}
+
+
+def unreachable_text(total, reasons):
+    """The check line's explanation of the unreachable fruits, from the plans' reasons."""
+    if not total:
+        return "."
+    parts = [f"{n} {why} ({WHY_TEXT.get(why, 'unknown reason')})"
+             for why, n in sorted(reasons.items(), key=lambda kv: -kv[1])]
+    return ": " + "; ".join(parts) + ". The paper counts all m^L + m^R fruits."
+
+
+def write(path, rows, settings_text, figures, analysis=None, methods=("fov", "serial", "milp"),
+          unreachable_reasons=None):
     """Write the report; `figures` maps a caption to a path (relative links are made)."""
     inst = by_instance(rows)
     base = os.path.dirname(os.path.abspath(path))
@@ -284,9 +302,7 @@ def write(path, rows, settings_text, figures, analysis=None, methods=("fov", "se
     unreachable = sum(r["fruits_unreachable"] or 0 for r in rows if _ok(r) and r["method"] == "milp")
     out.append(f"- Fruits no stop can reach (left out of every plan and of its throughput): "
                f"{unreachable} over all MILP plans"
-               + ("." if not unreachable else ": the uniform box reaches beyond our arm's "
-                  "coverage at some heights and yaws (see the coverage figure); the paper "
-                  "counts all m^L + m^R fruits."))
+               + unreachable_text(unreachable, unreachable_reasons or {}))
     if analysis:
         out += ["", "## Analysis figures from our cost tables", "", analysis]
     if figures:

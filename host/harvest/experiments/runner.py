@@ -2,6 +2,9 @@
 
 Layout of an output directory:
   run.json              what the run was started with (checked again on resume)
+  planner.cfg           the config the planner is given: --config with row.stops_beyond_ends
+                        as the run asks (0, the paper's N = 201 stops over the row, unless
+                        --stops-beyond-ends)
   tables/               the two cost tables, made once with costgen
   instances/*.csv       the fruit maps (pure functions of distribution, alpha and seed)
   plans/*.json          one plan per (instance, method), as the planner wrote it
@@ -24,7 +27,7 @@ from dataclasses import dataclass, field
 from tqdm import tqdm
 
 from ..scenario import fruit_map, generate
-from ..scenario.config import Row, Config
+from ..scenario.config import Row, Config, derived_config_text
 from . import plan_file
 from .binaries import build_info
 from .results import ResultsFile, row_key
@@ -74,6 +77,7 @@ class Settings:
     time_limit_s: float = None   # None: the planner's own default
     fov_width_m: float = None    # None: the planner's own default
     jobs: int = 1
+    stops_beyond_ends: bool = False  # False: the paper's candidate stops, over the row only
     progress: bool = True
     log: object = field(default=sys.stderr)
 
@@ -92,7 +96,8 @@ def _sha256(path):
 def _manifest(s):
     """What makes finished rows comparable with new ones: same config and planner options."""
     return {"config_sha256": _sha256(s.config), "time_limit_s": s.time_limit_s,
-            "fov_width_m": s.fov_width_m, "n_left": s.n_left, "distribution": s.distribution}
+            "fov_width_m": s.fov_width_m, "n_left": s.n_left, "distribution": s.distribution,
+            "stops_beyond_ends": s.stops_beyond_ends}
 
 
 def check_manifest(s):
@@ -140,6 +145,17 @@ def ensure_tables(s, elbow_free=False, subdir="tables"):
         os.replace(os.path.join(tmp, name), paths[side])
     shutil.rmtree(tmp, ignore_errors=True)
     return paths
+
+
+def planner_config(s):
+    """OUT/planner.cfg: the run's config with row.stops_beyond_ends as the run asks."""
+    path = os.path.join(s.out_dir, "planner.cfg")
+    text = derived_config_text(s.config, {"row.stops_beyond_ends": int(s.stops_beyond_ends)})
+    tmp = path + ".tmp"
+    with open(tmp, "w", encoding="utf-8") as f:
+        f.write(text)
+    os.replace(tmp, path)
+    return path
 
 
 def ensure_instance(s, row, inst):
@@ -254,7 +270,7 @@ def _hang_timeout(s):
     return DEFAULT_HANG_S if s.time_limit_s is None else s.time_limit_s * HANG_FACTOR + HANG_MARGIN_S
 
 
-def run_one(s, children, tables, inst, map_path, method):
+def run_one(s, children, planner_cfg, tables, inst, map_path, method):
     """Plan one (instance, method) with the planner CLI; returns the results row."""
     plans = os.path.join(s.out_dir, "plans")
     plan_rel = os.path.join("plans", f"{inst.name}_{method}.json")
@@ -262,7 +278,7 @@ def run_one(s, children, tables, inst, map_path, method):
     # Per-runner temp name: a planner orphaned by a killed runner cannot clobber the plan a
     # resumed runner is writing for the same row.
     tmp = os.path.join(plans, f".{inst.name}_{method}.{os.getpid()}.part")
-    cmd = [s.planner, "--config", s.config, "--left", tables["L"], "--right", tables["R"],
+    cmd = [s.planner, "--config", planner_cfg, "--left", tables["L"], "--right", tables["R"],
            "--fruits", map_path, "--method", method, "--out", tmp, "--quiet"]
     if s.time_limit_s is not None:
         cmd += ["--time-limit", f"{s.time_limit_s:g}"]
@@ -327,6 +343,7 @@ def run(s, retry_errors=False):
                   file=s.log, flush=True)
     row_cfg = Row(Config.load(s.config))
     tables = ensure_tables(s)
+    cfg = planner_config(s)
     todo, keys = [], set()
     for inst in instances(s):
         map_path = ensure_instance(s, row_cfg, inst)
@@ -360,11 +377,11 @@ def run(s, retry_errors=False):
     try:
         if s.jobs <= 1:
             for inst, map_path, method in todo:
-                record(run_one(s, children, tables, inst, map_path, method))
+                record(run_one(s, children, cfg, tables, inst, map_path, method))
                 ran += 1
         else:
             with cf.ThreadPoolExecutor(max_workers=s.jobs) as pool:
-                futures = [pool.submit(run_one, s, children, tables, inst, mp, m)
+                futures = [pool.submit(run_one, s, children, cfg, tables, inst, mp, m)
                            for inst, mp, m in todo]
                 try:
                     for fut in cf.as_completed(futures):

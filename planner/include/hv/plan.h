@@ -17,7 +17,7 @@
 extern "C" {
 #endif
 
-#define HV_PLAN_FORMAT_VERSION 1
+#define HV_PLAN_FORMAT_VERSION 2
 #define HV_PLAN_PATH_LEN 1024
 #define HV_PLAN_ID_LEN 32 /* same as HV_FRUIT_ID_LEN */
 #define HV_PLAN_NAME_LEN 16
@@ -26,12 +26,13 @@ extern "C" {
 typedef struct hv_plan_pick {
     char id[HV_PLAN_ID_LEN];
     double x_m, y_m, z_m, yaw_rad; /* the fruit's pose as in the map */
-    double cost_s;                 /* G from the arm's cost table */
+    double cost_s;                 /* G: the pick model's time home -> fruit */
     double start_s;                /* planned start after arrival at the stop */
 } hv_plan_pick_t;
 
 typedef struct hv_plan_stop {
-    uint32_t index; /* candidate stop index over the row: y = row_start + index * step */
+    uint32_t index; /* candidate stop index over the course:
+                       y = row_start - stop_margin + index * step */
     double y_m;
     int pass;       /* 0; 1 for Serial's second pass (right side) */
     double c_left_s, c_right_s, c_s, idle_left_s, idle_right_s;
@@ -56,10 +57,11 @@ typedef struct hv_plan_horizon {
 typedef struct hv_plan {
     char method[HV_PLAN_NAME_LEN]; /* "milp", "fov", "serial" */
     char fruit_map[HV_PLAN_PATH_LEN], cost_table_left[HV_PLAN_PATH_LEN],
-        cost_table_right[HV_PLAN_PATH_LEN], config[HV_PLAN_PATH_LEN];
+        cost_table_right[HV_PLAN_PATH_LEN], config[HV_PLAN_PATH_LEN]; /* "" = none given */
 
     double stop_step_m, row_start_m, row_length_m, stop_penalty_s, vehicle_speed_mps,
         travel_time_s; /* params: travel_time_s is one pass's T_travel */
+    double stop_margin_m; /* params: the course runs this far beyond both row ends */
 
     char solver_status[HV_PLAN_NAME_LEN]; /* optimal feasible infeasible time_limit error
                                              heuristic */

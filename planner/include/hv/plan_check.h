@@ -1,15 +1,18 @@
 /* The independent plan checker (DESIGN §5).
  *
  * Its own code path: it never uses the instance builder, its pairs or hv_assignment_eval.
- * From the fruit map and the two cost tables it recomputes every pick cost with
- * hv_costtab_lookup (nearest cell, y_rel = fruit y - stop y) and verifies:
- *  - parameters: stop step, tau, vehicle speed as configured, T_travel = length / speed;
- *  - stops: on the candidate grid (y = row_start + index * step), in driving order (pass,
- *    then y, strictly), each with at least one pick; Serial: pass 0 left only, pass 1 right
- *    only; other methods: pass 0 only;
+ * From the fruit map and a pick model (the product's: exact IK, hv_pick_model_ik) it
+ * recomputes every pick and verifies:
+ *  - parameters: stop step, tau, vehicle speed as configured; the stop margin as the
+ *    configuration gives it (row.stops_beyond_ends, the arms' reach); T_travel = (length +
+ *    2 margin) / speed;
+ *  - stops: on the candidate grid (y = row_start - margin + index * step), in driving
+ *    order (pass, then y, strictly), each with at least one pick; Serial: pass 0 left only,
+ *    pass 1 right only; other methods: pass 0 only;
  *  - every map fruit picked exactly once or listed unreachable, with its side and pose;
- *  - every pick reachable from its stop, its cost and start time as the table says;
- *  - a fruit listed unreachable is reached by no candidate stop of the row;
+ *  - every pick reachable from its stop, its cost and start time as the model says;
+ *  - a fruit listed unreachable is reached by no candidate stop, with a known reason
+ *    ("row_end": a position beyond the candidate stops reaches it);
  *  - per-stop C^L, C^R, C, idle, the totals and the makespan, within 1e-6 s.
  * The first violation is reported as one line naming the plan's field.
  */
@@ -19,7 +22,7 @@
 #include <stddef.h>
 
 #include "hv/config.h"
-#include "hv/cost_table.h"
+#include "hv/pick_model.h"
 #include "hv/plan.h"
 #include "hv/plan_instance.h"
 #include "hv/plan_status.h"
@@ -30,13 +33,16 @@ extern "C" {
 
 #define HV_CHECK_TOL_S 1e-6
 
-/* Check `plan` against in-memory inputs (tables already validated and expected). */
+/* Check `plan` against in-memory inputs. */
 hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
-                          const hv_fruit_t *fruits, size_t n_fruits, const hv_costtab_t *left,
-                          const hv_costtab_t *right, char *err, size_t errlen);
+                          const hv_fruit_t *fruits, size_t n_fruits,
+                          const hv_pick_model_t *model, char *err, size_t errlen);
 
-/* Re-read the config, both tables (checked for side and grid) and the fruit map (limits
- * from the plan's row), then hv_plan_check(). NULL paths are taken from plan->inputs. */
+/* Re-read the config and the fruit map (limits from the plan's row), then hv_plan_check()
+ * with the exact-IK model of the config. Cost tables, when named (here or in the plan's
+ * inputs), are read and must have been built for the configured arms and grid
+ * (hv_costtab_load_for). NULL paths are taken from plan->inputs; an empty table path
+ * there means none. */
 hv_status_t hv_plan_check_files(const hv_plan_t *plan, const char *config_path,
                                 const char *left_path, const char *right_path,
                                 const char *fruits_path, char *err, size_t errlen);

@@ -1,8 +1,9 @@
 /* A stop-and-harvest instance as the solvers see it (DESIGN §1, §5), and a solution.
  *
- * Built from a fruit map and the two cost tables by plan_instance.c; consumed by the MILP
+ * Built from a fruit map and a pick model (pick_model.h) by plan_instance.c; consumed by the MILP
  * (milp.c), the baselines, the checker and the plan writer. Only reachable
- * (fruit, stop) pairs exist; fruits that no stop reaches are flagged, never fed to a solver.
+ * (fruit, stop) pairs exist; fruits that no stop reaches are flagged with the reason,
+ * never fed to a solver.
  */
 #ifndef HV_PLAN_INSTANCE_H
 #define HV_PLAN_INSTANCE_H
@@ -11,7 +12,7 @@
 #include <stdint.h>
 
 #include "hv/config.h"
-#include "hv/cost_table.h"
+#include "hv/pick.h"
 #include "hv/scara.h"
 #include "hv/status.h"
 
@@ -51,7 +52,19 @@ typedef struct hv_instance {
 
     double stop_penalty_s; /* tau */
     double travel_time_s;  /* T_travel (constant) */
+
+    /* why each fruit with no pair has none (hv_instance_why_name); 0 for the others. May be
+     * NULL in instances built by hand (tests, solver sub-instances). */
+    unsigned char *why;
 } hv_instance_t;
+
+/* Why a fruit has no pair: the hv_pick_why_t values (height, depth, yaw: no vehicle
+ * position within the arm's reach span picks it), or HV_WHY_ROW_END: positions beyond the
+ * candidate stops would reach it (row.stops_beyond_ends = 0 confines them to the row). */
+#define HV_WHY_ROW_END ((unsigned char)HV_PICK_WHY_COUNT)
+
+/* "height", "depth", "yaw", "row_end"; "ok" for 0; "?" otherwise. */
+const char *hv_instance_why_name(int why);
 
 /* A solution: the stop of every fruit (HV_NO_STOP for unreachable fruits). */
 typedef struct hv_assignment {
@@ -61,32 +74,43 @@ typedef struct hv_assignment {
 
 /* ---- Building (added by the instance builder; the fields above are the agreed API) ---- */
 
-/* Candidate stops and time constants of an instance. Stop p is at
- * row_start_m + p * stop_step_m, p = 0 .. round(row_length_m / stop_step_m). */
+/* Candidate stops and time constants of an instance. The fruit row is [row_start_m,
+ * row_start_m + row_length_m]; the vehicle's course runs stop_margin_m beyond both ends,
+ * and stop p is at row_start_m - stop_margin_m + p * stop_step_m,
+ * p = 0 .. round((row_length_m + 2 stop_margin_m) / stop_step_m). */
 typedef struct hv_instance_params {
     double row_start_m;
     double row_length_m;
     double stop_step_m;
     double stop_penalty_s; /* tau */
-    double travel_time_s;  /* T_travel */
+    double travel_time_s;  /* T_travel: the course's length / vehicle speed */
+    double stop_margin_m;  /* a whole number of stop steps, >= 0 (last: initialisers that
+                              stop before it mean 0) */
 } hv_instance_params_t;
 
-/* From the configuration: row [0, row.length], grid.step, tau, T_travel = length / speed. */
-void hv_instance_params_from_config(const hv_config_t *cfg, hv_instance_params_t *params);
+struct hv_pick_model;
+
+/* From the configuration: row [0, row.length], grid.step, tau; with row.stops_beyond_ends
+ * the margin from the model's reach spans (hv_pick_margin_of_spans), else 0;
+ * T_travel = (length + 2 margin) / speed. */
+void hv_instance_params_from_config(const hv_config_t *cfg, const struct hv_pick_model *model,
+                                    hv_instance_params_t *params);
+
+/* The course's length (m): row_length_m + 2 stop_margin_m. */
+double hv_instance_params_course_m(const hv_instance_params_t *params);
 
 /* Number of candidate stops of `params` (0 when the parameters are invalid). */
 size_t hv_instance_params_stops(const hv_instance_params_t *params);
 
 /* Build an instance: copies `fruits`, lays out the stops and collects every reachable
- * (fruit, stop) pair from the fruit's side's table (hv_costtab_row: one contiguous y-row
- * per fruit), G = cell ms / 1000, y_rel = fruit.y - stop_y. The tables must have been
- * checked against the expected side and grid (hv_costtab_expect) by the caller.
- * Fruits with no pair are unreachable (fruit_begin[f] == fruit_begin[f + 1]).
+ * (fruit, stop) pair, G = model->cost, trying the stops whose y_rel = fruit.y - stop_y
+ * lies in the model's span of the fruit's side. Fruits with no pair are unreachable
+ * (fruit_begin[f] == fruit_begin[f + 1]) and inst->why[f] says why; positions beyond the
+ * candidate stops are tried for that.
  * Errors: HV_ERR_ARG, HV_ERR_PLAN_PARAMS, HV_ERR_PLAN_NOMEM (diag filled). */
 hv_status_t hv_instance_build(const hv_instance_params_t *params, const hv_fruit_t *fruits,
-                              size_t n_fruits, const hv_costtab_t *left,
-                              const hv_costtab_t *right, hv_instance_t *inst,
-                              hv_diag_t *diag);
+                              size_t n_fruits, const struct hv_pick_model *model,
+                              hv_instance_t *inst, hv_diag_t *diag);
 
 /* A sub-instance: the stops [stop_begin, stop_end) of `full` and the fruits f with
  * keep_fruit[f] != 0 (all when keep_fruit is NULL) that have at least one pair there when

@@ -241,7 +241,7 @@ static void rd_plan(rd_t *r, const json_value_t *root, hv_plan_t *plan)
 
     static const char *const params_keys[] = {"stop_step_m", "row_start_m", "row_length_m",
                                               "stop_penalty_s", "vehicle_speed_mps",
-                                              "travel_time_s", NULL};
+                                              "travel_time_s", "stop_margin_m", NULL};
     const json_value_t *pa = rd_obj(r, root, "", "params", params_keys);
     if (pa != NULL) {
         plan->stop_step_m = rd_num(r, pa, "params", "stop_step_m");
@@ -250,6 +250,7 @@ static void rd_plan(rd_t *r, const json_value_t *root, hv_plan_t *plan)
         plan->stop_penalty_s = rd_num(r, pa, "params", "stop_penalty_s");
         plan->vehicle_speed_mps = rd_num(r, pa, "params", "vehicle_speed_mps");
         plan->travel_time_s = rd_num(r, pa, "params", "travel_time_s");
+        plan->stop_margin_m = rd_nonneg(r, pa, "params", "stop_margin_m");
     }
 
     static const char *const solver_keys[] = {"status", "gap", "nodes", "runtime_s",

@@ -29,7 +29,7 @@ int main(int argc, char **argv)
 {
     if (argc < 3 || argc > 4) {
         fprintf(stderr, "usage: planner_synth_tables CONFIG OUT_DIR [REACH_M]\n"
-                        "writes OUT_DIR/left.tab and OUT_DIR/right.tab (band model, reach REACH_M\n"
+                        "writes OUT_DIR/left.bin and OUT_DIR/right.bin (band model, reach REACH_M\n"
                         "(default 0.30) along the row, nothing above z = 0.75 m)\n");
         return 2;
     }
@@ -57,7 +57,7 @@ int main(int argc, char **argv)
             return 1;
         }
         char path[1024];
-        snprintf(path, sizeof path, "%s/%s.tab", argv[2], side == 0 ? "left" : "right");
+        snprintf(path, sizeof path, "%s/%s.bin", argv[2], side == 0 ? "left" : "right");
         hv_status_t st = hv_file_write_atomic(path, buf, len, err, sizeof err);
         free(buf);
         if (st != HV_OK) {

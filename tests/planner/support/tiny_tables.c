@@ -32,7 +32,31 @@ int tt_load_config(hv_config_t *cfg)
         fprintf(stderr, "%s\n", err);
         return -1;
     }
+    cfg->stops_beyond_ends = 0;
     return 0;
+}
+
+static hv_status_t table_cost(const void *ctx, const hv_fruit_t *fr, double stop_y_m,
+                              double *cost_s, hv_pick_why_t *why)
+{
+    const hv_costtab_t *tab = ctx;
+    uint16_t ms = 0;
+    hv_status_t st = hv_costtab_lookup(&tab[fr->side], fr->x_m, fr->y_m - stop_y_m, fr->z_m,
+                                       fr->yaw_rad, &ms);
+    *cost_s = ms / 1000.0;
+    *why = st == HV_OK ? HV_PICK_OK : HV_PICK_DEPTH;
+    return st;
+}
+
+void tt_table_model(const hv_costtab_t tab[2], hv_pick_model_t *model)
+{
+    model->cost = table_cost;
+    model->ctx = tab;
+    for (int s = 0; s < 2; ++s) {
+        const hv_axis_t *ay = &tab[s].grid.axis[HV_AX_Y];
+        model->y_rel_min[s] = ay->origin;
+        model->y_rel_max[s] = ay->origin + ay->step * (ay->count - 1);
+    }
 }
 
 int tt_make_table(const hv_config_t *cfg, hv_side_t side, tt_cost_fn fn, void *ctx,
@@ -91,6 +115,7 @@ int tt_fixture_init(tt_fixture_t *fx, tt_cost_fn fn, void *ctx)
             return -1;
         }
     }
+    tt_table_model(fx->tab, &fx->model);
     return 0;
 }
 

@@ -22,7 +22,9 @@ typedef struct tt_band {
 uint16_t tt_band_cost(hv_side_t side, double y_rel_m, uint32_t ix, uint32_t iz, uint32_t iyaw,
                       void *ctx);
 
-/* Load config/harvest.cfg from $HV_SOURCE_DIR (or the path compiled in). 0 on success. */
+/* Load config/harvest.cfg from $HV_SOURCE_DIR (or the path compiled in), with
+ * row.stops_beyond_ends = 0: the tests' instances lay their stops over the row alone. 0 on
+ * success. */
 int tt_load_config(hv_config_t *cfg);
 
 /* Build a table of `side` on the config's grid: *buf (malloc'd, free it) holds the file
@@ -30,11 +32,18 @@ int tt_load_config(hv_config_t *cfg);
 int tt_make_table(const hv_config_t *cfg, hv_side_t side, tt_cost_fn fn, void *ctx,
                   uint8_t **buf, size_t *len, hv_costtab_t *tab);
 
-/* Config + both tables, for a test binary. */
+#include "hv/pick_model.h"
+/* A pick model whose costs are the tables' nearest cells (tab[HV_SIDE_LEFT], [RIGHT]; they
+ * must outlive the model); a fruit no cell reaches is "depth". */
+void tt_table_model(const hv_costtab_t tab[2], hv_pick_model_t *model);
+
+/* Config + both tables + the model on them, for a test binary (do not copy it: the model
+ * points at its tables). */
 typedef struct tt_fixture {
     hv_config_t cfg;
     uint8_t *buf[2];
     hv_costtab_t tab[2]; /* [HV_SIDE_LEFT], [HV_SIDE_RIGHT] */
+    hv_pick_model_t model;
 } tt_fixture_t;
 int tt_fixture_init(tt_fixture_t *fx, tt_cost_fn fn, void *ctx);
 void tt_fixture_free(tt_fixture_t *fx);

@@ -1,0 +1,45 @@
+/* Where the instance builder and the plan checker get a pick's cost and reachability.
+ *
+ * A small interface (one function and its context), so the product computes every pick
+ * by the exact IK the executor uses (hv_pick_model_ik, core's hv/pick.h), while tests can
+ * supply synthetic costs whose optima they know.
+ */
+#ifndef HV_PICK_MODEL_H
+#define HV_PICK_MODEL_H
+
+#include "hv/config.h"
+#include "hv/pick.h"
+#include "hv/plan_instance.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct hv_pick_model {
+    /* Cost (s) of picking `fruit` with its side's arm from the vehicle stopped at
+     * stop_y_m: HV_OK with *cost_s, or an error status with *why (HV_PICK_HEIGHT, _DEPTH
+     * or _YAW) saying why it cannot. */
+    hv_status_t (*cost)(const void *ctx, const hv_fruit_t *fruit, double stop_y_m,
+                        double *cost_s, hv_pick_why_t *why);
+    const void *ctx;
+    /* Per side (hv_side_t): fruit y minus stop y (m) outside [y_rel_min, y_rel_max] is out
+     * of reach; the builder and the checker try only stops inside. */
+    double y_rel_min[2], y_rel_max[2];
+} hv_pick_model_t;
+
+/* The product's model: exact IK of each pair with the configured arms; cost = the time
+ * home -> fruit (hv_pick_solve's move_s). `arms` holds the arms and must outlive `model`. */
+typedef struct hv_ik_arms {
+    hv_arm_t arm[2]; /* [HV_SIDE_LEFT], [HV_SIDE_RIGHT] */
+} hv_ik_arms_t;
+
+/* Fill `arms` from the configuration and `model` on it; the reach spans come from
+ * hv_pick_reach_span over each side's fruit area. HV_ERR_UNREACHABLE when an arm reaches
+ * none of its area. */
+hv_status_t hv_pick_model_ik(const hv_config_t *cfg, hv_ik_arms_t *arms,
+                             hv_pick_model_t *model);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* HV_PICK_MODEL_H */
