@@ -8,7 +8,9 @@
 
 int bench_model_init(const hv_config_t *cfg, bench_model_t *m)
 {
-    hv_status_t st = hv_pick_model_ik(cfg, &m->arms, &m->model);
+    hv_config_t paper = *cfg;
+    paper.pick_cycle = 0;
+    hv_status_t st = hv_pick_model_ik(&paper, &m->ik, &m->model);
     if (st != HV_OK) {
         fprintf(stderr, "bench: pick model: %s\n", hv_status_name(st));
         return -1;
@@ -49,6 +51,7 @@ int bench_instance_make(const hv_config_t *cfg, const bench_model_t *m, size_t n
     }
     hv_config_t paper = *cfg;
     paper.stops_beyond_ends = 0;
+    paper.pick_cycle = 0;
     hv_instance_params_t par;
     hv_instance_params_from_config(&paper, &m->model, &par);
     hv_diag_t diag;

@@ -1,9 +1,10 @@
 /* Paper-sized planner instances for the MILP benchmark (DESIGN §2, §10).
  *
  * Pick costs come from the product's pick model: the exact IK and move time of the arms as
- * mounted by the configuration (hv_pick_model_ik). Candidate stops are the paper's N = 201
- * over the row (row.stops_beyond_ends is taken as 0 here), so the solver is measured on the
- * paper's model. Fruit is uniform in the canopy (docs/FRAMES.md).
+ * mounted by the configuration (hv_pick_model_ik). The paper's model: G one way home ->
+ * fruit and tau = vehicle.stop_penalty (plan.pick_cycle taken as 0), N = 201 candidate stops
+ * over the row (row.stops_beyond_ends taken as 0), so the solver is measured on the paper's
+ * instances. Fruit is uniform in the canopy (docs/FRAMES.md).
  */
 #ifndef HV_BENCH_INSTANCES_H
 #define HV_BENCH_INSTANCES_H
@@ -16,8 +17,8 @@
 #include "hv/plan_instance.h"
 
 typedef struct bench_model {
-    hv_ik_arms_t arms;
-    hv_pick_model_t model; /* points at arms: do not copy */
+    hv_ik_model_t ik;
+    hv_pick_model_t model; /* points at ik: do not copy */
 } bench_model_t;
 
 /* The pick model of the configuration. 0 on success, else a message on stderr. */

@@ -53,6 +53,9 @@ static const key_spec_t keys[] = {
     {"vehicle.speed", F(vehicle_speed_mps), 1, POS, 10.0, K_REAL},
     {"vehicle.accel", F(vehicle_accel_mps2), 1, POS, 10.0, K_REAL},
     {"vehicle.stop_penalty", F(stop_penalty_s), 1, 0.0, 1000.0, K_REAL},
+    {"pick.cut_time", F(cut_s), 1, POS, 60.0, K_REAL},
+    {"pick.release_time", F(release_s), 1, POS, 60.0, K_REAL},
+    {"plan.pick_cycle", F(pick_cycle), 1, 0.0, 1.0, K_BOOL},
     {"grid.step", F(grid_step_m), 1, 0.001, 1.0, K_REAL},
     {"grid.yaw_step_deg", F(grid_yaw_step_rad), 1, 0.1, 90.0, K_DEG},
     {"grid.y_half_span", F(grid_y_half_span_m), 1, POS, 10.0, K_REAL},
@@ -283,12 +286,10 @@ void hv_config_grid(const hv_config_t *cfg, hv_side_t side, hv_grid_t *grid)
     ax[HV_AX_YAW].count = steps_in(2.0 * cfg->pick_yaw_max_rad, cfg->grid_yaw_step_rad);
 }
 
-unsigned hv_config_stop_count(const hv_config_t *cfg)
+double hv_config_stop_time_s(const hv_config_t *cfg)
 {
-    return (unsigned)steps_in(cfg->row_length_m, cfg->grid_step_m);
-}
-
-double hv_config_travel_time_s(const hv_config_t *cfg)
-{
-    return cfg->row_length_m / cfg->vehicle_speed_mps;
+    /* a stop-to-stop move of d >= v^2/a takes d/v + v/a on the trapezoid: v/a is what
+     * stopping there costs beyond driving through */
+    return cfg->pick_cycle ? cfg->vehicle_speed_mps / cfg->vehicle_accel_mps2
+                           : cfg->stop_penalty_s;
 }

@@ -56,8 +56,6 @@ static void usage(FILE *out)
 "  --port N                udp port (default 43113)\n"
 "timing:\n"
 "  --time-scale K          expected node time scale; 0 = take the nodes' (default 0)\n"
-"  --cut-time S            end-effector cut, simulated s (default 1.0)\n"
-"  --release-time S        end-effector release, simulated s (default 0.5)\n"
 "  --margin M              timeout = planned * (1 + M) + slack (default 0.5)\n"
 "  --slack S               simulated s added to every timeout (default 1.0)\n"
 "  --max-retries N         further attempts of a fruit after a recoverable fault (2)\n"
@@ -75,7 +73,8 @@ static void usage(FILE *out)
 "exit status: 0 row done (--check-plan: every pick accepted), 3 stopped in the safe state,\n"
 "2 bad input, 1 runtime error, 4 --check-plan: the IK refuses a planned pick.\n"
 "Expected makespan (compared with the executed one): per stop the slower arm's sum of\n"
-"pick cycles (2 x IK move time home->fruit + cut + release) plus trapezoid vehicle moves\n"
+"pick cycles (2 x IK move time home->fruit + pick.cut_time + pick.release_time of the\n"
+"config) plus trapezoid vehicle moves\n"
 "between stops, from the course's start to its end (the row and the plan's stop margin\n"
 "beyond each end; the vehicle is expected at the course's start).\n");
 }
@@ -83,7 +82,7 @@ static void usage(FILE *out)
 typedef struct opts {
     const char *plan, *config, *table[2], *transport, *channel, *journal, *lcm_url, *summary;
     int port, quiet, check_only;
-    double time_scale, cut_s, release_s, margin, slack_s, startup_s, hb_timeout_s, latency_s;
+    double time_scale, margin, slack_s, startup_s, hb_timeout_s, latency_s;
     long max_retries;
 } opts_t;
 
@@ -108,7 +107,6 @@ static int parse_args(int argc, char **argv, opts_t *o)
         {"cost-table-right", required_argument, 0, 'R'},
         {"transport", required_argument, 0, 't'},   {"channel", required_argument, 0, 'C'},
         {"port", required_argument, 0, 'P'},        {"time-scale", required_argument, 0, 'k'},
-        {"cut-time", required_argument, 0, 'u'},    {"release-time", required_argument, 0, 'r'},
         {"margin", required_argument, 0, 'm'},      {"slack", required_argument, 0, 's'},
         {"max-retries", required_argument, 0, 'n'},
         {"startup-timeout", required_argument, 0, 'w'},
@@ -121,8 +119,6 @@ static int parse_args(int argc, char **argv, opts_t *o)
     memset(o, 0, sizeof *o);
     o->transport = "udp";
     o->port = HV_CAN_UDP_DEFAULT_PORT;
-    o->cut_s = 1.0;
-    o->release_s = 0.5;
     o->margin = 0.5;
     o->slack_s = 1.0;
     o->startup_s = 10.0;
@@ -145,8 +141,6 @@ static int parse_args(int argc, char **argv, opts_t *o)
             o->port = (int)v;
             break;
         case 'k': if (parse_double("time-scale", optarg, 0, &o->time_scale)) return -1; break;
-        case 'u': if (parse_double("cut-time", optarg, 1e-3, &o->cut_s)) return -1; break;
-        case 'r': if (parse_double("release-time", optarg, 1e-3, &o->release_s)) return -1; break;
         case 'm': if (parse_double("margin", optarg, 0, &o->margin)) return -1; break;
         case 's': if (parse_double("slack", optarg, 0, &o->slack_s)) return -1; break;
         case 'w': if (parse_double("startup-timeout", optarg, 0.1, &o->startup_s)) return -1; break;
@@ -301,7 +295,8 @@ int main(int argc, char **argv)
         free(w);
         return EXIT_USAGE;
     }
-    hv_exec_timing_t timing = {o.cut_s, o.release_s, cfg.vehicle_speed_mps, cfg.vehicle_accel_mps2};
+    hv_exec_timing_t timing = {cfg.cut_s, cfg.release_s, cfg.vehicle_speed_mps,
+                               cfg.vehicle_accel_mps2};
     if ((st = hv_exec_plan_prepare(&w->plan, arms, &timing)) != HV_OK) {
         fprintf(stderr, "harvest-exec: %s: cannot prepare the plan: %s\n", o.plan,
                 hv_exec_status_name(st));
@@ -352,8 +347,8 @@ int main(int argc, char **argv)
     prm.startup_timeout_s = o.startup_s;
     prm.heartbeat_timeout_s = o.hb_timeout_s;
     prm.latency_s = o.latency_s;
-    prm.cut_s = o.cut_s;
-    prm.release_s = o.release_s;
+    prm.cut_s = cfg.cut_s;
+    prm.release_s = cfg.release_s;
     prm.vehicle_speed_mps = cfg.vehicle_speed_mps;
     prm.vehicle_accel_mps2 = cfg.vehicle_accel_mps2;
     prm.max_retries = (unsigned)o.max_retries;

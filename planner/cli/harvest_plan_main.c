@@ -404,9 +404,9 @@ static int run_plan(const args_t *a)
         fprintf(stderr, "harvest-plan: %s\n", err);
         return EXIT_INPUT;
     }
-    hv_ik_arms_t arms;
+    hv_ik_model_t ik;
     hv_pick_model_t model;
-    hv_status_t mst = hv_pick_model_ik(&cfg, &arms, &model);
+    hv_status_t mst = hv_pick_model_ik(&cfg, &ik, &model);
     if (mst != HV_OK) {
         fprintf(stderr, "harvest-plan: %s: an arm reaches none of its fruit area (%s)\n",
                 a->config, hv_status_name(mst));
@@ -473,6 +473,7 @@ static int run_plan(const args_t *a)
     meta.cost_table_left = a->left;   /* NULL: written as "" (none given) */
     meta.cost_table_right = a->right;
     meta.config = a->config;
+    meta.pick_time = hv_pick_model_name(&cfg);
     meta.params = params;
     meta.vehicle_speed_mps = cfg.vehicle_speed_mps;
     meta.time_limit_s = a->time_limit_s;

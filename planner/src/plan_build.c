@@ -36,7 +36,9 @@ static hv_status_t copy_meta(hv_plan_t *plan, const hv_plan_meta_t *m)
         hv_plan_copy_str(plan->config, sizeof plan->config, m->config ? m->config : none) !=
             HV_OK ||
         hv_plan_copy_str(plan->solver_status, sizeof plan->solver_status, m->solver_status) !=
-            HV_OK) {
+            HV_OK ||
+        hv_plan_copy_str(plan->pick_time, sizeof plan->pick_time,
+                         m->pick_time ? m->pick_time : "one_way") != HV_OK) {
         return HV_ERR_ARG; /* a path longer than HV_PLAN_PATH_LEN - 1 */
     }
     plan->stop_step_m = m->params.stop_step_m;

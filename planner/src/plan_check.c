@@ -77,10 +77,16 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
                        "%g, configuration grid.step is %g", plan->stop_step_m,
                        cfg->grid_step_m);
     }
-    if (!near(plan->stop_penalty_s, cfg->stop_penalty_s, 1e-12)) {
+    const double tau = hv_config_stop_time_s(cfg);
+    if (!near(plan->stop_penalty_s, tau, 1e-12)) {
         return ck_fail(&c, HV_ERR_PLAN_CHECK_PARAMS, "params.stop_penalty_s",
-                       "%g, configuration vehicle.stop_penalty is %g", plan->stop_penalty_s,
-                       cfg->stop_penalty_s);
+                       "%g, the configuration gives %g (plan.pick_cycle = %d)",
+                       plan->stop_penalty_s, tau, cfg->pick_cycle);
+    }
+    if (strcmp(plan->pick_time, hv_pick_model_name(cfg)) != 0) {
+        return ck_fail(&c, HV_ERR_PLAN_CHECK_PARAMS, "params.pick_time",
+                       "\"%s\", the configuration gives \"%s\" (plan.pick_cycle = %d)",
+                       plan->pick_time, hv_pick_model_name(cfg), cfg->pick_cycle);
     }
     if (!near(plan->vehicle_speed_mps, cfg->vehicle_speed_mps, 1e-12)) {
         return ck_fail(&c, HV_ERR_PLAN_CHECK_PARAMS, "params.vehicle_speed_mps",
@@ -296,7 +302,7 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
     /* --- totals --- */
     if (st == HV_OK) {
         size_t stops = plan->n_stops;
-        double stop_time = cfg->stop_penalty_s * (double)stops;
+        double stop_time = tau * (double)stops;
         double travel_total = travel * (serial ? 2.0 : 1.0);
         double makespan = pick_sum + stop_time + travel_total;
         double thr = makespan > 0 ? (double)planned / makespan : 0.0;
@@ -358,9 +364,9 @@ hv_status_t hv_plan_check_files(const hv_plan_t *plan, const char *config_path,
             hv_costtab_unload(&tf);
         }
     }
-    hv_ik_arms_t arms;
+    hv_ik_model_t ik;
     hv_pick_model_t model;
-    if (st == HV_OK && (st = hv_pick_model_ik(&cfg, &arms, &model)) != HV_OK &&
+    if (st == HV_OK && (st = hv_pick_model_ik(&cfg, &ik, &model)) != HV_OK &&
         err != NULL && errlen > 0) {
         snprintf(err, errlen, "%s: an arm reaches none of its fruit area (%s)", config_path,
                  hv_status_name(st));

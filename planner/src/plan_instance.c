@@ -23,7 +23,7 @@ void hv_instance_params_from_config(const hv_config_t *cfg, const hv_pick_model_
     params->row_start_m = 0.0;
     params->row_length_m = cfg->row_length_m;
     params->stop_step_m = cfg->grid_step_m;
-    params->stop_penalty_s = cfg->stop_penalty_s;
+    params->stop_penalty_s = hv_config_stop_time_s(cfg);
     params->stop_margin_m =
         cfg->stops_beyond_ends
             ? hv_pick_margin_of_spans(model->y_rel_min, model->y_rel_max, cfg->grid_step_m)

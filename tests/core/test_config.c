@@ -80,8 +80,11 @@ static void test_project_config_parses(void **state)
     assert_float_equal(cfg.origin_m[4][0], 0.53, 0);
     assert_float_equal(cfg.theta_rad[0], 43.5 * M_PI / 180.0, 1e-12);
     assert_float_equal(cfg.stop_penalty_s, 5.0, 0);
-    assert_int_equal(hv_config_stop_count(&cfg), 201);
-    assert_float_equal(hv_config_travel_time_s(&cfg), 20.0, 1e-12);
+    /* a stop costs the paper's tau, or in the robot's time what the drive loses stopping */
+    cfg.pick_cycle = 0;
+    assert_float_equal(hv_config_stop_time_s(&cfg), 5.0, 1e-12);
+    cfg.pick_cycle = 1;
+    assert_float_equal(hv_config_stop_time_s(&cfg), 0.1 / 0.1, 1e-12);
     hv_grid_t gl, gr;
     hv_config_grid(&cfg, HV_SIDE_LEFT, &gl);
     hv_config_grid(&cfg, HV_SIDE_RIGHT, &gr);

@@ -47,7 +47,8 @@ int main(int argc, char **argv)
                " \"inputs\": {\"fruit_map\": \"(make-test-plan)\", \"cost_table_left\": \"\","
                " \"cost_table_right\": \"\", \"config\": \"%s\"},\n"
                " \"params\": {\"stop_step_m\": %.3f, \"row_start_m\": 0.0, \"row_length_m\": %.3f,"
-               " \"stop_penalty_s\": %.3f, \"vehicle_speed_mps\": %.3f, \"travel_time_s\": %.3f, \"stop_margin_m\": 0.0},\n"
+               " \"stop_penalty_s\": %.3f, \"vehicle_speed_mps\": %.3f, \"travel_time_s\": %.3f, \"stop_margin_m\": 0.0,"
+               " \"pick_time\": \"one_way\"},\n"
                " \"solver\": {\"status\": \"heuristic\", \"gap\": 0, \"nodes\": 0, \"runtime_s\": 0,"
                " \"time_limit_s\": 0},\n \"stops\": [\n",
             argv[1], cfg.grid_step_m, len, cfg.stop_penalty_s, cfg.vehicle_speed_mps,

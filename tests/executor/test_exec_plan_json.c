@@ -19,7 +19,7 @@ static const char *good =
     "            \"cost_table_right\": \"r.bin\", \"config\": \"h.cfg\"},\n"
     " \"params\": {\"stop_step_m\": 0.01, \"row_start_m\": 0.0, \"row_length_m\": 2.0,\n"
     "            \"stop_penalty_s\": 5, \"vehicle_speed_mps\": 0.1, \"travel_time_s\": 20,\n"
-    "            \"stop_margin_m\": 0},\n"
+    "            \"stop_margin_m\": 0, \"pick_time\": \"one_way\"},\n"
     " \"solver\": {\"status\": \"optimal\", \"gap\": 0.0, \"nodes\": 1, \"runtime_s\": 0.1,\n"
     "            \"time_limit_s\": 60},\n"
     " \"totals\": {\"makespan_s\": 61.5, \"pick_time_s\": 31.5, \"stop_time_s\": 10,\n"

@@ -58,15 +58,16 @@ def test_the_paper_experiment_plans_on_the_papers_stops(quick_run):
     """The run gives the planner the paper's N = 201 stops over the row, and the report says
     so and why each unreachable fruit is one."""
     out, _ = quick_run
-    assert "row.stops_beyond_ends = 0" in (out / "planner.cfg").read_text()
+    cfg = (out / "planner.cfg").read_text()
+    assert "row.stops_beyond_ends = 0" in cfg and "plan.pick_cycle = 0" in cfg
     reasons = set()
     for r in results.read(str(out / "results.csv")):
         plan = json.loads((out / r["plan"]).read_text())
-        assert plan["params"]["stop_margin_m"] == 0
+        assert plan["params"]["stop_margin_m"] == 0 and plan["params"]["pick_time"] == "one_way"
         assert all(0.0 <= s["y_m"] <= plan["params"]["row_length_m"] for s in plan["stops"])
         reasons |= {u["reason"] for u in plan["unreachable"]}
     text = (out / "report.md").read_text()
-    assert "N = 201" in text
+    assert "N = 201" in text and "plan.pick_cycle = 0" in text
     for why in reasons:
         assert f" {why} (" in text
 

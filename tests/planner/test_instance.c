@@ -196,7 +196,7 @@ static void test_ik_model_is_the_executors(void **state)
     hv_config_t cfg;
     assert_int_equal(tt_load_config(&cfg), 0);
     cfg.stops_beyond_ends = 1;
-    hv_ik_arms_t arms;
+    hv_ik_model_t arms;
     hv_pick_model_t m;
     assert_int_equal(hv_pick_model_ik(&cfg, &arms, &m), HV_OK);
     hv_instance_params_t pr;

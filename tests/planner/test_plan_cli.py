@@ -116,6 +116,10 @@ def test_methods_write_checked_plans(tables, tmp_path, method):
     course = pa["row_length_m"] + 2 * pa["stop_margin_m"]
     assert pa["stop_margin_m"] > 0.2  # the arm bases alone sit 0.235 m off the stop
     assert pa["travel_time_s"] == pytest.approx(course / pa["vehicle_speed_mps"])
+    # the robot's time (plan.pick_cycle = 1): a stop costs v / a, a pick its whole cycle
+    assert pa["pick_time"] == "cycle" and pa["stop_penalty_s"] == pytest.approx(0.1 / 0.1)
+    assert min(pk["cost_s"] for s in plan["stops"] for arm in ("left", "right")
+               for pk in s[arm]) > 1.0 + 0.5
     if method == "serial":
         assert t["travel_time_s"] == pytest.approx(2 * pa["travel_time_s"])
         assert {s["pass"] for s in plan["stops"]} == {0, 1}

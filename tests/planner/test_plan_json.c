@@ -45,6 +45,7 @@ static void sample(hv_plan_t *p)
     p->vehicle_speed_mps = 0.1;
     p->travel_time_s = 20.0;
     p->stop_margin_m = 0.5;
+    strcpy(p->pick_time, "cycle");
     strcpy(p->solver_status, "feasible");
     p->gap = 0.0123;
     p->nodes = 123456;
@@ -105,6 +106,7 @@ static void assert_same_plan(const hv_plan_t *a, const hv_plan_t *b)
     assert_true(a->row_length_m == b->row_length_m && a->stop_penalty_s == b->stop_penalty_s);
     assert_true(a->vehicle_speed_mps == b->vehicle_speed_mps && a->travel_time_s == b->travel_time_s);
     assert_true(a->stop_margin_m == b->stop_margin_m);
+    assert_string_equal(a->pick_time, b->pick_time);
     assert_string_equal(a->solver_status, b->solver_status);
     assert_true(a->gap == b->gap && a->nodes == b->nodes && a->runtime_s == b->runtime_s);
     assert_true(a->time_limit_s == b->time_limit_s);
@@ -191,6 +193,8 @@ static void test_rejects(void **state)
         {"\"stop_margin_m\": 0.5", "\"stop_margin_m\": -0.5", HV_ERR_PLAN_FORMAT,
          "params.stop_margin_m"},
         {", \"stop_margin_m\": 0.5", "", HV_ERR_PLAN_FORMAT, "params.stop_margin_m: missing"},
+        {"\"pick_time\": \"cycle\"", "\"pick_time\": \"two_way\"", HV_ERR_PLAN_FORMAT,
+         "params.pick_time: expected cycle or one_way"},
         {"\"nodes\": 123456", "\"nodes\": 1.5", HV_ERR_PLAN_FORMAT, "solver.nodes: expected an integer"},
         {"\"nodes\": 123456", "\"nodes\": \"many\"", HV_ERR_PLAN_FORMAT, "solver.nodes: expected a number"},
         {"\"cost_s\": 2.1, ", "", HV_ERR_PLAN_FORMAT, "stops[0].left[0].cost_s: missing"},

@@ -53,6 +53,14 @@ typedef struct hv_config {
     double vehicle_accel_mps2; /* vehicle.accel */
     double stop_penalty_s;     /* vehicle.stop_penalty: the paper's tau */
 
+    /* the pick cycle: home -> fruit, cut, fruit -> home, release */
+    double cut_s;              /* pick.cut_time (s) */
+    double release_s;          /* pick.release_time (s) */
+    int pick_cycle;            /* plan.pick_cycle (0/1): 1 plans in the robot's time (a pick
+                                  costs its whole cycle, a stop what the drive loses
+                                  stopping: hv_config_stop_time_s); 0 in the paper's (G one
+                                  way home -> fruit, tau = vehicle.stop_penalty) */
+
     /* grids */
     double grid_step_m;        /* grid.step: stops and x, y, z of the cost table */
     double grid_yaw_step_rad;  /* grid.yaw_step_deg */
@@ -79,11 +87,10 @@ void hv_config_arm_mounted(const hv_config_t *cfg, hv_side_t side, double offset
  * [-pick_yaw_max, pick_yaw_max], all at the configured steps. */
 void hv_config_grid(const hv_config_t *cfg, hv_side_t side, hv_grid_t *grid);
 
-/* Number of candidate stops over the row: round(length / step) + 1 (201 for 2 m at 0.01). */
-unsigned hv_config_stop_count(const hv_config_t *cfg);
-
-/* Travel time (s) of the whole row at the vehicle's speed: length / speed (T_travel). */
-double hv_config_travel_time_s(const hv_config_t *cfg);
+/* The planner's cost of one stop (s): with plan.pick_cycle the time the drive loses by
+ * stopping (vehicle.speed / vehicle.accel, the trapezoid's extra over driving through),
+ * else the paper's tau (vehicle.stop_penalty). */
+double hv_config_stop_time_s(const hv_config_t *cfg);
 
 #ifdef __cplusplus
 }

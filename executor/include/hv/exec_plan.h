@@ -56,7 +56,8 @@ typedef struct hv_exec_stop {
     /* filled by hv_exec_plan_prepare() */
     double arm_s[2];         /* expected busy time of each arm at this stop */
     double expected_s;       /* max of arm_s */
-    double drive_s;          /* expected vehicle move from the previous stop (or row start) */
+    double drive_s;          /* expected vehicle move from the previous stop (or the course
+                                start) */
 } hv_exec_stop_t;
 
 typedef struct hv_exec_plan {
@@ -70,7 +71,7 @@ typedef struct hv_exec_plan {
     double planned_pick_s;      /* the plan's totals.pick_time_s */
     /* filled by hv_exec_plan_prepare() */
     double home[2][HV_NJOINTS]; /* home pose of each arm */
-    double final_drive_s;       /* expected move from the last stop to the row end */
+    double final_drive_s;       /* expected move from the last stop to the course end */
     double expected_makespan_s; /* see the top of this file */
     unsigned n_unreachable;     /* picks the IK could not reach (they will be skipped) */
 } hv_exec_plan_t;

@@ -1,9 +1,10 @@
-/* Reading a plan file (docs/PLAN_FORMAT.md, version 1) into the executor's plan tables.
+/* Reading a plan file (docs/PLAN_FORMAT.md) into the executor's plan tables.
  *
- * Strict: the format and version must match; every field the executor uses must be there
- * with the right type and a sane value; a fruit may appear once per side. Errors are one
- * line naming the file and the field, e.g. "plan.json: stops[2].left[0].cost_s: expected
- * a number >= 0". The executor's own reader because the planner's lives with GLPK.
+ * The JSON goes through the planner's strict reader (library hv_plan_io, no GLPK); this
+ * maps it onto the executor's fixed tables and checks what the executor needs beyond the
+ * format: its capacity, one pick per fruit and side, stops on the plan's course, totals
+ * that agree with the stops. Errors are one line naming the file and the field, e.g.
+ * "plan.json: stops[2].left[0].cost_s: expected a number >= 0".
  */
 #ifndef HV_EXEC_PLAN_JSON_H
 #define HV_EXEC_PLAN_JSON_H

@@ -11,7 +11,7 @@
  * (ENABLE to all three nodes, each echoes the command) -> HOMING (HOME to both arms, wait
  * Homed) -> per stop: DRIVING (VehicleMove, wait Arrived with the move's sequence number)
  * -> HARVEST (both arms run their pick cycles independently; the stop ends when the slower
- * arm is done) -> ... -> FINAL_DRIVE (to the row end) -> ROW_DONE (arms and drive
+ * arm is done) -> ... -> FINAL_DRIVE (to the course end) -> ROW_DONE (arms and drive
  * disabled).
  *
  * Pick cycle of one arm: APPROACH (setpoint = IK of the fruit, wait TargetReached echoing

@@ -62,6 +62,11 @@ def build_parser():
                         "into the row (the product's default, row.stops_beyond_ends = 1); "
                         "without it the planner gets the paper's N = 201 candidate stops over "
                         "the row")
+    p.add_argument("--pick-cycle", action="store_true",
+                   help="plan in the robot's time: a pick costs its whole cycle (2 t(home -> "
+                        "fruit) + cut + release), a stop the drive's v/a (the product's "
+                        "default, plan.pick_cycle = 1); without it the paper's one-way G and "
+                        "tau")
     p.add_argument("--retry-errors", action="store_true",
                    help="run again the rows whose plan failed (they are kept as final otherwise)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
@@ -94,6 +99,7 @@ def _settings(args, need_planner):
                     planner=planner, costgen=costgen, alphas=alphas, seeds=seeds,
                     methods=methods, distribution=args.distribution, time_limit_s=args.time_limit, fov_width_m=args.fov_width,
                     jobs=args.jobs, stops_beyond_ends=args.stops_beyond_ends,
+                    pick_cycle=args.pick_cycle,
                     progress=not args.no_progress)
 
 
@@ -211,7 +217,11 @@ def do_report(args, s):
            "(row.stops_beyond_ends = 1)" if info.get("stops_beyond_ends") else
            "the paper's candidate stops (N = 201 on a 2 m row): stop p is the vehicle at "
            "y = p x grid.step along the row, its arm bases half mount.base_spacing ahead of "
-           "and behind it (row.stops_beyond_ends = 0)") + ".\n"
+           "and behind it (row.stops_beyond_ends = 0)") + "; costs: "
+        + ("the robot's time, a pick its whole cycle 2 t(home -> fruit) + cut + release and "
+           "a stop the drive's v/a (plan.pick_cycle = 1)" if info.get("pick_cycle") else
+           "the paper's, G = t(home -> fruit) one way and tau = vehicle.stop_penalty "
+           "(plan.pick_cycle = 0)") + ".\n"
         f"- Planner: `harvest-plan` (GLPK), MILP time limit {tl}{build}; {os.cpu_count()} CPU(s), "
         f"{platform.machine()}, Python {platform.python_version()}.\n"
         "- Paper: Gurobi on an AMD 7950, 128 GB.")

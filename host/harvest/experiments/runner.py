@@ -3,8 +3,9 @@
 Layout of an output directory:
   run.json              what the run was started with (checked again on resume)
   planner.cfg           the config the planner is given: --config with row.stops_beyond_ends
-                        as the run asks (0, the paper's N = 201 stops over the row, unless
-                        --stops-beyond-ends)
+                        and plan.pick_cycle as the run asks (0 and 0 unless
+                        --stops-beyond-ends / --pick-cycle: the paper's N = 201 stops over
+                        the row and its one-way G with tau)
   tables/               the two cost tables, made once with costgen
   instances/*.csv       the fruit maps (pure functions of distribution, alpha and seed)
   plans/*.json          one plan per (instance, method), as the planner wrote it
@@ -78,6 +79,7 @@ class Settings:
     fov_width_m: float = None    # None: the planner's own default
     jobs: int = 1
     stops_beyond_ends: bool = False  # False: the paper's candidate stops, over the row only
+    pick_cycle: bool = False         # False: the paper's costs (G one way, tau)
     progress: bool = True
     log: object = field(default=sys.stderr)
 
@@ -97,7 +99,7 @@ def _manifest(s):
     """What makes finished rows comparable with new ones: same config and planner options."""
     return {"config_sha256": _sha256(s.config), "time_limit_s": s.time_limit_s,
             "fov_width_m": s.fov_width_m, "n_left": s.n_left, "distribution": s.distribution,
-            "stops_beyond_ends": s.stops_beyond_ends}
+            "stops_beyond_ends": s.stops_beyond_ends, "pick_cycle": s.pick_cycle}
 
 
 def check_manifest(s):
@@ -148,9 +150,10 @@ def ensure_tables(s, elbow_free=False, subdir="tables"):
 
 
 def planner_config(s):
-    """OUT/planner.cfg: the run's config with row.stops_beyond_ends as the run asks."""
+    """OUT/planner.cfg: the run's config with the stops and the cost model the run asks for."""
     path = os.path.join(s.out_dir, "planner.cfg")
-    text = derived_config_text(s.config, {"row.stops_beyond_ends": int(s.stops_beyond_ends)})
+    text = derived_config_text(s.config, {"row.stops_beyond_ends": int(s.stops_beyond_ends),
+                                          "plan.pick_cycle": int(s.pick_cycle)})
     tmp = path + ".tmp"
     with open(tmp, "w", encoding="utf-8") as f:
         f.write(text)

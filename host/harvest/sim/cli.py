@@ -98,9 +98,10 @@ def build_parser():
     sim.add_argument("--exec-timeout", type=_non_negative, default=0.5,
                      help="wall s without executor heartbeat before COMM_TIMEOUT, armed by the "
                           "first heartbeat; 0 disables (default 0.5, the DBC's)")
-    sim.add_argument("--cut-time", type=_non_negative, default=1.0, help="CUT duration, s (1.0)")
-    sim.add_argument("--release-time", type=_non_negative, default=0.5,
-                     help="RELEASE duration, s (0.5)")
+    sim.add_argument("--cut-time", type=_non_negative, default=None,
+                     help="CUT duration, s (default: pick.cut_time of the config)")
+    sim.add_argument("--release-time", type=_non_negative, default=None,
+                     help="RELEASE duration, s (default: pick.release_time of the config)")
     sim.add_argument("--arm-start", type=float, nargs=4, metavar="Q",
                      help="joint positions (m rad rad rad) of both arms at start (default: home)")
     sim.add_argument("--vehicle-start", type=float, default=0.0, help="vehicle position, m (0)")
@@ -138,8 +139,10 @@ def _options(args, model):
     if args.travel and not args.travel[0] <= args.vehicle_start <= args.travel[1]:
         raise ValueError(f"--vehicle-start {args.vehicle_start} outside --travel")
     return Options(time_scale=args.time_scale, rate_hz=args.rate, heartbeat_s=args.heartbeat_period,
-                   exec_timeout_s=args.exec_timeout, cut_s=args.cut_time,
-                   release_s=args.release_time, faults=faults, seed=seed or 0,
+                   exec_timeout_s=args.exec_timeout,
+                   cut_s=model.cut_s if args.cut_time is None else args.cut_time,
+                   release_s=model.release_s if args.release_time is None else args.release_time,
+                   faults=faults, seed=seed or 0,
                    arm_start=args.arm_start, vehicle_start_m=args.vehicle_start,
                    travel=tuple(args.travel) if args.travel else None,
                    progress_s=args.progress)

@@ -36,6 +36,8 @@ class Model:
         self.vehicle_speed = cfg.positive("vehicle.speed")   # m/s
         self.vehicle_accel = cfg.positive("vehicle.accel")   # m/s^2
         self.row_length = cfg.positive("row.length")         # m
+        self.cut_s = cfg.positive("pick.cut_time")             # s, the end effector's CUT
+        self.release_s = cfg.positive("pick.release_time")     # s, and its RELEASE
 
     @classmethod
     def load(cls, path=None):

@@ -27,17 +27,22 @@ typedef struct hv_pick_model {
     double y_rel_min[2], y_rel_max[2];
 } hv_pick_model_t;
 
-/* The product's model: exact IK of each pair with the configured arms; cost = the time
- * home -> fruit (hv_pick_solve's move_s). `arms` holds the arms and must outlive `model`. */
-typedef struct hv_ik_arms {
-    hv_arm_t arm[2]; /* [HV_SIDE_LEFT], [HV_SIDE_RIGHT] */
-} hv_ik_arms_t;
+/* The product's model: exact IK of each pair with the configured arms (hv_pick_solve).
+ * The cost is the pick's whole cycle, 2 move_s + cut_s + release_s (the executor's), with
+ * plan.pick_cycle; the paper's G = move_s (home -> fruit) without. Must outlive `model`. */
+typedef struct hv_ik_model {
+    hv_arm_t arm[2];  /* [HV_SIDE_LEFT], [HV_SIDE_RIGHT] */
+    int cycle;        /* plan.pick_cycle */
+    double cut_s, release_s;
+} hv_ik_model_t;
 
-/* Fill `arms` from the configuration and `model` on it; the reach spans come from
+/* Fill `ik` from the configuration and `model` on it; the reach spans come from
  * hv_pick_reach_span over each side's fruit area. HV_ERR_UNREACHABLE when an arm reaches
  * none of its area. */
-hv_status_t hv_pick_model_ik(const hv_config_t *cfg, hv_ik_arms_t *arms,
-                             hv_pick_model_t *model);
+hv_status_t hv_pick_model_ik(const hv_config_t *cfg, hv_ik_model_t *ik, hv_pick_model_t *model);
+
+/* "cycle" or "one_way": the plan file's params.pick_time for a configuration. */
+const char *hv_pick_model_name(const hv_config_t *cfg);
 
 #ifdef __cplusplus
 }

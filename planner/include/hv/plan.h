@@ -62,6 +62,8 @@ typedef struct hv_plan {
     double stop_step_m, row_start_m, row_length_m, stop_penalty_s, vehicle_speed_mps,
         travel_time_s; /* params: travel_time_s is one pass's T_travel */
     double stop_margin_m; /* params: the course runs this far beyond both row ends */
+    char pick_time[HV_PLAN_NAME_LEN]; /* params: "cycle" (a pick's cost_s is its whole
+                                         cycle) or "one_way" (the paper's G) */
 
     char solver_status[HV_PLAN_NAME_LEN]; /* optimal feasible infeasible time_limit error
                                              heuristic */

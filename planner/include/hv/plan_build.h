@@ -15,6 +15,7 @@ typedef struct hv_plan_meta {
     const char *method;           /* "milp", "fov", "serial" */
     const char *fruit_map, *cost_table_left, *cost_table_right, *config; /* input paths */
     hv_instance_params_t params;  /* the row the instance was built on */
+    const char *pick_time;        /* "cycle" or "one_way" (hv_pick_model_name); NULL: one_way */
     double vehicle_speed_mps;
     const char *solver_status;    /* "optimal", "feasible", "heuristic", ... */
     double gap;                   /* < 0 = unknown */

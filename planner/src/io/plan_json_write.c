@@ -149,6 +149,7 @@ hv_status_t hv_plan_to_json(const hv_plan_t *plan, char **text, size_t *len)
     jw_raw(&w, ", "); jw_key(&w, "vehicle_speed_mps"); jw_num(&w, plan->vehicle_speed_mps);
     jw_raw(&w, ", "); jw_key(&w, "travel_time_s"); jw_num(&w, plan->travel_time_s);
     jw_raw(&w, ", "); jw_key(&w, "stop_margin_m"); jw_num(&w, plan->stop_margin_m);
+    jw_raw(&w, ", "); jw_key(&w, "pick_time"); jw_str(&w, plan->pick_time);
     jw_raw(&w, "}");
 
     jw_raw(&w, ",\n  "); jw_key(&w, "solver");

@@ -241,7 +241,8 @@ static void rd_plan(rd_t *r, const json_value_t *root, hv_plan_t *plan)
 
     static const char *const params_keys[] = {"stop_step_m", "row_start_m", "row_length_m",
                                               "stop_penalty_s", "vehicle_speed_mps",
-                                              "travel_time_s", "stop_margin_m", NULL};
+                                              "travel_time_s", "stop_margin_m", "pick_time",
+                                              NULL};
     const json_value_t *pa = rd_obj(r, root, "", "params", params_keys);
     if (pa != NULL) {
         plan->stop_step_m = rd_num(r, pa, "params", "stop_step_m");
@@ -251,6 +252,12 @@ static void rd_plan(rd_t *r, const json_value_t *root, hv_plan_t *plan)
         plan->vehicle_speed_mps = rd_num(r, pa, "params", "vehicle_speed_mps");
         plan->travel_time_s = rd_num(r, pa, "params", "travel_time_s");
         plan->stop_margin_m = rd_nonneg(r, pa, "params", "stop_margin_m");
+        rd_str(r, pa, "params", "pick_time", plan->pick_time, sizeof plan->pick_time);
+        static const char *const pick_times[] = {"cycle", "one_way", NULL};
+        if (!r->failed && !one_of(plan->pick_time, pick_times)) {
+            rd_fail(r, "params.pick_time", "expected cycle or one_way, got \"%s\"",
+                    plan->pick_time);
+        }
     }
 
     static const char *const solver_keys[] = {"status", "gap", "nodes", "runtime_s",

@@ -33,6 +33,7 @@ int tt_load_config(hv_config_t *cfg)
         return -1;
     }
     cfg->stops_beyond_ends = 0;
+    cfg->pick_cycle = 0;
     return 0;
 }
 

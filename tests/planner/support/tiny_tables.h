@@ -22,9 +22,9 @@ typedef struct tt_band {
 uint16_t tt_band_cost(hv_side_t side, double y_rel_m, uint32_t ix, uint32_t iz, uint32_t iyaw,
                       void *ctx);
 
-/* Load config/harvest.cfg from $HV_SOURCE_DIR (or the path compiled in), with
- * row.stops_beyond_ends = 0: the tests' instances lay their stops over the row alone. 0 on
- * success. */
+/* Load config/harvest.cfg from $HV_SOURCE_DIR (or the path compiled in), with the paper's
+ * model: row.stops_beyond_ends = 0 (the tests' instances lay their stops over the row
+ * alone) and plan.pick_cycle = 0 (costs one way, tau = vehicle.stop_penalty). 0 on success. */
 int tt_load_config(hv_config_t *cfg);
 
 /* Build a table of `side` on the config's grid: *buf (malloc'd, free it) holds the file
