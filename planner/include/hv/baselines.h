@@ -1,5 +1,5 @@
-/* The paper's baselines (DESIGN §7, paper §IV.B), on the same instance as the MILP so the
- * plans compare on equal terms.
+/* The paper's baselines (DESIGN §1, §5; paper §IV.B), on the same instance as the MILP, so
+ * the plans compare on equal terms.
  *
  * FOV ("non-optimised"): the camera sees a window of fov_width_m along the row, centred on
  * the vehicle. The windows tile the row from the first reachable fruit: window k covers
