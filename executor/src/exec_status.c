@@ -7,6 +7,8 @@ const char *hv_exec_status_name(int status)
     case HV_ERR_EXEC_PLAN_FIELD: return "HV_ERR_EXEC_PLAN_FIELD";
     case HV_ERR_EXEC_PLAN_RANGE: return "HV_ERR_EXEC_PLAN_RANGE";
     case HV_ERR_EXEC_PLAN_CAPACITY: return "HV_ERR_EXEC_PLAN_CAPACITY";
+    case HV_ERR_EXEC_PLAN_ID: return "HV_ERR_EXEC_PLAN_ID";
+    case HV_ERR_EXEC_PLAN_ORDER: return "HV_ERR_EXEC_PLAN_ORDER";
     case HV_ERR_EXEC_JOURNAL_IO: return "HV_ERR_EXEC_JOURNAL_IO";
     case HV_ERR_EXEC_JOURNAL_FORMAT: return "HV_ERR_EXEC_JOURNAL_FORMAT";
     case HV_ERR_EXEC_JOURNAL_PLAN: return "HV_ERR_EXEC_JOURNAL_PLAN";
