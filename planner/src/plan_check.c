@@ -9,6 +9,7 @@
 #include "hv/file_io.h"
 #include "hv/fruit_map.h"
 #include "hv/plan_check.h"
+#include "hv/plan_paths.h"
 
 typedef struct ck {
     char *err;
@@ -310,20 +311,59 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
     return st;
 }
 
-hv_status_t hv_plan_check_files(const hv_plan_t *plan, const char *config_path,
-                                const char *left_path, const char *right_path,
-                                const char *fruits_path, char *err, size_t errlen)
+/* `given` when not NULL, else the plan's `input` resolved against the plan's folder. */
+static hv_status_t input_path(const char *given, const char *plan_path, const char *input,
+                              const char *field, char *buf, size_t cap, const char **out,
+                              char *err, size_t errlen)
+{
+    ck_t c = {err, errlen};
+    if (given != NULL) {
+        *out = given;
+        return HV_OK;
+    }
+    if (plan_path == NULL) {
+        return ck_fail(&c, HV_ERR_ARG, field, "no path given and no plan file to resolve "
+                       "\"%s\" against", input);
+    }
+    hv_status_t st = hv_plan_input_resolve(plan_path, input, buf, cap);
+    if (st != HV_OK) {
+        return ck_fail(&c, st, field, "\"%s\" in the folder of %s: %s", input, plan_path,
+                       st == HV_ERR_NOMEM ? "path too long" : "empty path");
+    }
+    *out = buf;
+    return HV_OK;
+}
+
+hv_status_t hv_plan_check_files(const hv_plan_t *plan, const char *plan_path,
+                                const char *config_path, const char *left_path,
+                                const char *right_path, const char *fruits_path, char *err,
+                                size_t errlen)
 {
     if (plan == NULL) {
         return HV_ERR_ARG;
     }
-    config_path = config_path ? config_path : plan->config;
-    left_path = left_path ? left_path : plan->cost_table_left;
-    right_path = right_path ? right_path : plan->cost_table_right;
-    fruits_path = fruits_path ? fruits_path : plan->fruit_map;
+    char bufs[4][2 * HV_PLAN_PATH_LEN];
+    hv_status_t st = input_path(config_path, plan_path, plan->config, "inputs.config",
+                                bufs[0], sizeof bufs[0], &config_path, err, errlen);
+    if (st == HV_OK) {
+        st = input_path(left_path, plan_path, plan->cost_table_left, "inputs.cost_table_left",
+                        bufs[1], sizeof bufs[1], &left_path, err, errlen);
+    }
+    if (st == HV_OK) {
+        st = input_path(right_path, plan_path, plan->cost_table_right,
+                        "inputs.cost_table_right", bufs[2], sizeof bufs[2], &right_path, err,
+                        errlen);
+    }
+    if (st == HV_OK) {
+        st = input_path(fruits_path, plan_path, plan->fruit_map, "inputs.fruit_map", bufs[3],
+                        sizeof bufs[3], &fruits_path, err, errlen);
+    }
+    if (st != HV_OK) {
+        return st;
+    }
 
     hv_config_t cfg;
-    hv_status_t st = hv_config_load(config_path, &cfg, err, errlen);
+    st = hv_config_load(config_path, &cfg, err, errlen);
     if (st != HV_OK) {
         return st;
     }

@@ -36,10 +36,13 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
                           const hv_costtab_t *right, char *err, size_t errlen);
 
 /* Re-read the config, both tables (checked for side and grid) and the fruit map (limits
- * from the plan's row), then hv_plan_check(). NULL paths are taken from plan->inputs. */
-hv_status_t hv_plan_check_files(const hv_plan_t *plan, const char *config_path,
-                                const char *left_path, const char *right_path,
-                                const char *fruits_path, char *err, size_t errlen);
+ * from the plan's row), then hv_plan_check(). A NULL path is taken from plan->inputs and,
+ * unless absolute, resolved against the folder of `plan_path`, the plan's file
+ * (plan_paths.h); `plan_path` may be NULL only when every path is given. */
+hv_status_t hv_plan_check_files(const hv_plan_t *plan, const char *plan_path,
+                                const char *config_path, const char *left_path,
+                                const char *right_path, const char *fruits_path, char *err,
+                                size_t errlen);
 
 #ifdef __cplusplus
 }
