@@ -14,7 +14,8 @@ _ID_CHARS = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz01234
 
 
 def check_id(fid):
-    """None when `fid` is a valid fruit id, else why not (worded as the C readers word it)."""
+    """None when `fid` is a valid fruit id, else why not: the C readers' wording, with the
+    character shown as Python writes it rather than as 0xNN."""
     if not fid:
         return "empty"
     if len(fid) > ID_MAX_CHARS:
