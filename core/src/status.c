@@ -8,6 +8,7 @@ const char *hv_status_name(int status)
     case HV_ERR_NAN: return "HV_ERR_NAN";
     case HV_ERR_NOMEM: return "HV_ERR_NOMEM";
     case HV_ERR_IO: return "HV_ERR_IO";
+    case HV_ERR_FRUIT_ID: return "HV_ERR_FRUIT_ID";
     case HV_ERR_UNREACHABLE: return "HV_ERR_UNREACHABLE";
     case HV_ERR_JOINT_LIMIT: return "HV_ERR_JOINT_LIMIT";
     case HV_ERR_TAB_TRUNCATED: return "HV_ERR_TAB_TRUNCATED";

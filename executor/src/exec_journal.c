@@ -14,6 +14,7 @@
 
 #include "hv/cost_table.h" /* hv_crc32 */
 #include "hv/exec_status.h"
+#include "hv/fruit_id.h"
 
 #define JOURNAL_VERSION 1
 #define LINE_MAX_BYTES 256
@@ -86,6 +87,15 @@ static int pick_ok(const hv_exec_journal_t *j, int pick)
     return j && j->plan && pick >= 0 && pick < j->plan->n_picks;
 }
 
+/* A fruit record is written only when its id reads back as the same fruit: replay splits
+ * records at spaces and lines at newlines, so an id outside the set is refused, never
+ * written (the plan readers refuse such ids already; this guards plans built otherwise). */
+static hv_status_t id_ok(const hv_exec_pick_t *pk)
+{
+    size_t n = strnlen(pk->id, sizeof pk->id);
+    return hv_fruit_id_check(pk->id, n, NULL) == HV_OK ? HV_OK : HV_ERR_EXEC_JOURNAL_ID;
+}
+
 hv_status_t hv_exec_journal_stop(hv_exec_journal_t *j, int stop, double t_s)
 {
     if (!j || !j->plan || stop < 0 || stop >= j->plan->n_stops)
@@ -98,6 +108,8 @@ hv_status_t hv_exec_journal_cut(hv_exec_journal_t *j, int pick, int attempt, dou
     if (!pick_ok(j, pick))
         return HV_ERR_ARG;
     const hv_exec_pick_t *pk = &j->plan->picks[pick];
+    if (id_ok(pk) != HV_OK)
+        return HV_ERR_EXEC_JOURNAL_ID;
     return fmt_append(j, "C %c %s a=%d t=%.3f", side_char(pk->side), pk->id, attempt, t_s);
 }
 
@@ -106,6 +118,8 @@ hv_status_t hv_exec_journal_release(hv_exec_journal_t *j, int pick, int attempt,
     if (!pick_ok(j, pick))
         return HV_ERR_ARG;
     const hv_exec_pick_t *pk = &j->plan->picks[pick];
+    if (id_ok(pk) != HV_OK)
+        return HV_ERR_EXEC_JOURNAL_ID;
     return fmt_append(j, "R %c %s a=%d t=%.3f", side_char(pk->side), pk->id, attempt, t_s);
 }
 
@@ -116,6 +130,8 @@ hv_status_t hv_exec_journal_outcome(hv_exec_journal_t *j, int pick, int outcome,
         reason >= HV_RSN_COUNT)
         return HV_ERR_ARG;
     const hv_exec_pick_t *pk = &j->plan->picks[pick];
+    if (id_ok(pk) != HV_OK)
+        return HV_ERR_EXEC_JOURNAL_ID;
     return fmt_append(j, "F %c %s %s %s a=%d t=%.3f", side_char(pk->side), pk->id,
                       hv_exec_outcome_name(outcome), hv_exec_reason_name(reason), attempt, t_s);
 }

@@ -3,7 +3,7 @@
  * The JSON is read by the planner's strict plan reader (hv_plan_io, no GLPK); this file
  * only maps its result onto the executor's static plan and checks what the executor
  * needs beyond the format: its capacity, one pick per fruit and side, and totals that
- * agree with the stops. */
+ * agree with the stops. Fruit ids and the stops' driving order are the reader's checks. */
 #include "hv/exec_plan_json.h"
 
 #include <stdio.h>
@@ -106,6 +106,18 @@ static hv_status_t from_plan(const char *name, const hv_plan_t *p, hv_exec_plan_
     return HV_OK;
 }
 
+/* The executor's code for a refusal of the planner's reader (others, e.g. HV_ERR_IO, pass). */
+static hv_status_t exec_code(hv_status_t planner_code)
+{
+    switch ((int)planner_code) {
+    case HV_ERR_PLAN_JSON: return HV_ERR_EXEC_PLAN_SYNTAX;
+    case HV_ERR_PLAN_FORMAT: return HV_ERR_EXEC_PLAN_FIELD;
+    case HV_ERR_PLAN_ID: return HV_ERR_EXEC_PLAN_ID;
+    case HV_ERR_PLAN_ORDER: return HV_ERR_EXEC_PLAN_ORDER;
+    default: return planner_code;
+    }
+}
+
 hv_status_t hv_exec_plan_parse_json(const char *name, const char *text, size_t len,
                                     hv_exec_plan_t *plan, char *err, size_t errlen)
 {
@@ -115,11 +127,8 @@ hv_status_t hv_exec_plan_parse_json(const char *name, const char *text, size_t l
     memset(plan, 0, sizeof *plan);
     hv_plan_t p;
     hv_status_t st = hv_plan_parse(text, len, name, &p, err, errlen);
-    if (st == HV_ERR_PLAN_JSON) {
-        return HV_ERR_EXEC_PLAN_SYNTAX;
-    }
     if (st != HV_OK) {
-        return st == HV_ERR_PLAN_FORMAT ? HV_ERR_EXEC_PLAN_FIELD : st;
+        return exec_code(st);
     }
     st = from_plan(name, &p, plan, err, errlen);
     hv_plan_free(&p);
@@ -135,11 +144,8 @@ hv_status_t hv_exec_plan_load_json(const char *path, hv_exec_plan_t *plan, char 
     memset(plan, 0, sizeof *plan);
     hv_plan_t p;
     hv_status_t st = hv_plan_load(path, &p, err, errlen);
-    if (st == HV_ERR_PLAN_JSON) {
-        return HV_ERR_EXEC_PLAN_SYNTAX;
-    }
     if (st != HV_OK) {
-        return st == HV_ERR_PLAN_FORMAT ? HV_ERR_EXEC_PLAN_FIELD : st;
+        return exec_code(st);
     }
     st = from_plan(path, &p, plan, err, errlen);
     hv_plan_free(&p);

@@ -198,6 +198,11 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
     const hv_exec_loop_stats_t *st = &w->loop.st;
     char buf[2048];
     unsigned outcome[HV_OUT_COUNT] = {0, 0, 0};
+    /* what the transport dropped (datagrams that do not parse, CAN FD), beside the DBC
+     * frames of a wrong length the loop dropped (frames_rx_malformed) */
+    hv_can_stats_t cs;
+    memset(&cs, 0, sizeof cs);
+    hv_can_get_stats(&w->bus, &cs);
     for (uint16_t i = 0; i < w->plan.n_picks; i++)
         if (sm->prog.pick[i] == HV_PROG_DONE)
             outcome[sm->prog.outcome[i]]++;
@@ -211,6 +216,8 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
         "  \"wall_s\": %.6f,\n  \"cpu_s\": %.6f,\n  \"peak_rss_kb\": %ld,\n"
         "  \"steps\": %llu,\n  \"step_ns_mean\": %.1f,\n  \"step_ns_max\": %llu,\n"
         "  \"frames_rx\": %llu,\n  \"frames_tx\": %llu,\n  \"send_failures\": %llu,\n"
+        "  \"frames_rx_malformed\": %llu,\n  \"bus_rx_malformed\": %llu,\n"
+        "  \"bus_rx_unsupported\": %llu,\n"
         "  \"journal_records\": %llu,\n  \"journal\": \"%s\",\n  \"bus\": \"%s\"\n}\n",
         hv_exec_phase_name(sm->phase), hv_exec_safe_reason_name(sm->safe_reason), sm->safe_node,
         (unsigned)w->plan.n_picks, outcome[HV_OUT_PICKED], outcome[HV_OUT_FAILED],
@@ -221,6 +228,8 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
         st->steps ? (double)st->step_ns_total / (double)st->steps : 0.0,
         (unsigned long long)st->step_ns_max, (unsigned long long)st->frames_rx,
         (unsigned long long)st->frames_tx, (unsigned long long)st->send_failures,
+        (unsigned long long)st->frames_rx_malformed, (unsigned long long)cs.rx_malformed,
+        (unsigned long long)cs.rx_unsupported,
         (unsigned long long)st->journal_records, o->journal, hv_can_name(&w->bus));
     char err[256];
     if (n < 0 || (size_t)n >= sizeof buf ||

@@ -19,6 +19,7 @@
 #include "hv/plan_check.h"
 #include "hv/plan_eval.h"
 #include "hv/plan_io.h"
+#include "hv/plan_paths.h"
 
 enum { EXIT_INPUT = 1, EXIT_USAGE = 2, EXIT_NO_SOLUTION = 3, EXIT_CHECK = 4,
        EXIT_INTERRUPTED = 5 };
@@ -58,8 +59,11 @@ static const char k_usage[] =
     "  --quiet          no progress lines on stderr (errors are still printed)\n"
     "  --help           this text\n"
     "\n"
-    "check: re-reads the fruit map, tables and config (paths default to the plan's inputs)\n"
-    "and verifies the plan: exit 0 if it holds, 4 with the first violation otherwise.\n"
+    "check: re-reads the fruit map, tables and config (paths default to the plan's inputs,\n"
+    "relative ones taken from the plan file's folder) and verifies the plan: exit 0 if it\n"
+    "holds, 4 with the first violation otherwise.\n"
+    "\n"
+    "The plan names its inputs as given when absolute, else relative to its own folder.\n"
     "\n"
     "Ctrl-C or SIGTERM stops the solver as its time limit would: the best plan so far is\n"
     "checked and written with its status and gap (exit 5); a second one ends the program\n"
@@ -184,7 +188,7 @@ static int run_check(int argc, char **argv)
         fprintf(stderr, "harvest-plan: %s\n", err);
         return EXIT_INPUT;
     }
-    st = hv_plan_check_files(&plan, config, left, right, fruits, err, sizeof err);
+    st = hv_plan_check_files(&plan, plan_path, config, left, right, fruits, err, sizeof err);
     int rc = 0;
     if (st != HV_OK) {
         int is_check = st <= HV_ERR_PLAN_CHECK_DUPLICATE && st >= HV_ERR_PLAN_CHECK_PARAMS;
@@ -466,13 +470,24 @@ static int run_plan(const args_t *a)
         rc = EXIT_INPUT;
     }
 
+    /* the plan names its inputs relative to its own folder (plan_paths.h) */
+    char inputs[4][HV_PLAN_PATH_LEN] = {{0}};
+    const char *given[4] = {a->fruits, a->left, a->right, a->config};
+    for (int k = 0; k < 4 && rc == 0; ++k) {
+        if (given[k] != NULL && /* tables are optional */
+            hv_plan_input_relative(a->out, given[k], inputs[k], sizeof inputs[k], err,
+                                   sizeof err) != HV_OK) {
+            fprintf(stderr, "harvest-plan: %s\n", err);
+            rc = EXIT_INPUT;
+        }
+    }
     hv_plan_meta_t meta;
     memset(&meta, 0, sizeof meta);
     meta.method = a->method;
-    meta.fruit_map = a->fruits;
-    meta.cost_table_left = a->left;   /* NULL: written as "" (none given) */
-    meta.cost_table_right = a->right;
-    meta.config = a->config;
+    meta.fruit_map = inputs[0];
+    meta.cost_table_left = inputs[1]; /* "" when none was given */
+    meta.cost_table_right = inputs[2];
+    meta.config = inputs[3];
     meta.pick_time = hv_pick_model_name(&cfg);
     meta.params = params;
     meta.vehicle_speed_mps = cfg.vehicle_speed_mps;
@@ -583,8 +598,8 @@ static int run_plan(const args_t *a)
     }
     if (rc == 0) {
         /* the independent checker re-reads every input file */
-        hv_status_t st = hv_plan_check_files(&plan, a->config, a->left, a->right, a->fruits,
-                                             err, sizeof err);
+        hv_status_t st = hv_plan_check_files(&plan, NULL, a->config, a->left, a->right,
+                                             a->fruits, err, sizeof err);
         if (st != HV_OK) {
             fprintf(stderr, "harvest-plan: internal error, plan not written: %s\n", err);
             rc = EXIT_CHECK;

@@ -6,9 +6,13 @@
 #include <string.h>
 
 #include "hv/file_io.h"
+#include "hv/fruit_id.h"
 #include "hv/fruit_map.h"
 
 #define MAP_FIELDS 6
+
+/* an id that passes hv_fruit_id_check() fits hv_fruit_t.id with its NUL */
+typedef char hv_fruit_id_fits[HV_FRUIT_ID_LEN > HV_FRUIT_ID_MAX_CHARS ? 1 : -1];
 
 static const char *const k_field_names[MAP_FIELDS] = {"id", "side", "x", "y", "z", "yaw"};
 
@@ -99,20 +103,9 @@ static hv_status_t parse_line(const char *b, const char *e, const char *name, in
         trim(&fb[i], &fe[i]);
     }
     size_t idlen = (size_t)(fe[0] - fb[0]);
-    if (idlen == 0 || idlen >= HV_FRUIT_ID_LEN) {
-        if (idlen == 0) {
-            return map_fail(err, errlen, HV_ERR_PLAN_MAP_ID, name, line, "id", "empty");
-        }
-        return map_fail(err, errlen, HV_ERR_PLAN_MAP_ID, name, line, "id",
-                        "longer than %d characters", HV_FRUIT_ID_LEN - 1);
-    }
-    for (size_t i = 0; i < idlen; ++i) {
-        unsigned char c = (unsigned char)fb[0][i];
-        if (c <= 0x20 || c >= 0x7F || c == '"' || c == '\\') {
-            return map_fail(err, errlen, HV_ERR_PLAN_MAP_ID, name, line, "id",
-                            "character 0x%02x not allowed (printable ASCII, no quotes, "
-                            "backslashes or spaces)", c);
-        }
+    hv_diag_t d;
+    if (hv_fruit_id_check(fb[0], idlen, &d) != HV_OK) {
+        return map_fail(err, errlen, HV_ERR_PLAN_MAP_ID, name, line, d.field, "%s", d.message);
     }
     memcpy(f->id, fb[0], idlen);
     f->id[idlen] = '\0';

@@ -9,6 +9,7 @@
 #include "hv/file_io.h"
 #include "hv/fruit_map.h"
 #include "hv/plan_check.h"
+#include "hv/plan_paths.h"
 
 typedef struct ck {
     char *err;
@@ -336,27 +337,60 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
     return st;
 }
 
-/* A table path given here or named by the plan; NULL when there is none. */
-static const char *table_path(const char *given, const char *in_plan)
+/* `given` when not NULL, else the plan's `input` resolved against the plan's folder. */
+static hv_status_t input_path(const char *given, const char *plan_path, const char *input,
+                              const char *field, char *buf, size_t cap, const char **out,
+                              char *err, size_t errlen)
 {
-    const char *p = given ? given : in_plan;
-    return p != NULL && p[0] != '\0' ? p : NULL;
+    ck_t c = {err, errlen};
+    if (given != NULL) {
+        *out = given;
+        return HV_OK;
+    }
+    if (plan_path == NULL) {
+        return ck_fail(&c, HV_ERR_ARG, field, "no path given and no plan file to resolve "
+                       "\"%s\" against", input);
+    }
+    hv_status_t st = hv_plan_input_resolve(plan_path, input, buf, cap);
+    if (st != HV_OK) {
+        return ck_fail(&c, st, field, "\"%s\" in the folder of %s: %s", input, plan_path,
+                       st == HV_ERR_NOMEM ? "path too long" : "empty path");
+    }
+    *out = buf;
+    return HV_OK;
 }
 
-hv_status_t hv_plan_check_files(const hv_plan_t *plan, const char *config_path,
-                                const char *left_path, const char *right_path,
-                                const char *fruits_path, char *err, size_t errlen)
+hv_status_t hv_plan_check_files(const hv_plan_t *plan, const char *plan_path,
+                                const char *config_path, const char *left_path,
+                                const char *right_path, const char *fruits_path, char *err,
+                                size_t errlen)
 {
     if (plan == NULL) {
         return HV_ERR_ARG;
     }
-    config_path = config_path ? config_path : plan->config;
-    fruits_path = fruits_path ? fruits_path : plan->fruit_map;
-    const char *tables[2] = {table_path(left_path, plan->cost_table_left),
-                             table_path(right_path, plan->cost_table_right)};
+    char bufs[4][2 * HV_PLAN_PATH_LEN];
+    hv_status_t st = input_path(config_path, plan_path, plan->config, "inputs.config",
+                                bufs[0], sizeof bufs[0], &config_path, err, errlen);
+    if (st == HV_OK) {
+        st = input_path(fruits_path, plan_path, plan->fruit_map, "inputs.fruit_map", bufs[1],
+                        sizeof bufs[1], &fruits_path, err, errlen);
+    }
+    /* tables are optional: none given here and "" in the plan means none */
+    const char *tables[2] = {left_path, right_path};
+    const char *in_plan[2] = {plan->cost_table_left, plan->cost_table_right};
+    static const char *const fields[2] = {"inputs.cost_table_left", "inputs.cost_table_right"};
+    for (int side = 0; side < 2 && st == HV_OK; ++side) {
+        if (tables[side] == NULL && in_plan[side][0] != '\0') {
+            st = input_path(NULL, plan_path, in_plan[side], fields[side], bufs[2 + side],
+                            sizeof bufs[2 + side], &tables[side], err, errlen);
+        }
+    }
+    if (st != HV_OK) {
+        return st;
+    }
 
     hv_config_t cfg;
-    hv_status_t st = hv_config_load(config_path, &cfg, err, errlen);
+    st = hv_config_load(config_path, &cfg, err, errlen);
     for (int side = 0; side < 2 && st == HV_OK; ++side) {
         if (tables[side] != NULL) {
             hv_costtab_file_t tf;

@@ -39,6 +39,19 @@ def missing_pieces():
     return out
 
 
+def udp_skip_reasons():
+    """Reasons the udp tests cannot run; when there are none, this process has entered a
+    private network namespace (every socket and subprocess made afterwards lives there)."""
+    out = missing_pieces()
+    if not out:
+        from harvest.canbus import netns
+        try:
+            netns.enter_private_netns()
+        except netns.NetnsUnavailable as e:
+            out = [f"no private network namespace: {e}"]
+    return out
+
+
 def make_plan(path, stops, per_arm, seed=1):
     subprocess.run([MAKE_PLAN, CONFIG, str(path), str(stops), str(per_arm), str(seed)],
                    check=True)

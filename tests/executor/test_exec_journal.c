@@ -245,6 +245,52 @@ static void test_kill_and_resume(void **state)
     }
 }
 
+static long file_size(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fclose(f);
+    return n;
+}
+
+/* A plan built in memory (not read from a file) may hold ids the journal could not read
+ * back: such a record is refused and nothing is written, so the journal still replays. */
+static void test_unreadable_ids_never_written(void **state)
+{
+    (void)state;
+    fx_t *fx = malloc(sizeof *fx);
+    fx_plan(fx, 1, 3);
+    static const char *const bad[] = {"a\nb", "a b", "L0_1 *0"};
+    for (int k = 0; k < 3; ++k) {
+        snprintf(fx->plan.picks[k].id, sizeof fx->plan.picks[k].id, "%s", bad[k]);
+    }
+    char path[128], err[256];
+    path_of(path, sizeof path, "ids.journal");
+    hv_exec_journal_t j;
+    hv_exec_progress_t prog;
+    assert_int_equal(hv_exec_journal_open(&j, path, &fx->plan, &prog, err, sizeof err), HV_OK);
+    long header = file_size(path);
+    for (int k = 0; k < 3; ++k) {
+        assert_int_equal(hv_exec_journal_cut(&j, k, 1, 1.0), HV_ERR_EXEC_JOURNAL_ID);
+        assert_int_equal(hv_exec_journal_release(&j, k, 1, 2.0), HV_ERR_EXEC_JOURNAL_ID);
+        assert_int_equal(hv_exec_journal_outcome(&j, k, HV_OUT_PICKED, HV_RSN_OK, 1, 3.0),
+                         HV_ERR_EXEC_JOURNAL_ID);
+    }
+    assert_int_equal(file_size(path), header);
+    assert_int_equal(j.records, 1);
+    /* a valid id of the same plan is journalled, and the whole journal replays */
+    assert_int_equal(hv_exec_journal_outcome(&j, 3, HV_OUT_PICKED, HV_RSN_OK, 1, 4.0), HV_OK);
+    hv_exec_journal_close(&j);
+    assert_int_equal(hv_exec_journal_open(&j, path, &fx->plan, &prog, err, sizeof err), HV_OK);
+    assert_int_equal(j.records, 2);
+    assert_int_equal(prog.pick[3], HV_PROG_DONE);
+    assert_int_equal(prog.pick[0], HV_PROG_PENDING);
+    hv_exec_journal_close(&j);
+    free(fx);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -252,6 +298,7 @@ int main(void)
         cmocka_unit_test(test_torn_and_corrupt),
         cmocka_unit_test(test_other_plan),
         cmocka_unit_test(test_kill_and_resume),
+        cmocka_unit_test(test_unreadable_ids_never_written),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -98,13 +98,24 @@ static void test_bad(void **state)
            "stops[1].right[0].cost_s");
     expect("\"id\": \"17\", \"x\": -0.41", "\"id\": \"a1\", \"x\": -0.41",
            HV_ERR_EXEC_PLAN_RANGE, "stops[0].left[1].id");
-    expect("\"id\": \"17\", \"x\": 0.4", "\"id\": \"\", \"x\": 0.4", HV_ERR_EXEC_PLAN_FIELD,
-           "stops[1].right[0].id");
+    expect("\"id\": \"17\", \"x\": 0.4", "\"id\": \"\", \"x\": 0.4", HV_ERR_EXEC_PLAN_ID,
+           "stops[1].right[0].id: empty");
+    /* an id the journal could not read back: a newline (as the user wrote), a space */
+    expect("\"id\": \"17\", \"x\": 0.4", "\"id\": \"1\\n7\", \"x\": 0.4",
+           HV_ERR_EXEC_PLAN_ID, "stops[1].right[0].id: character 0x0a at position 2");
+    expect("\"id\": \"17\", \"x\": -0.41", "\"id\": \"1 7\", \"x\": -0.41",
+           HV_ERR_EXEC_PLAN_ID, "stops[0].left[1].id: character 0x20");
+    /* stops out of driving order: swapped y_m, a stop listed twice, a pass going back */
+    expect("\"y_m\": 1.2", "\"y_m\": 0.3", HV_ERR_EXEC_PLAN_ORDER,
+           "stops[1].y_m: 0.3 not after 0.4 of stops[0] in pass 0");
+    expect("\"y_m\": 1.2", "\"y_m\": 0.4", HV_ERR_EXEC_PLAN_ORDER, "stops[1].y_m: 0.4 not after");
+    expect("\"y_m\": 0.4, \"pass\": 0", "\"y_m\": 0.4, \"pass\": 1", HV_ERR_EXEC_PLAN_ORDER,
+           "stops[1].pass: 0 after pass 1 of stops[0]");
     expect("\"right\": []}", "\"right\": {}}", HV_ERR_EXEC_PLAN_FIELD, "stops[0].right");
     expect("\"index\": 120", "\"index\": 1.5", HV_ERR_EXEC_PLAN_FIELD, "stops[1].index");
     /* stops on the course only: the row and the plan's margin beyond each end */
-    expect("\"y_m\": 1.2,", "\"y_m\": -50,", HV_ERR_EXEC_PLAN_RANGE, "stops[1].y_m");
-    expect("\"y_m\": 0.4,", "\"y_m\": 2.01,", HV_ERR_EXEC_PLAN_RANGE, "stops[0].y_m");
+    expect("\"y_m\": 1.2,", "\"y_m\": 50,", HV_ERR_EXEC_PLAN_RANGE, "stops[1].y_m");
+    expect("\"y_m\": 0.4,", "\"y_m\": -0.01,", HV_ERR_EXEC_PLAN_RANGE, "stops[0].y_m");
     expect("\"stop_margin_m\": 0", "\"stop_margin_m\": -0.1", HV_ERR_EXEC_PLAN_FIELD,
            "params.stop_margin_m");
     expect("\"fruits_planned\": 3", "\"fruits_planned\": 4", HV_ERR_EXEC_PLAN_RANGE,
@@ -120,7 +131,8 @@ static void test_bad(void **state)
 static void test_capacity_and_io(void **state)
 {
     (void)state;
-    /* more stops than the static table holds: the good plan's header, then empty stops */
+    /* more stops than the static table holds: the good plan's header, then empty stops
+     * (in driving order, so that capacity is what refuses them) */
     const char *stops_at = strstr(good, " \"stops\": [");
     assert_non_null(stops_at);
     size_t cap = 4096 + (HV_EXEC_MAX_STOPS + 1) * 200;
@@ -128,10 +140,10 @@ static void test_capacity_and_io(void **state)
     size_t n = (size_t)snprintf(text, cap, "%.*s \"stops\": [", (int)(stops_at - good), good);
     for (unsigned i = 0; i <= HV_EXEC_MAX_STOPS; i++)
         n += (size_t)snprintf(text + n, cap - n,
-                              "%s{\"index\": %u, \"y_m\": 0, \"pass\": 0, \"C_left_s\": 0, "
+                              "%s{\"index\": %u, \"y_m\": %g, \"pass\": 0, \"C_left_s\": 0, "
                               "\"C_right_s\": 0, \"C_s\": 0, \"idle_left_s\": 0, "
                               "\"idle_right_s\": 0, \"left\": [], \"right\": []}",
-                              i ? "," : "", i);
+                              i ? "," : "", i, 0.01 * i);
     snprintf(text + n, cap - n, "], \"unreachable\": []}");
     char err[256];
     assert_int_equal(parse(text, err, sizeof err), HV_ERR_EXEC_PLAN_CAPACITY);

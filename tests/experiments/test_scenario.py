@@ -126,3 +126,42 @@ def test_fruit_map_reader_rejects_bad_fields(tmp_path):
     p.write_text("id,side,x,y,z,yaw\n1,L,-0.4,nan,0.6,0\n")
     with pytest.raises(fruit_map.FruitMapError, match=r"m\.csv:2: field 'y'"):
         fruit_map.read(str(p))
+
+
+# The id set as docs/FRAMES.md spells it (core/include/hv/fruit_id.h in C).
+ID_SET = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_.-"
+
+
+def test_fruit_id_set_is_the_documented_one():
+    for code in range(256):
+        ch = chr(code)
+        assert (fruit_map.check_id("a" + ch + "z") is None) == (ch in ID_SET), repr(ch)
+    assert fruit_map.check_id("x" * 31) is None
+    assert "more than 31" in fruit_map.check_id("x" * 32)
+    assert fruit_map.check_id("") == "empty"
+
+
+@pytest.mark.parametrize("field,why", [
+    ('"a\nb"', r"m\.csv:3: field 'id' 'a\\nb': character '\\n' at position 2"),
+    ("fruit 7", r"m\.csv:3: field 'id' 'fruit 7': character ' ' at position 6"),
+    ('"a,b"', r"m\.csv:3: field 'id' 'a,b': character ','"),
+    ("x" * 32, r"m\.csv:3: field 'id' 'x+': 32 characters"),
+    ("", r"m\.csv:3: field 'id' '': empty"),
+    ("1", r"m\.csv:3: field 'id' is repeated"),
+])
+def test_fruit_map_reader_refuses_bad_ids(tmp_path, field, why):
+    p = tmp_path / "m.csv"
+    p.write_text(f"id,side,x,y,z,yaw\n1,L,-0.4,0.5,0.6,0\n{field},R,0.4,0.5,0.6,0\n")
+    with pytest.raises(fruit_map.FruitMapError, match=why):
+        fruit_map.read(str(p))
+
+
+def test_fruit_map_writer_refuses_bad_ids_and_writes_nothing(tmp_path):
+    good = fruit_map.Fruit("L000", "L", -0.4, 0.5, 0.6, 0.0)
+    bad = fruit_map.Fruit("R\n001", "R", 0.4, 0.5, 0.6, 0.0)
+    p = tmp_path / "m.csv"
+    with pytest.raises(fruit_map.FruitMapError, match=r"fruit 1: field 'id'.*position 2"):
+        fruit_map.write(str(p), [good, bad])
+    assert not p.exists() and list(tmp_path.iterdir()) == []
+    fruit_map.write(str(p), [good])
+    assert fruit_map.read(str(p)) == [good]

@@ -85,8 +85,17 @@ static void test_bad_maps(void **state)
         {"id,side,x,y,z,yaw\n1,R,0.4,-0.01,0.6,0\n", HV_ERR_PLAN_MAP_RANGE, "outside the row"},
         {"id,side,x,y,z,yaw\n,R,0.4,0.5,0.6,0\n", HV_ERR_PLAN_MAP_ID, ":2: id: empty"},
         {"id,side,x,y,z,yaw\nthis-id-is-far-too-long-for-a-fruit-id,R,0.4,0.5,0.6,0\n",
-         HV_ERR_PLAN_MAP_ID, "longer than"},
+         HV_ERR_PLAN_MAP_ID, ":2: id: 38 characters, more than 31"},
         {"id,side,x,y,z,yaw\na\"b,R,0.4,0.5,0.6,0\n", HV_ERR_PLAN_MAP_ID, "not allowed"},
+        /* outside the id set (hv/fruit_id.h): a CR inside the id, a space, a '#', UTF-8 */
+        {"id,side,x,y,z,yaw\n1,L,-0.4,0.5,0.6,0\nr\rx,R,0.4,0.5,0.6,0\n", HV_ERR_PLAN_MAP_ID,
+         "map.csv:3: id: character 0x0d at position 2"},
+        {"id,side,x,y,z,yaw\nfruit 7,R,0.4,0.5,0.6,0\n", HV_ERR_PLAN_MAP_ID, "0x20 at position 6"},
+        {"id,side,x,y,z,yaw\nrow#7,R,0.4,0.5,0.6,0\n", HV_ERR_PLAN_MAP_ID, "0x23"},
+        {"id,side,x,y,z,yaw\nfr\xc3\xa9,R,0.4,0.5,0.6,0\n", HV_ERR_PLAN_MAP_ID, "0xc3"},
+        /* a newline inside a quoted id leaves a line of one field: refused, never joined */
+        {"id,side,x,y,z,yaw\n\"a\nb\",R,0.4,0.5,0.6,0\n", HV_ERR_PLAN_MAP_SYNTAX,
+         "map.csv:2: line: expected 6 fields"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         hv_fruitmap_t map = {99, (hv_fruit_t *)&map};

@@ -300,14 +300,66 @@ def test_check_catches_tampering(tables, tmp_path):
     assert p.returncode == 4 and "totals.makespan_s" in p.stderr
     p = tampered(lambda pl: pl["stops"][0]["right" if pl["stops"][0]["right"] else "left"].pop())
     assert p.returncode == 4
+    # a stop listed twice, or two stops swapped: the reader refuses the file itself
     p = tampered(lambda pl: pl["stops"].append(dict(pl["stops"][-1])))
-    assert p.returncode == 4 and "driving order" in p.stderr
+    last = len(good["stops"])
+    assert p.returncode == 1 and f"t.json: stops[{last}].y_m: " in p.stderr, p.stderr
+    if len(good["stops"]) >= 2:
+        p = tampered(lambda pl: pl["stops"].reverse())
+        assert p.returncode == 1 and "t.json: stops[1].y_m: " in p.stderr, p.stderr
+        assert "not after" in p.stderr
     p = tampered(lambda pl: pl.__setitem__("extra", 1))
     assert p.returncode == 1 and "extra: unknown field" in p.stderr
     # the same plan checked against another map: fruits missing / unknown
     other = write_map(tmp_path / "other.csv", random_fruits(6, 6, seed=12))
     p = run("check", str(out), "--fruits", other)
     assert p.returncode == 4
+
+
+def test_bad_fruit_id_in_plan_refused(tables, tmp_path):
+    fruits = write_map(tmp_path / "m.csv", random_fruits(3, 3, seed=13))
+    out = tmp_path / "p.json"
+    run(*plan_args(tables, fruits, str(out), "fov", "--quiet"), check=0)
+    plan = json.loads(out.read_text())
+    arm = "left" if plan["stops"][0]["left"] else "right"
+    plan["stops"][0][arm][0]["id"] = "L0\nS 0 t=0"  # a newline, then a journal record
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps(plan))
+    p = run("check", str(bad), check=1)
+    assert f"bad.json: stops[0].{arm}[0].id: character 0x0a at position 3" in p.stderr, p.stderr
+
+
+def test_check_finds_inputs_from_any_directory(tables, tmp_path):
+    """Inputs given relative to the current directory are written relative to the plan's
+    folder; `check` resolves them against that folder wherever it is run from."""
+    work = tmp_path / "work"
+    (work / "in").mkdir(parents=True)
+    (work / "out").mkdir()
+    write_map(work / "in" / "m.csv", random_fruits(4, 4, seed=17))
+    rel = [os.path.relpath(p, work) for p in (CONFIG, tables[0], tables[1])]
+    args = ["--config", rel[0], "--left", rel[1], "--right", rel[2], "--fruits", "in/m.csv",
+            "--method", "fov", "--out", "out/p.json", "--quiet"]
+    p = subprocess.run([PLAN, *args], cwd=work, capture_output=True, text=True, timeout=600)
+    assert p.returncode == 0, p.stderr
+    plan = json.loads((work / "out" / "p.json").read_text())
+    out_dir = os.path.realpath(work / "out")
+    for key, given in (("config", CONFIG), ("cost_table_left", tables[0]),
+                       ("cost_table_right", tables[1]), ("fruit_map", work / "in" / "m.csv")):
+        written = plan["inputs"][key]
+        assert not os.path.isabs(written), (key, written)
+        assert os.path.samefile(os.path.join(out_dir, written), given), (key, written)
+    # from the plan's folder, from its parent, from elsewhere: the same inputs found
+    for cwd in (work / "out", work, tmp_path, "/"):
+        target = os.path.relpath(work / "out" / "p.json", cwd) if cwd != "/" else \
+            str(work / "out" / "p.json")
+        q = subprocess.run([PLAN, "check", target], cwd=cwd, capture_output=True, text=True,
+                           timeout=600)
+        assert q.returncode == 0 and "OK" in q.stdout, (cwd, q.stderr)
+    # the folder moved as a whole still finds the map beside its relative path
+    moved = tmp_path / "moved"
+    os.rename(work, moved)
+    plan_moved = json.loads((moved / "out" / "p.json").read_text())
+    assert os.path.isfile(os.path.join(moved / "out", plan_moved["inputs"]["fruit_map"]))
 
 
 def test_export_lp(tables, tmp_path):

@@ -557,3 +557,49 @@ def test_scenario_file_and_record_of_a_pick_cycle(sim, ex, tmp_path):
                  ("pick", "release")):
         assert kinds.index(a) < kinds.index(b)
     assert one(events, event="setpoint", node="right_arm")["accepted"] is False
+
+
+# -- input the simulator cannot take ---------------------------------------------------------
+
+def test_bad_frames_counted_and_dropped_then_a_session_completes(sim, ex, proto):
+    """Frames with an id the DBC does not have, a wrong length, a value the DBC does not
+    list, or no data (remote): each is counted and dropped with its reason in the record;
+    the simulator keeps running and a session after them completes."""
+    import can
+    h, c = sim()
+    e = ex(c)
+    cmd = proto.message("LeftArmCommand")
+    enable = val(proto, "LeftArmCommand", "Command", "ENABLE")
+    unlisted = max(proto.choices("LeftArmCommand", "Command")) + 1
+    good = cmd.encode({"Command": enable, "CommandSeq": 200})
+    bad = {
+        "unknown_id": [can.Message(arbitration_id=0x7F0, data=b"\x01", is_extended_id=False),
+                       can.Message(arbitration_id=cmd.frame_id, data=good, is_extended_id=True)],
+        "wrong_length": [can.Message(arbitration_id=cmd.frame_id, data=good[:1],
+                                     is_extended_id=False),
+                         can.Message(arbitration_id=cmd.frame_id, data=good + b"\x00",
+                                     is_extended_id=False)],
+        "bad_value": [can.Message(arbitration_id=cmd.frame_id, is_extended_id=False,
+                                  data=cmd.encode({"Command": unlisted, "CommandSeq": 201},
+                                                  strict=False))],
+        "not_data_frame": [can.Message(arbitration_id=cmd.frame_id, is_remote_frame=True,
+                                       dlc=2, is_extended_id=False)],
+    }
+    for msgs in bad.values():
+        for m in msgs:
+            c.bus.send(m)
+    # handled in order: once a later command is echoed, every bad frame was seen
+    st = e.accepted("LeftArm", "ENABLE", "IDLE")
+    assert st["CommandSeq"] not in (200, 201)
+    seq, mark = e.setpoint("LeftArm", START)
+    e.reached("LeftArm", seq, mark)
+    events = h.stop()
+    stop = events[-1]
+    assert stop["event"] == "stop" and stop["reason"] == "stop requested"
+    rejected = [x for x in events if x["event"] == "rx_rejected"]
+    for reason, msgs in bad.items():
+        assert stop["stats"][f"rx_{reason}"] == len(msgs), (reason, stop["stats"])
+        assert len([x for x in rejected if x["reason"] == reason]) == len(msgs), rejected
+    assert one(rejected, reason="bad_value")["signal"] == "Command"
+    assert not [x for x in events if x["event"] == "command" and x["seq"] in (200, 201)]
+    assert one(events, event="target_reached", node="left_arm", seq=seq)

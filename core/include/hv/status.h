@@ -22,6 +22,7 @@ typedef enum hv_status {
     HV_ERR_NAN = -2,         /* a NaN or infinite number where a finite one is required */
     HV_ERR_NOMEM = -3,       /* caller-supplied buffer too small (core never allocates) */
     HV_ERR_IO = -4,          /* file could not be opened, read or written (io helpers only) */
+    HV_ERR_FRUIT_ID = -5,    /* a fruit id outside the allowed set (hv/fruit_id.h) */
 
     /* kinematics */
     HV_ERR_UNREACHABLE = -10, /* pose outside the arm's workspace */

@@ -47,7 +47,9 @@ hv_status_t hv_exec_journal_open(hv_exec_journal_t *j, const char *path,
                                  const hv_exec_plan_t *plan, hv_exec_progress_t *progress,
                                  char *err, size_t errlen);
 
-/* Append one record and make it durable. HV_ERR_EXEC_JOURNAL_IO on failure. */
+/* Append one record and make it durable. HV_ERR_EXEC_JOURNAL_IO on failure;
+ * HV_ERR_EXEC_JOURNAL_ID, with nothing written, for a fruit whose id is outside the set of
+ * hv/fruit_id.h (replay could not read it back as the same fruit). */
 hv_status_t hv_exec_journal_stop(hv_exec_journal_t *j, int stop, double t_s);
 hv_status_t hv_exec_journal_cut(hv_exec_journal_t *j, int pick, int attempt, double t_s);
 hv_status_t hv_exec_journal_release(hv_exec_journal_t *j, int pick, int attempt, double t_s);

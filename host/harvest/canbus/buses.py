@@ -36,6 +36,18 @@ def open_bus(spec, can_filters=None, **kwargs):
     return can.Bus(interface=interface, can_filters=can_filters, **args)
 
 
+def is_undecodable_datagram(exc):
+    """True when `exc` is python-can udp_multicast's refusal of one received datagram.
+
+    Its bus reads the datagram, then unpacks it (msgpack, then can.Message(check=True)) and
+    raises CanOperationError("could not unpack received message") from whatever that
+    raised; the datagram is consumed by then, so the next recv() reads the next one. A
+    failing socket raises CanOperationError from an OSError, or with no cause: not this.
+    """
+    return (isinstance(exc, can.CanOperationError) and exc.__cause__ is not None
+            and not isinstance(exc.__cause__, OSError))
+
+
 def recv_foreign(bus, sent_ids, timeout):
     """Next message whose id is not in `sent_ids` (our own looped-back udp frames), or
     None after `timeout` seconds without one."""

@@ -140,6 +140,14 @@ class Protocol:
             raise ProtocolError(f"frame id 0x{can_id:03x} is not in {self.path}")
         return m.name, m.decode(bytes(data), decode_choices=decode_choices, scaling=scaling)
 
+    def unlisted_choice(self, name, signals):
+        """(signal, value) of the first enumerated signal of message `name` whose value in
+        `signals` (decoded with decode_choices=False) the DBC does not list, else None."""
+        for sig in self.message(name).signals:
+            if sig.choices and signals.get(sig.name) not in sig.choices:
+                return sig.name, signals.get(sig.name)
+        return None
+
     def choices(self, name, signal):
         """{value: label} of an enum signal, e.g. choices("LeftArmStatus", "State")."""
         sig = self.message(name).get_signal_by_name(signal)

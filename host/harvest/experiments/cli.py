@@ -121,17 +121,19 @@ def _pick_plan(out, rows):
     return min(cands, key=lambda r: (abs(r["alpha"] - 1.0), r["seed"]))
 
 
-def do_plots(args, row_cfg):
+def do_plots(args):
     out = os.path.abspath(args.out)
     rows = _rows(out)
     fig_dir = os.path.join(out, "figures")
     paths = box_plots.write_all(rows, fig_dir)
     r = _pick_plan(out, rows)
     if r is not None:
-        plan = plan_file.load(os.path.join(out, r["plan"]))
-        name = os.path.basename(r["plan"]).rsplit("_", 1)[0]
-        fruits = fruit_map.read(os.path.join(out, "instances", name + ".csv"))
-        paths += plan_view.write(plan, fruits, row_cfg.base_spacing_m, row_cfg.mount_offset_m, fig_dir, "plan_top_view",
+        # the plan's own fruit map and config, wherever they were when it was planned
+        plan_path = os.path.join(out, r["plan"])
+        plan = plan_file.load(plan_path)
+        fruits = fruit_map.read(plan_file.input_path(plan_path, plan, "fruit_map"))
+        bases = Row(Config.load(plan_file.input_path(plan_path, plan, "config"))).arm_bases()
+        paths += plan_view.write(plan, fruits, bases, fig_dir, "plan_top_view",
                                  title=f"{r['method'].upper()} plan, alpha {r['alpha']:g}, seed "
                                        f"{r['seed']}: {r['stops']} stops, makespan "
                                        f"{r['makespan_s']:.1f} s, status {r['status']}")
@@ -249,7 +251,7 @@ def main(argv):
             print(f"experiments: {ran} plan(s) computed now, {total} in "
                   f"{os.path.join(s.out_dir, 'results.csv')}")
         if args.step in ("plots", "all"):
-            do_plots(args, row_cfg)
+            do_plots(args)
         if args.step in ("analysis", "all"):
             do_analysis(args, row_cfg)
         if args.step in ("report", "all"):

@@ -1,6 +1,7 @@
 """The planner's plan JSON (docs/PLAN_FORMAT.md): load it and take the figures we report."""
 import json
 import math
+import os
 
 
 PLAN_VERSION = 2  # planner/include/hv/plan.h HV_PLAN_FORMAT_VERSION
@@ -26,6 +27,17 @@ def load(path):
         if key not in plan:
             raise PlanError(f"{path}: missing field '{key}'")
     return plan
+
+
+def input_path(path, plan, key):
+    """The file to open for the plan's input `key` ("fruit_map", "config", ...): as written
+    when absolute, else relative to the folder of the plan file at `path`, never to the
+    current directory (docs/PLAN_FORMAT.md)."""
+    inputs = plan.get("inputs")
+    value = inputs.get(key) if isinstance(inputs, dict) else None
+    if not isinstance(value, str) or not value:
+        raise PlanError(f"{path}: field 'inputs.{key}' is not a path: {value!r}")
+    return value if os.path.isabs(value) else os.path.join(os.path.dirname(path), value)
 
 
 def _num(path, obj, section, key):

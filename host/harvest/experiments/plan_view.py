@@ -4,12 +4,11 @@ import numpy as np
 from .figures import plt, save
 
 
-def plan_figure(plan, fruits, base_spacing_m, offset_m, title=""):
-    """plan: the planner's JSON; fruits: the map's Fruit list (unpicked ones stay grey).
+def plan_figure(plan, fruits, bases, title=""):
+    """plan: the planner's JSON; fruits: the map's Fruit list (unpicked ones stay grey);
+    bases: where the config puts the arm bases, Row.arm_bases() of scenario.config.
 
-    Each picked fruit is joined to the arm base that picks it (left base at x = -D, ahead
-    of the stop by half the spacing; right base at x = +D, behind: docs/FRAMES.md),
-    coloured by stop.
+    Each picked fruit is joined to the arm base that picks it, coloured by stop.
     """
     stops = plan["stops"]
     fig, (top, bars) = plt.subplots(2, 1, figsize=(10.0, 6.0), sharex=True,
@@ -21,8 +20,8 @@ def plan_figure(plan, fruits, base_spacing_m, offset_m, title=""):
         y = st["y_m"]
         top.axvline(y, color=c, lw=0.8, alpha=0.5)
         top.plot([y], [0.0], marker="v", color=c, ms=8)
-        for arm, dy, bx in (("left", base_spacing_m / 2.0, -offset_m),
-                            ("right", -base_spacing_m / 2.0, offset_m)):
+        for arm in ("left", "right"):
+            dy, bx = bases[arm]
             if st.get(arm):
                 top.plot([y + dy], [bx], marker="^", color=c, ms=6)
             for f in st.get(arm, []):
@@ -63,5 +62,5 @@ def plan_figure(plan, fruits, base_spacing_m, offset_m, title=""):
     return fig
 
 
-def write(plan, fruits, base_spacing_m, offset_m, out_dir, stem, title=""):
-    return save(plan_figure(plan, fruits, base_spacing_m, offset_m, title), out_dir, stem)
+def write(plan, fruits, bases, out_dir, stem, title=""):
+    return save(plan_figure(plan, fruits, bases, title), out_dir, stem)

@@ -108,6 +108,15 @@ class Row:
     def z_max_m(self):
         return self.canopy_z_min_m + self.canopy_height_m
 
+    def arm_bases(self):
+        """Where each arm's base stands relative to the stop (docs/FRAMES.md, arm mount):
+        {"left": (dy, x), "right": (dy, x)} in m, dy along the row (left ahead by half the
+        base spacing, right behind), x lateral: mount.offset (the paper's D) is measured
+        from the canopy's near face towards the aisle centre."""
+        x = self.x_near_m - self.mount_offset_m
+        half = self.base_spacing_m / 2.0
+        return {"left": (half, -x), "right": (-half, x)}
+
 
 def load_row(path):
     return Row(Config.load(path))

@@ -13,7 +13,7 @@ from . import faults as faults_mod
 from .clock import ScaledClock
 from .model import ConfigError, Model
 from .record import Record
-from .runner import Options, Simulator
+from .runner import REJECT_REASONS, Options, Simulator
 
 EPILOG = """\
 times: every duration below is simulated seconds except --exec-timeout and --duration
@@ -234,7 +234,8 @@ def main(argv=None, stop_event=None):
         for sig, handler in old.items():
             signal.signal(sig, handler)
     s = sim.stats
+    rejected = sum(s[f"rx_{r}"] for r in REJECT_REASONS)
     print(f"harvest sim: stopped at t={clock.sim():.2f} s simulated: sent {s['tx']} received "
-          f"{s['rx']} dropped {s['tx_dropped']}+{s['rx_dropped']} picks "
+          f"{s['rx']} dropped {s['tx_dropped']}+{s['rx_dropped']} rejected {rejected} picks "
           f"{sum(a.picks for a in sim.arms.values())}", file=sys.stderr)
     return 0

@@ -18,7 +18,7 @@ import threading
 
 import can
 
-from harvest.canbus import PROTOCOL_VERSION
+from harvest.canbus import PROTOCOL_VERSION, buses
 
 from .arm import ArmNode, check_ee_against
 from .node import STATE_NAMES, check_against
@@ -27,6 +27,9 @@ from .vehicle import VehicleNode
 NODE_PREFIX = {"vehicle": "Vehicle", "left_arm": "LeftArm", "right_arm": "RightArm"}
 NODE_ORDER = ("vehicle", "left_arm", "right_arm")
 MAX_SLEEP_WALL_S = 0.05   # longest recv() wait, so a stop request is seen promptly
+# Input the simulator cannot take is counted and dropped, never fatal; these name why.
+REJECT_REASONS = ("bad_datagram", "not_data_frame", "unknown_id", "wrong_length", "bad_value")
+MAX_REJECT_RECORDS = 100  # record lines per reason (a flood must not fill the disk); stats count all
 
 
 class Options:
@@ -60,7 +63,8 @@ class Simulator:
         check_ee_against(proto, "LeftArm")
         check_ee_against(proto, "RightArm")
         self.stats = {"tx": 0, "rx": 0, "tx_dropped": 0, "rx_dropped": 0, "tx_delayed": 0,
-                      "rx_delayed": 0, "tx_silenced": 0, "tx_errors": 0, "ignored": 0}
+                      "rx_delayed": 0, "tx_silenced": 0, "tx_errors": 0, "ignored": 0,
+                      **{f"rx_{r}": 0 for r in REJECT_REASONS}}
         self.vehicle = VehicleNode(model, self._logger("vehicle"), options.vehicle_start_m,
                                    options.travel)
         vpos = lambda t: self.vehicle.positions(t)[0]  # noqa: E731
@@ -184,19 +188,66 @@ class Simulator:
                 self.emit(t, name, "EeStatus", n.ee_status_signals())
 
     # -- input path ---------------------------------------------------------------------------
-    def receive(self, msg, t):
-        """Decode one frame from the bus and deliver it to the nodes it addresses."""
-        m = self.proto.by_id(msg.arbitration_id)
-        if m is None or msg.is_extended_id or "EXECUTOR" not in m.senders:
-            self.stats["ignored"] += 1   # our own frames (udp loops back) or foreign ids
-            return
-        self.stats["rx"] += 1
+    def reject(self, t, reason, **fields):
+        """Count and drop input the simulator cannot take; the first MAX_REJECT_RECORDS of
+        each reason go to the record as `rx_rejected`."""
+        key = f"rx_{reason}"
+        self.stats[key] += 1
+        if self.stats[key] <= MAX_REJECT_RECORDS:
+            self.record.write(t, self.clock.wall(), None, "rx_rejected", reason=reason, **fields)
+
+    def recv(self, timeout):
+        """The next frame, or None after `timeout` s; a datagram python-can could not
+        unpack (udp_multicast) is rejected here and None returned."""
         try:
-            signals = m.decode(bytes(msg.data), decode_choices=False)
-        except Exception as e:  # cantools raises several types for a short or bad payload
-            self.record.write(t, self.clock.wall(), None, "bad_frame", name=m.name,
-                              data=bytes(msg.data).hex(), error=str(e))
+            return self.bus.recv(timeout=timeout)
+        except can.CanOperationError as e:
+            if not buses.is_undecodable_datagram(e):
+                raise
+            self.reject(self.clock.sim(), "bad_datagram",
+                        error=f"{e}: {type(e.__cause__).__name__}: {e.__cause__}")
+            return None
+
+    def _check(self, msg, t):
+        """(cantools message, signals) of a frame the nodes take; None when it is ours or
+        another node's (ignored), or rejected: not a data frame, an id the DBC does not
+        have, a length other than the DBC's, a value the DBC does not decode or list."""
+        data = bytes(msg.data)
+        if msg.is_error_frame or msg.is_remote_frame:
+            self.reject(t, "not_data_frame", id=msg.arbitration_id,
+                        error_frame=msg.is_error_frame, remote_frame=msg.is_remote_frame)
+            return None
+        m = None if msg.is_extended_id else self.proto.by_id(msg.arbitration_id)
+        if m is None:
+            self.reject(t, "unknown_id", id=msg.arbitration_id, extended=msg.is_extended_id,
+                        data=data.hex())
+            return None
+        if "EXECUTOR" not in m.senders:
+            self.stats["ignored"] += 1   # the nodes' own frames: udp loops them back
+            return None
+        if len(data) != m.length:
+            self.reject(t, "wrong_length", name=m.name, length=len(data), dbc_length=m.length,
+                        data=data.hex())
+            return None
+        try:
+            signals = m.decode(data, decode_choices=False)
+        except Exception as e:  # cantools raises several types for a payload it cannot read
+            self.reject(t, "bad_value", name=m.name, data=data.hex(), error=str(e))
+            return None
+        unlisted = self.proto.unlisted_choice(m.name, signals)
+        if unlisted is not None:
+            self.reject(t, "bad_value", name=m.name, data=data.hex(), signal=unlisted[0],
+                        value=unlisted[1], error="value not among the DBC's choices")
+            return None
+        return m, signals
+
+    def receive(self, msg, t):
+        """Check one frame from the bus and deliver it to the nodes it addresses."""
+        checked = self._check(msg, t)
+        if checked is None:
             return
+        m, signals = checked
+        self.stats["rx"] += 1
         if m.name in ("Estop", "ExecutorHeartbeat"):
             targets = NODE_ORDER
         else:
@@ -316,13 +367,13 @@ class Simulator:
                 if wd_due is not None:
                     wait = min(wait, wd_due - self.clock.wall())
                 wait = min(max(wait, 0.0), MAX_SLEEP_WALL_S)
-                msg = self.bus.recv(timeout=wait)
+                msg = self.recv(wait)
                 while msg is not None:
                     t = self.clock.sim()
                     for n in self.nodes.values():
                         n.update(t)
                     self.receive(msg, t)
-                    msg = self.bus.recv(timeout=0.0)
+                    msg = self.recv(0.0)
                 if opt.progress_s and self.out and self.clock.wall() >= next_progress:
                     next_progress += opt.progress_s
                     self._progress()

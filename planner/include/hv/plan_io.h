@@ -24,9 +24,11 @@ hv_status_t hv_plan_to_json(const hv_plan_t *plan, char **text, size_t *len);
 hv_status_t hv_plan_save(const char *path, const hv_plan_t *plan, char *err, size_t errlen);
 
 /* Parse JSON text (len bytes) into *plan. `name` is used in messages (the file path).
- * HV_ERR_PLAN_JSON (syntax; message names line and column) or HV_ERR_PLAN_FORMAT (message
- * names the field, e.g. "stops[2].left[0].cost_s: expected a number"). On error *plan is
- * left empty (nothing allocated). */
+ * HV_ERR_PLAN_JSON (syntax; message names line and column), HV_ERR_PLAN_FORMAT (message
+ * names the field, e.g. "stops[2].left[0].cost_s: expected a number"), HV_ERR_PLAN_ID (a
+ * fruit id outside the id set of hv/fruit_id.h, "stops[0].right[1].id: ...") or
+ * HV_ERR_PLAN_ORDER (stops not by pass, then increasing y_m: "stops[3].y_m: ..."). On
+ * error *plan is left empty (nothing allocated). */
 hv_status_t hv_plan_parse(const char *text, size_t len, const char *name, hv_plan_t *plan,
                           char *err, size_t errlen);
 

@@ -22,7 +22,7 @@ extern "C" {
 #define HV_ERR_PLAN_MAP_SIDE ((hv_status_t)-104)      /* side is not L or R */
 #define HV_ERR_PLAN_MAP_NAN ((hv_status_t)-105)       /* NaN or infinite coordinate */
 #define HV_ERR_PLAN_MAP_RANGE ((hv_status_t)-106)     /* coordinate outside the side's table grid or the row */
-#define HV_ERR_PLAN_MAP_ID ((hv_status_t)-107)        /* empty, too long or non-printable id */
+#define HV_ERR_PLAN_MAP_ID ((hv_status_t)-107)        /* id outside the id set (hv/fruit_id.h) */
 
     /* instance and solutions */
 #define HV_ERR_PLAN_NOMEM ((hv_status_t)-110)         /* malloc failed */
@@ -34,6 +34,8 @@ extern "C" {
     /* plan file (JSON) */
 #define HV_ERR_PLAN_JSON ((hv_status_t)-120)          /* not well-formed JSON */
 #define HV_ERR_PLAN_FORMAT ((hv_status_t)-121)        /* JSON, but not the plan format (field missing/wrong) */
+#define HV_ERR_PLAN_ID ((hv_status_t)-122)            /* a fruit id outside the id set (hv/fruit_id.h) */
+#define HV_ERR_PLAN_ORDER ((hv_status_t)-123)         /* stops not by pass, then increasing y_m */
 
     /* independent checker: the plan contradicts the inputs */
 #define HV_ERR_PLAN_CHECK_DUPLICATE ((hv_status_t)-130)   /* a fruit picked twice or listed twice */

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "hv/file_io.h"
+#include "hv/fruit_id.h"
 #include "hv/plan_io.h"
 #include "json_dom.h"
 
@@ -15,6 +16,7 @@ typedef struct rd {
     char *err;
     size_t errlen;
     int failed;
+    hv_status_t code; /* of the first failure */
 } rd_t;
 
 /* snprintf through a va_list: field paths are diagnostics, cut short if ever too long. */
@@ -26,21 +28,38 @@ static void fmt_path(char *dst, size_t cap, const char *fmt, ...)
     va_end(ap);
 }
 
-static void rd_fail(rd_t *r, const char *path, const char *fmt, ...)
+static void rd_vfail(rd_t *r, hv_status_t code, const char *path, const char *fmt,
+                     va_list ap)
 {
     if (r->failed) {
         return;
     }
     r->failed = 1;
+    r->code = code;
     if (r->err == NULL || r->errlen == 0) {
         return;
     }
     char msg[256];
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    snprintf(r->err, r->errlen, "%s: %s: %s", r->name, path, msg);
+}
+
+/* A field missing, of the wrong type or value: HV_ERR_PLAN_FORMAT. */
+static void rd_fail(rd_t *r, const char *path, const char *fmt, ...)
+{
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    rd_vfail(r, HV_ERR_PLAN_FORMAT, path, fmt, ap);
     va_end(ap);
-    snprintf(r->err, r->errlen, "%s: %s: %s", r->name, path, msg);
+}
+
+/* A failure with its own code (a bad fruit id, stops out of order). */
+static void rd_fail_code(rd_t *r, hv_status_t code, const char *path, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    rd_vfail(r, code, path, fmt, ap);
+    va_end(ap);
 }
 
 /* Reject members of `obj` not in the NULL-terminated `allowed` list. */
@@ -136,6 +155,23 @@ static void rd_str(rd_t *r, const json_value_t *obj, const char *path, const cha
     }
 }
 
+/* A fruit id: a string inside the id set (hv/fruit_id.h), so that what the executor
+ * journals reads back as the same fruit. */
+static void rd_id(rd_t *r, const json_value_t *obj, const char *path, char *dst, size_t cap)
+{
+    char full[224];
+    const json_value_t *v = rd_field(r, obj, path, "id", JSON_STRING, full, sizeof full);
+    if (v == NULL) {
+        return;
+    }
+    hv_diag_t d;
+    if (hv_fruit_id_check(v->string, strlen(v->string), &d) != HV_OK) {
+        rd_fail_code(r, HV_ERR_PLAN_ID, full, "%s", d.message);
+    } else if (hv_plan_copy_str(dst, cap, v->string) != HV_OK) {
+        rd_fail(r, full, "longer than %zu bytes", cap - 1);
+    }
+}
+
 static const json_value_t *rd_obj(rd_t *r, const json_value_t *obj, const char *path,
                                   const char *key, const char *const *allowed)
 {
@@ -182,12 +218,7 @@ static hv_plan_pick_t *rd_picks(rd_t *r, const json_value_t *stop, const char *p
             break;
         }
         rd_only(r, o, p, allowed);
-        rd_str(r, o, p, "id", picks[k].id, sizeof picks[k].id);
-        if (!r->failed && picks[k].id[0] == '\0') {
-            char f[240];
-            fmt_path(f, sizeof f, "%s.id", p);
-            rd_fail(r, f, "empty fruit id");
-        }
+        rd_id(r, o, p, picks[k].id, sizeof picks[k].id);
         picks[k].x_m = rd_num(r, o, p, "x");
         picks[k].y_m = rd_num(r, o, p, "y");
         picks[k].z_m = rd_num(r, o, p, "z");
@@ -197,6 +228,28 @@ static hv_plan_pick_t *rd_picks(rd_t *r, const json_value_t *stop, const char *p
     }
     *n_out = arr->n;
     return picks;
+}
+
+/* Stop s against the one before it: docs/PLAN_FORMAT.md lists stops in driving order, by
+ * pass, then strictly increasing y_m (a stop listed twice is out of order too). */
+static void rd_stop_order(rd_t *r, const hv_plan_stop_t *stops, size_t s)
+{
+    const hv_plan_stop_t *st = &stops[s], *prev = &stops[s - 1];
+    char f[64];
+    if (r->failed) {
+        return;
+    }
+    if (st->pass < prev->pass) {
+        fmt_path(f, sizeof f, "stops[%zu].pass", s);
+        rd_fail_code(r, HV_ERR_PLAN_ORDER, f,
+                     "%d after pass %d of stops[%zu] (stops are listed by pass, then "
+                     "increasing y_m)", st->pass, prev->pass, s - 1);
+    } else if (st->pass == prev->pass && !(st->y_m > prev->y_m)) {
+        fmt_path(f, sizeof f, "stops[%zu].y_m", s);
+        rd_fail_code(r, HV_ERR_PLAN_ORDER, f,
+                     "%.9g not after %.9g of stops[%zu] in pass %d (stops are listed by "
+                     "pass, then increasing y_m)", st->y_m, prev->y_m, s - 1, st->pass);
+    }
 }
 
 static void rd_plan(rd_t *r, const json_value_t *root, hv_plan_t *plan)
@@ -345,6 +398,9 @@ static void rd_plan(rd_t *r, const json_value_t *root, hv_plan_t *plan)
             st->idle_right_s = rd_num(r, o, p, "idle_right_s");
             st->left = rd_picks(r, o, p, "left", &st->n_left);
             st->right = rd_picks(r, o, p, "right", &st->n_right);
+            if (s > 0) {
+                rd_stop_order(r, plan->stops, s);
+            }
         }
     }
 
@@ -368,7 +424,7 @@ static void rd_plan(rd_t *r, const json_value_t *root, hv_plan_t *plan)
             }
             rd_only(r, o, p, un_keys);
             hv_plan_unreachable_t *ur = &plan->unreachable[u];
-            rd_str(r, o, p, "id", ur->id, sizeof ur->id);
+            rd_id(r, o, p, ur->id, sizeof ur->id);
             char side[4] = "";
             rd_str(r, o, p, "side", side, sizeof side);
             if (!r->failed) {
@@ -405,12 +461,12 @@ hv_status_t hv_plan_parse(const char *text, size_t len, const char *name, hv_pla
         }
         return HV_ERR_PLAN_JSON;
     }
-    rd_t r = {name, err, errlen, 0};
+    rd_t r = {name, err, errlen, 0, HV_OK};
     rd_plan(&r, root, plan);
     json_free(root);
     if (r.failed) {
         hv_plan_free(plan);
-        return HV_ERR_PLAN_FORMAT;
+        return r.code;
     }
     return HV_OK;
 }

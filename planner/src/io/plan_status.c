@@ -20,6 +20,8 @@ const char *hv_plan_status_name(int status)
     case HV_ERR_PLAN_PARAMS: return "HV_ERR_PLAN_PARAMS";
     case HV_ERR_PLAN_JSON: return "HV_ERR_PLAN_JSON";
     case HV_ERR_PLAN_FORMAT: return "HV_ERR_PLAN_FORMAT";
+    case HV_ERR_PLAN_ID: return "HV_ERR_PLAN_ID";
+    case HV_ERR_PLAN_ORDER: return "HV_ERR_PLAN_ORDER";
     case HV_ERR_PLAN_CHECK_DUPLICATE: return "HV_ERR_PLAN_CHECK_DUPLICATE";
     case HV_ERR_PLAN_CHECK_MISSING: return "HV_ERR_PLAN_CHECK_MISSING";
     case HV_ERR_PLAN_CHECK_UNKNOWN: return "HV_ERR_PLAN_CHECK_UNKNOWN";
