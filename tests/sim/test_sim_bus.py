@@ -140,15 +140,17 @@ def test_command_state_machine(sim, ex, prefix):
     e.accepted(prefix, "ENABLE", "IDLE")
     st = e.accepted(prefix, "ESTOP", "ESTOP")
     assert st["FaultBits"] & (1 << ESTOP_BIT[prefix])
-    e.refused(prefix, "ENABLE")                      # latched until CLEAR_FAULT
-    st = e.accepted(prefix, "CLEAR_FAULT", "DISABLED")
+    e.refused(prefix, "ENABLE")                      # latched until CLEAR_ESTOP
+    e.refused(prefix, "CLEAR_FAULT")                 # which a fault clear never is
+    st = e.accepted(prefix, "CLEAR_ESTOP", "DISABLED")
     assert st["FaultBits"] == 0
     e.accepted(prefix, "ENABLE", "IDLE")
     events = h.stop()
     cmds = [x for x in events if x["event"] == "command" and x["node"] == NODE_OF[prefix]]
     labels = [(x["command"], x["accepted"]) for x in cmds if x["command"] != "NONE"]
     assert labels == [("HOME", False), ("ENABLE", True), ("DISABLE", True), ("ENABLE", True),
-                      ("ESTOP", True), ("ENABLE", False), ("CLEAR_FAULT", True), ("ENABLE", True)]
+                      ("ESTOP", True), ("ENABLE", False), ("CLEAR_FAULT", False),
+                      ("CLEAR_ESTOP", True), ("ENABLE", True)]
 
 
 # -- arm motion ---------------------------------------------------------------------------------
@@ -327,7 +329,7 @@ def test_vehicle_move_outside_travel_is_refused(sim, ex):
 
 # -- e-stop -------------------------------------------------------------------------------------
 
-def test_estop_frame_stops_every_node_until_clear_fault(sim, ex):
+def test_estop_frame_stops_every_node_until_clear_estop(sim, ex):
     h, c = sim()
     e = ex(c)
     for prefix in ("Vehicle", "LeftArm", "RightArm"):
@@ -353,7 +355,8 @@ def test_estop_frame_stops_every_node_until_clear_fault(sim, ex):
     assert not any(s["TargetReached"] and s["SetpointSeq"] == sp for s in c.all("LeftArmStatus"))
     for prefix in ("Vehicle", "LeftArm", "RightArm"):
         e.refused(prefix, "ENABLE")
-        st = e.accepted(prefix, "CLEAR_FAULT", "DISABLED")
+        e.refused(prefix, "CLEAR_FAULT")
+        st = e.accepted(prefix, "CLEAR_ESTOP", "DISABLED")
         assert st["FaultBits"] == 0
     assert len(h.events("estop_frame")) == 6   # two frames, each delivered to three nodes
 

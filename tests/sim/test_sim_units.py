@@ -175,8 +175,24 @@ def test_arm_estop_brakes_and_latches():
     assert a.velocities(stop + 1) == [0.0] * 4 and not a.target_reached
     a.on_command(stop + 1, node_mod.CMD_ENABLE, 2)
     assert a.state == node_mod.ESTOP and a.command_seq == 1
-    a.on_command(stop + 1, node_mod.CMD_CLEAR_FAULT, 3)
-    assert a.state == node_mod.DISABLED and a.fault_bits == 0
+    a.on_command(stop + 1, node_mod.CMD_CLEAR_FAULT, 3)   # never releases an e-stop
+    assert a.state == node_mod.ESTOP and a.command_seq == 1
+    a.on_command(stop + 1, node_mod.CMD_CLEAR_ESTOP, 4)
+    assert a.state == node_mod.DISABLED and a.fault_bits == 0 and a.command_seq == 4
+
+
+def test_clear_estop_leaves_an_older_fault_latched():
+    log = Log()
+    v = VehicleNode(MODEL, log)
+    v.on_command(0.0, node_mod.CMD_ENABLE, 1)
+    v.comm_timeout(1.0)
+    v.estop(2.0, "test")
+    assert v.state == node_mod.ESTOP and v.health() == node_mod.HEALTH_ESTOP
+    v.on_command(3.0, node_mod.CMD_CLEAR_ESTOP, 2)
+    assert v.state == node_mod.FAULT and v.fault_bits == 1 << 3   # the comm timeout
+    assert v.health() == node_mod.HEALTH_FAULT
+    v.on_command(3.0, node_mod.CMD_CLEAR_FAULT, 3)
+    assert v.state == node_mod.DISABLED and v.fault_bits == 0 and v.command_seq == 3
 
 
 def test_end_effector_cut_counts_picks():
