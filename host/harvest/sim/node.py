@@ -145,6 +145,7 @@ class Node:
             elif self.state != HOMING:
                 self.start_motion(t, self.home_targets(), "home")
                 self.on_new_motion(t)
+                self.on_homing(t)
                 self.set_state(t, HOMING, "HOME")
                 self.log(t, "homing", targets=self.motion["targets"],
                          duration=self.motion["t_end"] - t)
@@ -183,6 +184,9 @@ class Node:
 
     def on_new_motion(self, t):
         """A new motion replaced the running one (hook)."""
+
+    def on_homing(self, t):
+        """A homing motion started (hook, after on_new_motion)."""
 
     # -- time --------------------------------------------------------------------------
     def update(self, t):
