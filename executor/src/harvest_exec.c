@@ -17,7 +17,8 @@
 #include "hv/exec_telemetry.h"
 #include "hv/file_io.h"
 
-enum { EXIT_ROW_DONE = 0, EXIT_RUNTIME = 1, EXIT_USAGE = 2, EXIT_SAFE = 3 };
+enum { EXIT_ROW_DONE = 0, EXIT_RUNTIME = 1, EXIT_USAGE = 2, EXIT_SAFE = 3,
+       EXIT_ESTOP_LATCHED = 4 };
 
 /* The only mutable global: a signal handler can reach nothing else. */
 static volatile sig_atomic_t stop_requested;
@@ -37,6 +38,10 @@ static void usage(FILE *out)
 "home them, drive to each stop, run both arms' pick cycles, and stop safely (e-stop) on\n"
 "any fault. Every outcome is journalled before the next action; restarting with the same\n"
 "plan and journal resumes without picking a fruit twice.\n"
+"\n"
+"A stop in the safe state (a fault, a node's e-stop, SIGINT/SIGTERM) leaves every node\n"
+"holding an e-stop. Only an operator releases it: a restart finds it latched and stays\n"
+"safe (exit 4) until it is given --clear-estop.\n"
 "\n"
 "input:\n"
 "  --plan FILE             plan file (docs/PLAN_FORMAT.md), required\n"
@@ -58,6 +63,14 @@ static void usage(FILE *out)
 "  --startup-timeout S     wall s to see every node (default 10)\n"
 "  --heartbeat-timeout S   wall s without a node's heartbeat = lost (default 0.5, the DBC's)\n"
 "  --latency S             wall s added to every motion timeout for the bus (default 0.3)\n"
+"safety:\n"
+"  --clear-estop NAME      operator NAME has dealt with what caused the e-stop and clears it\n"
+"                          for this start-up: the nodes reporting a latched e-stop get\n"
+"                          CLEAR_ESTOP once the clear is in the journal (\"E NAME nodes=...\"),\n"
+"                          and nothing is enabled before every node's heartbeat and status,\n"
+"                          received after the clear, show no e-stop. NAME: 1-32 of\n"
+"                          A-Z a-z 0-9 . _ -. Without it a latched e-stop is never cleared.\n"
+"                          An e-stop during the run still ends it (exit 3)\n"
 "record and telemetry:\n"
 "  --journal FILE          harvest journal (created, or resumed), required\n"
 "  --lcm-url URL           publish LCM telemetry here (memq://, udpm://...?ttl=0);\n"
@@ -66,7 +79,10 @@ static void usage(FILE *out)
 "  --quiet                 no progress lines on stderr\n"
 "  -h, --help              this text\n"
 "\n"
-"exit status: 0 row done, 3 stopped in the safe state, 2 bad input, 1 runtime error.\n"
+"exit status: 0 row done; 1 runtime error; 2 bad input; 3 stopped in the safe state\n"
+"(the nodes hold an e-stop: restart with --clear-estop NAME once the cause is dealt with);\n"
+"4 not started: a node reports a latched e-stop and --clear-estop was not given (nothing\n"
+"but e-stop frames and heartbeats was sent; the summary's estop_latched names the nodes).\n"
 "Expected makespan (compared with the executed one): per stop the slower arm's sum of\n"
 "pick cycles (2 x IK move time home->fruit + cut + release) plus trapezoid vehicle moves\n"
 "between stops, from the row start and to the row end.\n");
@@ -74,6 +90,7 @@ static void usage(FILE *out)
 
 typedef struct opts {
     const char *plan, *config, *table[2], *transport, *channel, *journal, *lcm_url, *summary;
+    const char *clear_by; /* --clear-estop, or NULL */
     int port, quiet;
     double time_scale, cut_s, release_s, margin, slack_s, startup_s, hb_timeout_s, latency_s;
     long max_retries;
@@ -108,6 +125,7 @@ static int parse_args(int argc, char **argv, opts_t *o)
         {"latency", required_argument, 0, 'a'},
         {"journal", required_argument, 0, 'j'},     {"lcm-url", required_argument, 0, 'l'},
         {"summary", required_argument, 0, 'S'},     {"quiet", no_argument, 0, 'q'},
+        {"clear-estop", required_argument, 0, 'E'},
         {"help", no_argument, 0, 'h'},              {0, 0, 0, 0}};
     memset(o, 0, sizeof *o);
     o->transport = "udp";
@@ -152,6 +170,14 @@ static int parse_args(int argc, char **argv, opts_t *o)
         case 'l': o->lcm_url = optarg; break;
         case 'S': o->summary = optarg; break;
         case 'q': o->quiet = 1; break;
+        case 'E':
+            if (!hv_exec_journal_operator_ok(optarg)) {
+                fprintf(stderr, "harvest-exec: --clear-estop: expected the operator's name, 1-32 "
+                        "of A-Z a-z 0-9 . _ -, got '%s'\n", optarg);
+                return -1;
+            }
+            o->clear_by = optarg;
+            break;
         case 'h': usage(stdout); exit(0);
         default: return -1;
         }
@@ -218,7 +244,8 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
 {
     const hv_exec_sm_t *sm = &w->sm;
     const hv_exec_loop_stats_t *st = &w->loop.st;
-    char buf[2048];
+    char buf[2048], latched[64];
+    hv_exec_node_list(sm->latched, latched, sizeof latched);
     unsigned outcome[HV_OUT_COUNT] = {0, 0, 0};
     for (uint16_t i = 0; i < w->plan.n_picks; i++)
         if (sm->prog.pick[i] == HV_PROG_DONE)
@@ -233,7 +260,9 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
         "  \"wall_s\": %.6f,\n  \"cpu_s\": %.6f,\n  \"peak_rss_kb\": %ld,\n"
         "  \"steps\": %llu,\n  \"step_ns_mean\": %.1f,\n  \"step_ns_max\": %llu,\n"
         "  \"frames_rx\": %llu,\n  \"frames_tx\": %llu,\n  \"send_failures\": %llu,\n"
-        "  \"journal_records\": %llu,\n  \"journal\": \"%s\",\n  \"bus\": \"%s\"\n}\n",
+        "  \"journal_records\": %llu,\n  \"journal\": \"%s\",\n  \"bus\": \"%s\",\n"
+        "  \"estop_latched\": \"%s\",\n  \"estop_cleared\": %s,\n"
+        "  \"safe_node_name\": \"%s\"\n}\n",
         hv_exec_phase_name(sm->phase), hv_exec_safe_reason_name(sm->safe_reason), sm->safe_node,
         (unsigned)w->plan.n_picks, outcome[HV_OUT_PICKED], outcome[HV_OUT_FAILED],
         outcome[HV_OUT_SKIPPED], hv_exec_remaining(sm), sm->picked, sm->failed, sm->skipped,
@@ -243,7 +272,9 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
         st->steps ? (double)st->step_ns_total / (double)st->steps : 0.0,
         (unsigned long long)st->step_ns_max, (unsigned long long)st->frames_rx,
         (unsigned long long)st->frames_tx, (unsigned long long)st->send_failures,
-        (unsigned long long)st->journal_records, o->journal, hv_can_name(&w->bus));
+        (unsigned long long)st->journal_records, o->journal, hv_can_name(&w->bus),
+        latched, sm->latched && sm->prm.clear_estop ? "true" : "false",
+        hv_exec_node_name(sm->safe_node));
     char err[256];
     if (n < 0 || (size_t)n >= sizeof buf ||
         hv_file_write_atomic(o->summary, buf, (size_t)n, err, sizeof err) != HV_OK)
@@ -359,6 +390,7 @@ int main(int argc, char **argv)
     prm.vehicle_speed_mps = cfg.vehicle_speed_mps;
     prm.vehicle_accel_mps2 = cfg.vehicle_accel_mps2;
     prm.max_retries = (unsigned)o.max_retries;
+    prm.clear_estop = o.clear_by != NULL;
     double h0 = hv_exec_home_max_s(&arms[0]), h1 = hv_exec_home_max_s(&arms[1]);
     prm.home_max_s = h0 > h1 ? h0 : h1;
     if ((st = hv_exec_init(&w->sm, &w->plan, &prm, &w->prog)) != HV_OK) {
@@ -413,6 +445,7 @@ int main(int argc, char **argv)
     w->loop.tm = &w->tm;
     w->loop.stop = &stop_requested;
     w->loop.progress = o.quiet ? NULL : stderr;
+    w->loop.clear_by = o.clear_by;
     w->loop.tick_s = 0.01;
     w->loop.linger_s = 0.5; /* e-stops repeat meanwhile when safe */
     uint64_t t0 = hv_exec_now_ns();
@@ -423,7 +456,10 @@ int main(int argc, char **argv)
     double cpu_s = (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec * 1e-6 +
                    (double)ru.ru_stime.tv_sec + (double)ru.ru_stime.tv_usec * 1e-6;
 
-    int rc = st != HV_OK ? EXIT_RUNTIME : w->sm.phase == HV_PH_ROW_DONE ? EXIT_ROW_DONE : EXIT_SAFE;
+    int rc = st != HV_OK                                 ? EXIT_RUNTIME
+             : w->sm.phase == HV_PH_ROW_DONE             ? EXIT_ROW_DONE
+             : w->sm.safe_reason == HV_SAFE_ESTOP_LATCHED ? EXIT_ESTOP_LATCHED
+                                                         : EXIT_SAFE;
     printf("harvest-exec: %s%s%s: picked %u, failed %u, skipped %u this run (%u remaining), "
            "faults %u; executed %.2f s vs expected %.2f s (plan's objective %.2f s)\n",
            hv_exec_phase_name(w->sm.phase), w->sm.phase == HV_PH_SAFE ? " " : "",
@@ -431,6 +467,17 @@ int main(int argc, char **argv)
            w->sm.picked, w->sm.failed, w->sm.skipped, hv_exec_remaining(&w->sm), w->sm.faults,
            hv_exec_executed_s(&w->sm, hv_exec_now_ns()), w->plan.expected_makespan_s,
            w->plan.planned_makespan_s);
+    if (rc == EXIT_ESTOP_LATCHED) {
+        char latched[64];
+        hv_exec_node_list(w->sm.latched, latched, sizeof latched);
+        printf("harvest-exec: latched e-stop on %s: not started, nothing enabled. Once its "
+               "cause is dealt with, an operator clears it by restarting with "
+               "--clear-estop NAME\n", latched);
+    }
+    else if (rc == EXIT_SAFE)
+        printf("harvest-exec: the nodes hold the e-stop (%s, %s): a restart needs "
+               "--clear-estop NAME\n", hv_exec_safe_reason_name(w->sm.safe_reason),
+               hv_exec_node_name(w->sm.safe_node));
     if (o.summary)
         write_summary(&o, w, wall_s, cpu_s, peak_rss_kb());
     hv_exec_telemetry_close(&w->tm);
