@@ -485,6 +485,11 @@ static void recover_progress(ctx_t *c, int side)
     const hv_exec_node_t *n = &sm->node[node];
     if (!echoed(sm, node))
         return;
+    if (arm->recover_step >= 2 && n->state == HV_NODE_FAULT) {
+        /* faulted again after its fault was cleared: the recovery itself failed */
+        enter_safe(c, HV_SAFE_FAULT, node);
+        return;
+    }
     switch (arm->recover_step) {
     case 0:
         arm->recover_step = 1;

@@ -202,7 +202,10 @@ static void node_act(fx_t *fx, const hv_exec_action_t *a)
             n->pending = 0;
             break;
         case HV_CMD_HOME:
-            if (a->node != HV_EXEC_VEHICLE && fx->f.home_never[side])
+            if (a->node != HV_EXEC_VEHICLE && fx->f.home_faults[side]) {
+                n->state = HV_NODE_FAULT;
+                n->fault_bits |= 0x01; /* joint 1 limit */
+            } else if (a->node != HV_EXEC_VEHICLE && fx->f.home_never[side])
                 n->state = HV_NODE_HOMING;
             else {
                 n->state = HV_NODE_HOMING;

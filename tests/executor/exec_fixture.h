@@ -33,6 +33,7 @@ typedef struct fx_faults {
     int cut_fail[2];            /* the next n cuts fail */
     int drop[2];                /* the next n cut fruits fall while returning */
     int home_never[2];          /* HOME never completes */
+    int home_faults[2];         /* HOME puts the arm in FAULT (after start-up's homing) */
     int move_never;             /* the vehicle never arrives */
     int vehicle_fault_on_move;  /* the vehicle faults on its n-th move */
     int comm_fault_arm;         /* >0: the left arm reports comm timeout on setpoint n */

@@ -350,19 +350,28 @@ static void test_vehicle_faults(void **state)
 static void test_recovery_fails(void **state)
 {
     (void)state;
-    fx_t *fx = new_fx(1, 1);
-    fx->f.joint_fault_at[0] = 1;
-    fx->f.home_never[0] = 1; /* only startup homing works: set after it */
-    fx->motion_ns = 300000000ull; /* a slower row, so it is still running */
-    fx_start(fx, NULL);
-    fx->f.home_never[0] = 0;
-    fx_run(fx, 0.5); /* through start-up homing */
-    fx->f.home_never[0] = 1;
-    fx_run(fx, 120.0);
-    assert_int_equal(fx->sm.phase, HV_PH_SAFE);
-    assert_int_equal(fx->sm.safe_reason, HV_SAFE_TIMEOUT);
-    assert_int_equal(fx->sm.safe_node, HV_EXEC_LEFT);
-    free(fx);
+    /* the recovery's HOME never completes (its timeout), or faults the arm again (at once) */
+    for (int faults = 0; faults < 2; faults++) {
+        fx_t *fx = new_fx(1, 1);
+        fx->f.joint_fault_at[0] = 1;
+        fx->motion_ns = 300000000ull; /* a slower row, so it is still running */
+        fx_start(fx, NULL);
+        fx_run(fx, 0.5); /* through start-up homing, which works */
+        if (faults)
+            fx->f.home_faults[0] = 1;
+        else
+            fx->f.home_never[0] = 1;
+        fx_run(fx, 120.0);
+        assert_int_equal(fx->sm.phase, HV_PH_SAFE);
+        assert_int_equal(fx->sm.safe_reason, faults ? HV_SAFE_FAULT : HV_SAFE_TIMEOUT);
+        assert_int_equal(fx->sm.safe_node, HV_EXEC_LEFT);
+        /* the e-stop comes after the recovery's HOME; a fault stops before its deadline */
+        int home = fx_find(fx, fx_find(fx, 0, HV_ACT_MOVE, -1), HV_ACT_COMMAND, HV_CMD_HOME);
+        int stop = fx_find(fx, home, HV_ACT_ESTOP, -1);
+        assert_true(home >= 0 && stop > home);
+        assert_true(faults == (fx->log[stop].t_ns < fx->sm.arm[0].deadline_ns));
+        free(fx);
+    }
 }
 
 static void test_homing_fails(void **state)
