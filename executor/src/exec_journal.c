@@ -2,6 +2,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "hv/exec_journal.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <libgen.h>
@@ -13,6 +14,7 @@
 #include <unistd.h>
 
 #include "hv/cost_table.h" /* hv_crc32 */
+#include "hv/exec_sm.h"     /* node indices and names */
 #include "hv/exec_status.h"
 #include "hv/fruit_id.h"
 
@@ -143,6 +145,46 @@ hv_status_t hv_exec_journal_done(hv_exec_journal_t *j, double t_s)
     return fmt_append(j, "D t=%.3f", t_s);
 }
 
+#define OPERATOR_MAX 32
+
+int hv_exec_journal_operator_ok(const char *name)
+{
+    size_t n = name ? strlen(name) : 0;
+    if (n == 0 || n > OPERATOR_MAX)
+        return 0;
+    for (size_t i = 0; i < n; i++)
+        if (!isalnum((unsigned char)name[i]) && !strchr("._-", name[i]))
+            return 0;
+    return 1;
+}
+
+hv_status_t hv_exec_journal_estop_clear(hv_exec_journal_t *j, const char *operator_name,
+                                        unsigned nodes, double t_s)
+{
+    char list[64];
+    if (!j || !hv_exec_journal_operator_ok(operator_name) || nodes == 0 ||
+        hv_exec_node_list(nodes, list, sizeof list) != HV_OK)
+        return HV_ERR_ARG;
+    return fmt_append(j, "E %s nodes=%s t=%.3f", operator_name, list, t_s);
+}
+
+/* "vehicle,right_arm" -> 1 << HV_EXEC_*; 0 for an empty list, a repeat or an unknown name. */
+static unsigned parse_nodes(char *list)
+{
+    unsigned mask = 0;
+    for (char *save = NULL, *tok = strtok_r(list, ",", &save); tok;
+         tok = strtok_r(NULL, ",", &save)) {
+        int found = -1;
+        for (int i = 0; i < HV_EXEC_NODES; i++)
+            if (strcmp(tok, hv_exec_node_name(i)) == 0)
+                found = i;
+        if (found < 0 || (mask & (1u << found)))
+            return 0;
+        mask |= 1u << found;
+    }
+    return mask;
+}
+
 void hv_exec_journal_close(hv_exec_journal_t *j)
 {
     if (j && j->fd >= 0) {
@@ -250,6 +292,17 @@ static hv_status_t replay_line(replay_t *r, char *line, size_t len)
             return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "bad row-done record");
         r->prog->row_done = 1;
         return HV_OK;
+    case 'E': {
+        int end = 0;
+        if (sscanf(line, "E %39s nodes=%39s t=%lf%n", a, b, &t, &end) != 3 || line[end] != '\0')
+            return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "bad e-stop clear record");
+        if (!hv_exec_journal_operator_ok(a))
+            return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "e-stop clear: bad operator name");
+        if (parse_nodes(b) == 0)
+            return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "e-stop clear: bad node list");
+        r->prog->estop_clears++;
+        return HV_OK;
+    }
     default:
         return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "unknown record");
     }

@@ -33,8 +33,8 @@ static void report(hv_exec_loop_t *L, const hv_exec_action_t *a, uint64_t now)
     double t = hv_exec_executed_s(sm, now);
     if (a->kind == HV_ACT_PHASE) {
         if (sm->phase == HV_PH_SAFE)
-            fprintf(L->progress, "harvest-exec: [%8.2f s] SAFE: %s (node %d)\n", t,
-                    hv_exec_safe_reason_name(sm->safe_reason), sm->safe_node);
+            fprintf(L->progress, "harvest-exec: [%8.2f s] SAFE: %s (node %s)\n", t,
+                    hv_exec_safe_reason_name(sm->safe_reason), hv_exec_node_name(sm->safe_node));
         else if (sm->phase == HV_PH_HARVEST)
             fprintf(L->progress, "harvest-exec: [%8.2f s] stop %d/%u at %.3f m\n", t,
                     sm->stop + 1, (unsigned)sm->plan->n_stops,
@@ -48,6 +48,11 @@ static void report(hv_exec_loop_t *L, const hv_exec_action_t *a, uint64_t now)
         fprintf(L->progress, "harvest-exec: [%8.2f s] fruit %s (%c): %s, %s\n", t, pk->id,
                 pk->side == HV_SIDE_LEFT ? 'L' : 'R', hv_exec_outcome_name(a->u.fe.outcome),
                 hv_exec_reason_name(a->u.fe.reason));
+    } else if (a->kind == HV_ACT_JOURNAL && a->u.jr.kind == HV_JR_ESTOP_CLEAR) {
+        char nodes[64];
+        hv_exec_node_list(a->u.jr.nodes, nodes, sizeof nodes);
+        fprintf(L->progress, "harvest-exec: [%8.2f s] e-stop of %s cleared by %s (journalled); "
+                "waiting for a heartbeat and a status of every node\n", t, nodes, L->clear_by);
     } else if (a->kind == HV_ACT_FRUIT_EVENT && a->u.fe.kind == HV_FE_FAULT) {
         const hv_exec_pick_t *pk = &sm->plan->picks[a->u.fe.pick];
         fprintf(L->progress, "harvest-exec: [%8.2f s] fault at fruit %s (%c): %s, recovering\n",
@@ -73,6 +78,9 @@ static hv_status_t journal_action(hv_exec_loop_t *L, const hv_exec_action_t *a, 
                                      a->u.jr.attempt, t);
         break;
     case HV_JR_DONE: st = hv_exec_journal_done(L->journal, t); break;
+    case HV_JR_ESTOP_CLEAR:
+        st = hv_exec_journal_estop_clear(L->journal, L->clear_by, a->u.jr.nodes, t);
+        break;
     }
     if (st == HV_OK)
         L->st.journal_records++;
@@ -97,6 +105,7 @@ static void carry_out(hv_exec_loop_t *L, const hv_exec_actions_t *out, uint64_t 
                 step(L, &ev, now);
                 return;
             }
+            report(L, a, now);
             break;
         case HV_ACT_FRUIT_EVENT:
             hv_exec_tm_fruit(L->tm, L->sm, a, now, wall_utime());

@@ -25,6 +25,7 @@ void hv_exec_params_default(hv_exec_params_t *p)
     p->vehicle_accel_mps2 = 0.1;
     p->max_retries = 2;
     p->resend_s = 0.25; /* 5 status periods at time scale 1 (DBC: status every 50 ms) */
+    p->clear_estop = 0;  /* only an operator clears an e-stop */
 }
 
 double hv_exec_home_max_s(const hv_arm_t *arm)
@@ -52,7 +53,8 @@ static int params_ok(const hv_exec_params_t *p)
             return 0;
     return p->time_scale >= 0.0 && isfinite(p->time_scale) && p->margin >= 0.0 &&
            isfinite(p->margin) && p->slack_s >= 0.0 && isfinite(p->slack_s) &&
-           p->latency_s >= 0.0 && isfinite(p->latency_s) && p->max_retries < 100;
+           p->latency_s >= 0.0 && isfinite(p->latency_s) && p->max_retries < 100 &&
+           (p->clear_estop == 0 || p->clear_estop == 1);
 }
 
 hv_status_t hv_exec_init(hv_exec_sm_t *sm, const hv_exec_plan_t *plan,
@@ -236,8 +238,8 @@ static void send_ee(ctx_t *c, int side, int action)
     remember(c, arm_node[side], a);
 }
 
-static void journal(ctx_t *c, hv_exec_journal_kind_t kind, int pick, int stop, int attempt,
-                    int outcome, int reason)
+static hv_exec_action_t *journal(ctx_t *c, hv_exec_journal_kind_t kind, int pick, int stop,
+                                 int attempt, int outcome, int reason)
 {
     hv_exec_action_t *a = push(c, HV_ACT_JOURNAL, -1);
     if (a) {
@@ -248,6 +250,7 @@ static void journal(ctx_t *c, hv_exec_journal_kind_t kind, int pick, int stop, i
         a->u.jr.outcome = outcome;
         a->u.jr.reason = reason;
     }
+    return a;
 }
 
 static void fruit_event(ctx_t *c, hv_exec_fruit_event_kind_t kind, int pick, int attempt,
@@ -482,6 +485,11 @@ static void recover_progress(ctx_t *c, int side)
     const hv_exec_node_t *n = &sm->node[node];
     if (!echoed(sm, node))
         return;
+    if (arm->recover_step >= 2 && n->state == HV_NODE_FAULT) {
+        /* faulted again after its fault was cleared: the recovery itself failed */
+        enter_safe(c, HV_SAFE_FAULT, node);
+        return;
+    }
     switch (arm->recover_step) {
     case 0:
         arm->recover_step = 1;
@@ -634,12 +642,14 @@ static void apply_event(hv_exec_sm_t *sm, const hv_exec_event_t *ev, uint64_t no
         if (ev->u.hb.protocol != HV_PROTOCOL_VERSION)
             return; /* another protocol version: treated as absent */
         n->seen = 1;
+        n->hb_rx = ++sm->rx;
         n->last_hb_ns = now;
         n->health = ev->u.hb.health;
         n->time_scale = ev->u.hb.time_scale;
         break;
     case HV_EV_VEHICLE_STATUS:
         n->status_seen = 1;
+        n->st_rx = ++sm->rx;
         n->position_m = ev->u.veh.position_m;
         n->state = ev->u.veh.state;
         n->arrived = ev->u.veh.arrived;
@@ -649,6 +659,7 @@ static void apply_event(hv_exec_sm_t *sm, const hv_exec_event_t *ev, uint64_t no
         break;
     case HV_EV_ARM_STATUS:
         n->status_seen = 1;
+        n->st_rx = ++sm->rx;
         n->state = ev->u.arm.state;
         n->reached = ev->u.arm.reached;
         n->homed = ev->u.arm.homed;
@@ -683,38 +694,61 @@ static int same_scale(double a, double b)
     return fabs(a - b) <= 0.01 * (a > b ? a : b);
 }
 
-/* Checks that hold in every phase once the nodes were cleared at start-up. */
+static int reports_estop(const hv_exec_sm_t *sm, int i)
+{
+    const hv_exec_node_t *n = &sm->node[i];
+    int estop_bit = i == HV_EXEC_VEHICLE ? HV_VEH_FAULT_ESTOP : HV_ARM_FAULT_ESTOP;
+    return n->health == HV_HEALTH_ESTOP || n->state == HV_NODE_ESTOP || (n->fault_bits & estop_bit);
+}
+
+/* A heartbeat and a status of node i arrived after the last CLEAR_ESTOP was echoed. */
+static int fresh(const hv_exec_sm_t *sm, int i)
+{
+    const hv_exec_node_t *n = &sm->node[i];
+    return sm->phase == HV_PH_ENABLE && sm->sub >= HV_EN_FRESH && n->hb_rx > sm->clear_rx &&
+           n->st_rx > sm->clear_rx;
+}
+
+/* Whether what node i reports about an e-stop counts: not for a latched node while its
+ * clear is under way, since its frames from before the clear still say ESTOP. */
+static int estop_report_counts(const hv_exec_sm_t *sm, int i)
+{
+    int clearing = sm->phase == HV_PH_ENABLE && sm->sub <= HV_EN_FRESH;
+    return !(clearing && (sm->latched & (1u << i)) && !fresh(sm, i));
+}
+
+/* CLEAR_FAULT reached node i in this run: its comm-timeout bit means us from now on. */
+static int fault_cleared(const hv_exec_sm_t *sm, int i)
+{
+    if (sm->phase != HV_PH_ENABLE)
+        return sm->phase > HV_PH_ENABLE;
+    return sm->sub == HV_EN_ENABLE || (sm->sub == HV_EN_CLEAR_FAULT && echoed(sm, i));
+}
+
+/* Checks that hold in every phase after WAIT_NODES. */
 static void global_checks(ctx_t *c)
 {
     hv_exec_sm_t *sm = c->sm;
-    int cleared = sm->phase > HV_PH_ENABLE || (sm->phase == HV_PH_ENABLE && sm->sub >= 2);
-    if (sm->phase > HV_PH_WAIT_NODES) {
-        for (int i = 0; i < HV_EXEC_NODES; i++) {
-            const hv_exec_node_t *n = &sm->node[i];
-            if (c->now > n->last_hb_ns + secs_ns(sm->prm.heartbeat_timeout_s)) {
-                enter_safe(c, HV_SAFE_HEARTBEAT, i);
-                return;
-            }
-            if (!same_scale(n->time_scale, sm->time_scale)) {
-                enter_safe(c, HV_SAFE_TIME_SCALE, i);
-                return;
-            }
-        }
-    }
-    if (!cleared)
+    if (sm->phase == HV_PH_WAIT_NODES)
         return;
     for (int i = 0; i < HV_EXEC_NODES; i++) {
         const hv_exec_node_t *n = &sm->node[i];
-        int estop_bit = i == HV_EXEC_VEHICLE ? HV_VEH_FAULT_ESTOP : HV_ARM_FAULT_ESTOP;
+        if (c->now > n->last_hb_ns + secs_ns(sm->prm.heartbeat_timeout_s)) {
+            enter_safe(c, HV_SAFE_HEARTBEAT, i);
+            return;
+        }
+        if (!same_scale(n->time_scale, sm->time_scale)) {
+            enter_safe(c, HV_SAFE_TIME_SCALE, i);
+            return;
+        }
+    }
+    for (int i = 0; i < HV_EXEC_NODES; i++) {
         int comm_bit = i == HV_EXEC_VEHICLE ? HV_VEH_FAULT_COMM : HV_ARM_FAULT_COMM;
-        /* a command not yet echoed may be the CLEAR_FAULT that clears these */
-        if (sm->phase == HV_PH_ENABLE && n->wait_cmd_seq >= 0 && !echoed(sm, i))
-            continue;
-        if (n->health == HV_HEALTH_ESTOP || n->state == HV_NODE_ESTOP || (n->fault_bits & estop_bit)) {
+        if (estop_report_counts(sm, i) && reports_estop(sm, i)) {
             enter_safe(c, HV_SAFE_ESTOP, i);
             return;
         }
-        if (n->fault_bits & comm_bit) {
+        if (fault_cleared(sm, i) && (sm->node[i].fault_bits & comm_bit)) {
             enter_safe(c, HV_SAFE_COMM, i);
             return;
         }
@@ -722,6 +756,92 @@ static void global_checks(ctx_t *c)
     const hv_exec_node_t *v = &sm->node[HV_EXEC_VEHICLE];
     if (sm->phase >= HV_PH_HOMING && (v->state == HV_NODE_FAULT || (v->fault_bits & 0x07)))
         enter_safe(c, HV_SAFE_VEHICLE_FAULT, HV_EXEC_VEHICLE);
+}
+
+static void send_to(ctx_t *c, unsigned nodes, int command)
+{
+    for (int i = 0; i < HV_EXEC_NODES; i++)
+        if (nodes & (1u << i))
+            send_command(c, i, command);
+}
+
+/* The first of `nodes` that has not echoed its command (in the ENABLE step, IDLE too), or
+ * -1 when all have. */
+static int first_pending(const hv_exec_sm_t *sm, unsigned nodes)
+{
+    for (int i = 0; i < HV_EXEC_NODES; i++)
+        if ((nodes & (1u << i)) &&
+            (!echoed(sm, i) || (sm->sub == HV_EN_ENABLE && sm->node[i].state != HV_NODE_IDLE)))
+            return i;
+    return -1;
+}
+
+/* Start-up after every node was seen: DISABLE -> [e-stop clear] -> CLEAR_FAULT -> ENABLE
+ * -> HOME (hv_exec_enable_step_t). */
+static void enable_progress(ctx_t *c)
+{
+    hv_exec_sm_t *sm = c->sm;
+    int waiting = -1;
+    switch (sm->sub) {
+    case HV_EN_DISABLE:
+        if ((waiting = first_pending(sm, HV_EXEC_ALL_NODES)) >= 0)
+            break;
+        if (sm->latched) {
+            /* the record first: the clear is the operator's, and must be on disk before a
+             * node acts on it */
+            hv_exec_action_t *a = journal(c, HV_JR_ESTOP_CLEAR, -1, -1, 0, 0, 0);
+            if (a)
+                a->u.jr.nodes = sm->latched;
+            send_to(c, sm->latched, HV_CMD_CLEAR_ESTOP);
+            sm->sub = HV_EN_CLEAR_ESTOP;
+        } else {
+            send_to(c, HV_EXEC_ALL_NODES, HV_CMD_CLEAR_FAULT);
+            sm->sub = HV_EN_CLEAR_FAULT;
+        }
+        sm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
+        return;
+    case HV_EN_CLEAR_ESTOP:
+        if ((waiting = first_pending(sm, sm->latched)) >= 0)
+            break;
+        sm->clear_rx = sm->rx;
+        sm->sub = HV_EN_FRESH;
+        sm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
+        return;
+    case HV_EN_FRESH:
+        for (int i = 0; i < HV_EXEC_NODES && waiting < 0; i++)
+            if (!fresh(sm, i))
+                waiting = i;
+        if (waiting >= 0)
+            break;
+        /* every node spoke after the clear and none reports an e-stop (global_checks) */
+        send_to(c, HV_EXEC_ALL_NODES, HV_CMD_CLEAR_FAULT);
+        sm->sub = HV_EN_CLEAR_FAULT;
+        sm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
+        return;
+    case HV_EN_CLEAR_FAULT:
+        if ((waiting = first_pending(sm, HV_EXEC_ALL_NODES)) >= 0)
+            break;
+        send_to(c, HV_EXEC_ALL_NODES, HV_CMD_ENABLE);
+        sm->sub = HV_EN_ENABLE;
+        sm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
+        return;
+    default:
+        for (int i = 0; i < HV_EXEC_NODES; i++)
+            if (echoed(sm, i) && sm->node[i].state == HV_NODE_FAULT) {
+                enter_safe(c, HV_SAFE_FAULT, i);
+                return;
+            }
+        if ((waiting = first_pending(sm, HV_EXEC_ALL_NODES)) >= 0)
+            break;
+        for (int s = 0; s < 2; s++)
+            send_command(c, arm_node[s], HV_CMD_HOME);
+        sm->node[HV_EXEC_VEHICLE].wait_cmd_seq = -1;
+        sm->deadline_ns = motion_deadline(c, sm->prm.home_max_s);
+        set_phase(c, HV_PH_HOMING);
+        return;
+    }
+    if (c->now >= sm->deadline_ns)
+        enter_safe(c, HV_SAFE_TIMEOUT, waiting);
 }
 
 static void phase_logic(ctx_t *c, const hv_exec_event_t *ev)
@@ -739,6 +859,17 @@ static void phase_logic(ctx_t *c, const hv_exec_event_t *ev)
                     return;
                 }
             sm->time_scale = ts;
+            for (int i = 0; i < HV_EXEC_NODES; i++)
+                if (reports_estop(sm, i))
+                    sm->latched |= 1u << i;
+            if (sm->latched && !sm->prm.clear_estop) {
+                /* a latched e-stop is the operator's to clear, never a restart's */
+                int first = 0;
+                while (!(sm->latched & (1u << first)))
+                    first++;
+                enter_safe(c, HV_SAFE_ESTOP_LATCHED, first);
+                return;
+            }
             for (int i = 0; i < HV_EXEC_NODES; i++) {
                 hv_exec_node_t *n = &sm->node[i];
                 /* continue after what the nodes last accepted: never reuse a seq they echo */
@@ -746,42 +877,18 @@ static void phase_logic(ctx_t *c, const hv_exec_event_t *ev)
                 n->next_sp_seq = (n->sp_seq + 1) & 0x1F;
                 n->next_ee_seq = (n->ee_seq + 1) & 0xFF;
                 n->next_move_seq = (n->move_seq + 1) & 0xFF;
-                send_command(c, i, HV_CMD_DISABLE); /* whatever a previous run left moving stops */
             }
-            sm->sub = 0;
+            send_to(c, HV_EXEC_ALL_NODES, HV_CMD_DISABLE);
+            sm->sub = HV_EN_DISABLE;
             sm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
             set_phase(c, HV_PH_ENABLE);
         } else if (c->now >= sm->deadline_ns) {
             enter_safe(c, HV_SAFE_NODES_ABSENT, -1);
         }
         break;
-    case HV_PH_ENABLE: {
-        /* sub 0: DISABLE sent, 1: CLEAR_FAULT sent, 2: ENABLE sent (IDLE expected) */
-        int done = 1;
-        for (int i = 0; i < HV_EXEC_NODES; i++)
-            done &= echoed(sm, i) && (sm->sub < 2 || sm->node[i].state == HV_NODE_IDLE);
-        if (done && sm->sub < 2) {
-            sm->sub++;
-            for (int i = 0; i < HV_EXEC_NODES; i++)
-                send_command(c, i, sm->sub == 1 ? HV_CMD_CLEAR_FAULT : HV_CMD_ENABLE);
-            sm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
-        } else if (done) {
-            for (int s = 0; s < 2; s++)
-                send_command(c, arm_node[s], HV_CMD_HOME);
-            sm->node[HV_EXEC_VEHICLE].wait_cmd_seq = -1;
-            sm->deadline_ns = motion_deadline(c, sm->prm.home_max_s);
-            set_phase(c, HV_PH_HOMING);
-        } else if (c->now >= sm->deadline_ns) {
-            enter_safe(c, HV_SAFE_TIMEOUT, -1);
-        } else {
-            for (int i = 0; i < HV_EXEC_NODES; i++)
-                if (sm->sub == 2 && echoed(sm, i) && sm->node[i].state == HV_NODE_FAULT) {
-                    enter_safe(c, HV_SAFE_FAULT, i);
-                    return;
-                }
-        }
+    case HV_PH_ENABLE:
+        enable_progress(c);
         break;
-    }
     case HV_PH_HOMING: {
         int done = 1;
         for (int s = 0; s < 2; s++) {
@@ -925,6 +1032,36 @@ const char *hv_exec_safe_reason_name(int reason)
 {
     static const char *const names[HV_SAFE_COUNT] = {
         "none", "estop", "lost_heartbeat", "nodes_absent", "time_scale_mismatch",
-        "comm_timeout", "vehicle_fault", "timeout", "fault", "journal_failed", "operator_stop"};
+        "comm_timeout", "vehicle_fault", "timeout", "fault", "journal_failed", "operator_stop",
+        "estop_latched"};
     return reason >= 0 && reason < HV_SAFE_COUNT ? names[reason] : "unknown";
+}
+
+const char *hv_exec_node_name(int node)
+{
+    static const char *const names[HV_EXEC_NODES] = {"vehicle", "left_arm", "right_arm"};
+    if (node == -1)
+        return "none";
+    return node >= 0 && node < HV_EXEC_NODES ? names[node] : "unknown";
+}
+
+hv_status_t hv_exec_node_list(unsigned nodes, char *buf, size_t len)
+{
+    if (!buf || len == 0 || (nodes >> HV_EXEC_NODES))
+        return HV_ERR_ARG;
+    size_t used = 0;
+    buf[0] = '\0';
+    for (int i = 0; i < HV_EXEC_NODES; i++) {
+        if (!(nodes & (1u << i)))
+            continue;
+        const char *name = hv_exec_node_name(i);
+        size_t need = strlen(name) + (used ? 1 : 0);
+        if (used + need >= len)
+            return HV_ERR_ARG;
+        if (used)
+            buf[used++] = ',';
+        memcpy(buf + used, name, strlen(name) + 1);
+        used += strlen(name);
+    }
+    return HV_OK;
 }

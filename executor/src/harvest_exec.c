@@ -18,7 +18,8 @@
 #include "hv/file_io.h"
 #include "hv/pick.h"
 
-enum { EXIT_ROW_DONE = 0, EXIT_RUNTIME = 1, EXIT_USAGE = 2, EXIT_SAFE = 3, EXIT_REFUSED = 4 };
+enum { EXIT_ROW_DONE = 0, EXIT_RUNTIME = 1, EXIT_USAGE = 2, EXIT_SAFE = 3,
+       EXIT_ESTOP_LATCHED = 4, EXIT_REFUSED = 5 };
 
 /* The only mutable global: a signal handler can reach nothing else. */
 static volatile sig_atomic_t stop_requested;
@@ -39,6 +40,10 @@ static void usage(FILE *out)
 "home them, drive to each stop, run both arms' pick cycles, and stop safely (e-stop) on\n"
 "any fault. Every outcome is journalled before the next action; restarting with the same\n"
 "plan and journal resumes without picking a fruit twice.\n"
+"\n"
+"A stop in the safe state (a fault, a node's e-stop, SIGINT/SIGTERM) leaves every node\n"
+"holding an e-stop. Only an operator releases it: a restart finds it latched and stays\n"
+"safe (exit 4) until it is given --clear-estop.\n"
 "\n"
 "input:\n"
 "  --plan FILE             plan file (docs/PLAN_FORMAT.md), required\n"
@@ -62,6 +67,14 @@ static void usage(FILE *out)
 "  --startup-timeout S     wall s to see every node (default 10)\n"
 "  --heartbeat-timeout S   wall s without a node's heartbeat = lost (default 0.5, the DBC's)\n"
 "  --latency S             wall s added to every motion timeout for the bus (default 0.3)\n"
+"safety:\n"
+"  --clear-estop NAME      operator NAME has dealt with what caused the e-stop and clears it\n"
+"                          for this start-up: the nodes reporting a latched e-stop get\n"
+"                          CLEAR_ESTOP once the clear is in the journal (\"E NAME nodes=...\"),\n"
+"                          and nothing is enabled before every node's heartbeat and status,\n"
+"                          received after the clear, show no e-stop. NAME: 1-32 of\n"
+"                          A-Z a-z 0-9 . _ -. Without it a latched e-stop is never cleared.\n"
+"                          An e-stop during the run still ends it (exit 3)\n"
 "record and telemetry:\n"
 "  --journal FILE          harvest journal (created, or resumed), required\n"
 "  --lcm-url URL           publish LCM telemetry here (memq://, udpm://...?ttl=0);\n"
@@ -70,8 +83,11 @@ static void usage(FILE *out)
 "  --quiet                 no progress lines on stderr\n"
 "  -h, --help              this text\n"
 "\n"
-"exit status: 0 row done (--check-plan: every pick accepted), 3 stopped in the safe state,\n"
-"2 bad input, 1 runtime error, 4 --check-plan: the IK refuses a planned pick.\n"
+"exit status: 0 row done (--check-plan: every pick accepted); 1 runtime error; 2 bad input;\n"
+"3 stopped in the safe state (the nodes hold an e-stop: restart with --clear-estop NAME once\n"
+"the cause is dealt with); 4 not started: a node reports a latched e-stop and --clear-estop\n"
+"was not given (nothing but e-stop frames and heartbeats was sent; the summary's\n"
+"estop_latched names the nodes); 5 --check-plan: the IK refuses a planned pick.\n"
 "Expected makespan (compared with the executed one): per stop the slower arm's sum of\n"
 "pick cycles (2 x IK move time home->fruit + pick.cut_time + pick.release_time of the\n"
 "config) plus trapezoid vehicle moves\n"
@@ -81,6 +97,7 @@ static void usage(FILE *out)
 
 typedef struct opts {
     const char *plan, *config, *table[2], *transport, *channel, *journal, *lcm_url, *summary;
+    const char *clear_by; /* --clear-estop, or NULL */
     int port, quiet, check_only;
     double time_scale, margin, slack_s, startup_s, hb_timeout_s, latency_s;
     long max_retries;
@@ -115,6 +132,7 @@ static int parse_args(int argc, char **argv, opts_t *o)
         {"journal", required_argument, 0, 'j'},     {"lcm-url", required_argument, 0, 'l'},
         {"summary", required_argument, 0, 'S'},     {"quiet", no_argument, 0, 'q'},
         {"check-plan", no_argument, 0, 'K'},
+        {"clear-estop", required_argument, 0, 'E'},
         {"help", no_argument, 0, 'h'},              {0, 0, 0, 0}};
     memset(o, 0, sizeof *o);
     o->transport = "udp";
@@ -156,6 +174,14 @@ static int parse_args(int argc, char **argv, opts_t *o)
         case 'S': o->summary = optarg; break;
         case 'q': o->quiet = 1; break;
         case 'K': o->check_only = 1; break;
+        case 'E':
+            if (!hv_exec_journal_operator_ok(optarg)) {
+                fprintf(stderr, "harvest-exec: --clear-estop: expected the operator's name, 1-32 "
+                        "of A-Z a-z 0-9 . _ -, got '%s'\n", optarg);
+                return -1;
+            }
+            o->clear_by = optarg;
+            break;
         case 'h': usage(stdout); exit(0);
         default: return -1;
         }
@@ -196,7 +222,8 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
 {
     const hv_exec_sm_t *sm = &w->sm;
     const hv_exec_loop_stats_t *st = &w->loop.st;
-    char buf[2048];
+    char buf[2048], latched[64];
+    hv_exec_node_list(sm->latched, latched, sizeof latched);
     unsigned outcome[HV_OUT_COUNT] = {0, 0, 0};
     /* what the transport dropped (datagrams that do not parse, CAN FD), beside the DBC
      * frames of a wrong length the loop dropped (frames_rx_malformed) */
@@ -218,7 +245,9 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
         "  \"frames_rx\": %llu,\n  \"frames_tx\": %llu,\n  \"send_failures\": %llu,\n"
         "  \"frames_rx_malformed\": %llu,\n  \"bus_rx_malformed\": %llu,\n"
         "  \"bus_rx_unsupported\": %llu,\n"
-        "  \"journal_records\": %llu,\n  \"journal\": \"%s\",\n  \"bus\": \"%s\"\n}\n",
+        "  \"journal_records\": %llu,\n  \"journal\": \"%s\",\n  \"bus\": \"%s\",\n"
+        "  \"estop_latched\": \"%s\",\n  \"estop_cleared\": %s,\n"
+        "  \"safe_node_name\": \"%s\"\n}\n",
         hv_exec_phase_name(sm->phase), hv_exec_safe_reason_name(sm->safe_reason), sm->safe_node,
         (unsigned)w->plan.n_picks, outcome[HV_OUT_PICKED], outcome[HV_OUT_FAILED],
         outcome[HV_OUT_SKIPPED], hv_exec_remaining(sm), sm->picked, sm->failed, sm->skipped,
@@ -230,7 +259,9 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
         (unsigned long long)st->frames_tx, (unsigned long long)st->send_failures,
         (unsigned long long)st->frames_rx_malformed, (unsigned long long)cs.rx_malformed,
         (unsigned long long)cs.rx_unsupported,
-        (unsigned long long)st->journal_records, o->journal, hv_can_name(&w->bus));
+        (unsigned long long)st->journal_records, o->journal, hv_can_name(&w->bus),
+        latched, sm->latched && sm->prm.clear_estop ? "true" : "false",
+        hv_exec_node_name(sm->safe_node));
     char err[256];
     if (n < 0 || (size_t)n >= sizeof buf ||
         hv_file_write_atomic(o->summary, buf, (size_t)n, err, sizeof err) != HV_OK)
@@ -361,6 +392,7 @@ int main(int argc, char **argv)
     prm.vehicle_speed_mps = cfg.vehicle_speed_mps;
     prm.vehicle_accel_mps2 = cfg.vehicle_accel_mps2;
     prm.max_retries = (unsigned)o.max_retries;
+    prm.clear_estop = o.clear_by != NULL;
     double h0 = hv_exec_home_max_s(&arms[0]), h1 = hv_exec_home_max_s(&arms[1]);
     prm.home_max_s = h0 > h1 ? h0 : h1;
     if ((st = hv_exec_init(&w->sm, &w->plan, &prm, &w->prog)) != HV_OK) {
@@ -415,6 +447,7 @@ int main(int argc, char **argv)
     w->loop.tm = &w->tm;
     w->loop.stop = &stop_requested;
     w->loop.progress = o.quiet ? NULL : stderr;
+    w->loop.clear_by = o.clear_by;
     w->loop.tick_s = 0.01;
     w->loop.linger_s = 0.5; /* e-stops repeat meanwhile when safe */
     uint64_t t0 = hv_exec_now_ns();
@@ -425,7 +458,10 @@ int main(int argc, char **argv)
     double cpu_s = (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec * 1e-6 +
                    (double)ru.ru_stime.tv_sec + (double)ru.ru_stime.tv_usec * 1e-6;
 
-    int rc = st != HV_OK ? EXIT_RUNTIME : w->sm.phase == HV_PH_ROW_DONE ? EXIT_ROW_DONE : EXIT_SAFE;
+    int rc = st != HV_OK                                 ? EXIT_RUNTIME
+             : w->sm.phase == HV_PH_ROW_DONE             ? EXIT_ROW_DONE
+             : w->sm.safe_reason == HV_SAFE_ESTOP_LATCHED ? EXIT_ESTOP_LATCHED
+                                                         : EXIT_SAFE;
     printf("harvest-exec: %s%s%s: picked %u, failed %u, skipped %u this run (%u remaining), "
            "faults %u; executed %.2f s vs expected %.2f s (plan's objective %.2f s)\n",
            hv_exec_phase_name(w->sm.phase), w->sm.phase == HV_PH_SAFE ? " " : "",
@@ -433,6 +469,17 @@ int main(int argc, char **argv)
            w->sm.picked, w->sm.failed, w->sm.skipped, hv_exec_remaining(&w->sm), w->sm.faults,
            hv_exec_executed_s(&w->sm, hv_exec_now_ns()), w->plan.expected_makespan_s,
            w->plan.planned_makespan_s);
+    if (rc == EXIT_ESTOP_LATCHED) {
+        char latched[64];
+        hv_exec_node_list(w->sm.latched, latched, sizeof latched);
+        printf("harvest-exec: latched e-stop on %s: not started, nothing enabled. Once its "
+               "cause is dealt with, an operator clears it by restarting with "
+               "--clear-estop NAME\n", latched);
+    }
+    else if (rc == EXIT_SAFE)
+        printf("harvest-exec: the nodes hold the e-stop (%s, %s): a restart needs "
+               "--clear-estop NAME\n", hv_exec_safe_reason_name(w->sm.safe_reason),
+               hv_exec_node_name(w->sm.safe_node));
     if (o.summary)
         write_summary(&o, w, wall_s, cpu_s, peak_rss_kb());
     hv_exec_telemetry_close(&w->tm);

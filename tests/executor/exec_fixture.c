@@ -84,6 +84,29 @@ void fx_start(fx_t *fx, const hv_exec_progress_t *progress)
     fx->cur_pick[0] = fx->cur_pick[1] = -1;
 }
 
+int fx_restart(fx_t *fx)
+{
+    hv_exec_progress_t prog = fx->sm.prog; /* what the journal holds */
+    if (hv_exec_init(&fx->sm, &fx->plan, &fx->prm, &prog) != HV_OK)
+        abort();
+    fx->nq = 0; /* frames in flight to the old executor are gone */
+    return fx->nlog;
+}
+
+static int estop_bit(int node)
+{
+    return node == HV_EXEC_VEHICLE ? HV_VEH_FAULT_ESTOP : HV_ARM_FAULT_ESTOP;
+}
+
+void fx_latch_estop(fx_t *fx, int node)
+{
+    fx_node_t *n = &fx->node[node];
+    n->estop = 1;
+    n->state = HV_NODE_ESTOP;
+    n->fault_bits |= estop_bit(node);
+    n->pending = 0;
+}
+
 static void enqueue(fx_t *fx, const hv_exec_event_t *ev)
 {
     if (fx->nq < FX_MAX_EVENTS)
@@ -134,11 +157,8 @@ static void node_act(fx_t *fx, const hv_exec_action_t *a)
         fx->nlog++;
     }
     if (a->kind == HV_ACT_ESTOP) {
-        for (int i = 0; i < HV_EXEC_NODES; i++) {
-            fx->node[i].estop = 1;
-            fx->node[i].state = HV_NODE_ESTOP;
-            fx->node[i].pending = 0;
-        }
+        for (int i = 0; i < HV_EXEC_NODES; i++)
+            fx_latch_estop(fx, i);
         return;
     }
     if (a->kind == HV_ACT_FRUIT_EVENT && a->u.fe.kind == HV_FE_APPROACH) {
@@ -155,11 +175,21 @@ static void node_act(fx_t *fx, const hv_exec_action_t *a)
     int side = a->node == HV_EXEC_LEFT ? 0 : 1;
     switch (a->kind) {
     case HV_ACT_COMMAND:
+        /* the DBC: only CLEAR_ESTOP releases an e-stop; a refused command is not echoed */
+        if (n->estop && (a->u.cmd.command == HV_CMD_CLEAR_FAULT ||
+                         a->u.cmd.command == HV_CMD_ENABLE || a->u.cmd.command == HV_CMD_HOME))
+            break;
         n->cmd_seq = a->u.cmd.seq;
         switch (a->u.cmd.command) {
+        case HV_CMD_CLEAR_ESTOP:
+            fx->estop_clears[a->node]++;
+            n->estop = 0;
+            n->fault_bits &= ~estop_bit(a->node);
+            if (n->state == HV_NODE_ESTOP)
+                n->state = n->fault_bits ? HV_NODE_FAULT : HV_NODE_DISABLED;
+            break;
         case HV_CMD_CLEAR_FAULT:
             n->fault_bits = 0;
-            n->estop = 0;
             n->state = HV_NODE_DISABLED;
             break;
         case HV_CMD_ENABLE:
@@ -167,11 +197,15 @@ static void node_act(fx_t *fx, const hv_exec_action_t *a)
                 n->state = HV_NODE_IDLE;
             break;
         case HV_CMD_DISABLE:
-            n->state = HV_NODE_DISABLED;
+            if (!n->estop)
+                n->state = HV_NODE_DISABLED;
             n->pending = 0;
             break;
         case HV_CMD_HOME:
-            if (a->node != HV_EXEC_VEHICLE && fx->f.home_never[side])
+            if (a->node != HV_EXEC_VEHICLE && fx->f.home_faults[side]) {
+                n->state = HV_NODE_FAULT;
+                n->fault_bits |= 0x01; /* joint 1 limit */
+            } else if (a->node != HV_EXEC_VEHICLE && fx->f.home_never[side])
                 n->state = HV_NODE_HOMING;
             else {
                 n->state = HV_NODE_HOMING;
@@ -221,10 +255,8 @@ static void node_act(fx_t *fx, const hv_exec_action_t *a)
         n->busy_until_ns = fx->now_ns + fx->motion_ns;
         if (a->u.ee.action == HV_EE_CUT) {
             int k = ++fx->cuts_sent[side];
-            if (side == 1 && fx->f.estop_at_cut && k == fx->f.estop_at_cut) {
-                n->state = HV_NODE_ESTOP;
-                n->pending = 0;
-            }
+            if (side == 1 && fx->f.estop_at_cut && k == fx->f.estop_at_cut)
+                fx_latch_estop(fx, a->node);
         }
         break;
     case HV_ACT_MOVE:

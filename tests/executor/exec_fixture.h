@@ -33,6 +33,7 @@ typedef struct fx_faults {
     int cut_fail[2];            /* the next n cuts fail */
     int drop[2];                /* the next n cut fruits fall while returning */
     int home_never[2];          /* HOME never completes */
+    int home_faults[2];         /* HOME puts the arm in FAULT (after start-up's homing) */
     int move_never;             /* the vehicle never arrives */
     int vehicle_fault_on_move;  /* the vehicle faults on its n-th move */
     int comm_fault_arm;         /* >0: the left arm reports comm timeout on setpoint n */
@@ -56,6 +57,7 @@ typedef struct fx {
     int setpoints_sent[2], cuts_sent[2], moves_sent;
     int cuts_done[2][HV_EXEC_MAX_PICKS]; /* cuts executed per pick (never more than 1) */
     int cur_pick[2];                     /* pick the arm is working on (from the log) */
+    int estop_clears[HV_EXEC_NODES];     /* CLEAR_ESTOPs each node accepted */
     hv_exec_event_t q[FX_MAX_EVENTS];
     int nq;
     fx_log_entry_t log[FX_MAX_LOG];
@@ -67,6 +69,12 @@ typedef struct fx {
 void fx_plan(fx_t *fx, int n_stops, int per_arm);
 /* Init the state machine (progress may be NULL) and healthy nodes at time scale 10. */
 void fx_start(fx_t *fx, const hv_exec_progress_t *progress);
+/* A new state machine (fx->prm as it is now) resuming from the old one's progress, with the
+ * nodes as the old one left them: a restart on the journal. Returns the log index where the
+ * new run's actions start. */
+int fx_restart(fx_t *fx);
+/* The node's own e-stop trips: ESTOP with the e-stop fault bit, until CLEAR_ESTOP. */
+void fx_latch_estop(fx_t *fx, int node);
 /* Run for up to `seconds` of fake real time in 10 ms ticks; stops early when finished. */
 void fx_run(fx_t *fx, double seconds);
 /* Count log entries of one kind (and journal kind when kind is HV_ACT_JOURNAL, else -1). */

@@ -4,6 +4,7 @@ sim) and harvest-exec on one CAN bus, their records, and checks of the harvest j
 The udp bus is python-can's udp_multicast on loopback; callers run inside a private
 network namespace (harvest.canbus.netns) so nothing leaves the machine.
 """
+import collections
 import json
 import os
 import signal
@@ -39,17 +40,17 @@ def missing_pieces():
     return out
 
 
-def udp_skip_reasons():
-    """Reasons the udp tests cannot run; when there are none, this process has entered a
-    private network namespace (every socket and subprocess made afterwards lives there)."""
-    out = missing_pieces()
-    if not out:
-        from harvest.canbus import netns
+def enter_udp_netns():
+    """Reasons the udp tests cannot run (empty when they can); when they can, this process
+    has moved into a private network namespace, so the multicast stays on its loopback."""
+    from harvest.canbus import netns
+    reasons = missing_pieces()
+    if not reasons:
         try:
             netns.enter_private_netns()
         except netns.NetnsUnavailable as e:
-            out = [f"no private network namespace: {e}"]
-    return out
+            reasons = [f"no private network namespace: {e}"]
+    return reasons
 
 
 def make_plan(path, stops, per_arm, seed=1):
@@ -170,6 +171,31 @@ def sim_picks(sim):
     """Cuts the simulated arms completed: (node, rounded joint positions, vehicle position)."""
     return [(e["node"], tuple(round(q, 3) for q in e["positions"]),
              round(e["vehicle_position"], 3)) for e in sim.events("pick")]
+
+
+def assert_every_fruit_cut_once(plan, sim):
+    """From the simulator's own record: per arm and stop, as many cuts as the plan has
+    fruits there, and no two cuts at the same joint positions (the same fruit). Together:
+    every planned fruit cut exactly once, none twice."""
+    want = collections.Counter()
+    for st in plan["stops"]:
+        y = round(st["y_m"], 3)
+        want[("left_arm", y)] += len(st["left"])
+        want[("right_arm", y)] += len(st["right"])
+    picks = sim_picks(sim)
+    assert collections.Counter((node, y) for node, _, y in picks) == want, picks
+    assert len(set(picks)) == len(picks), f"a fruit was cut twice: {picks}"
+
+
+def row_end_reached(plan, sim):
+    """The simulated vehicle arrived at the row end (the executor's last move)."""
+    end = plan["params"]["row_start_m"] + plan["params"]["row_length_m"]
+    return any(abs(e["position"] - end) < 1e-3 for e in sim.events("arrived"))
+
+
+def sim_commands(sim):
+    """Every command the simulated nodes received: (node, command, accepted)."""
+    return [(e["node"], e["command"], e["accepted"]) for e in sim.events("command")]
 
 
 def wait_for(pred, timeout, period=0.05):

@@ -17,7 +17,7 @@ import exec_hil as H  # noqa: E402
 
 from harvest.canbus import protocol  # noqa: E402
 
-_skip = H.udp_skip_reasons()
+_skip = H.enter_udp_netns()
 pytestmark = pytest.mark.skipif(bool(_skip), reason="SKIPPED: " + "; ".join(_skip))
 
 SCALE = 20.0

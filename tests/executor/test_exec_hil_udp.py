@@ -15,7 +15,7 @@ import pytest
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import exec_hil as H  # noqa: E402
 
-_skip = H.udp_skip_reasons()
+_skip = H.enter_udp_netns()
 pytestmark = pytest.mark.skipif(bool(_skip), reason="SKIPPED: " + "; ".join(_skip))
 
 ROW_SCALE = 5.0     # simulated s per wall s for the makespan check (bus delays scale with it)

@@ -13,6 +13,7 @@
 #include <cmocka.h>
 
 #include "exec_fixture.h"
+#include "hv/cost_table.h" /* hv_crc32 */
 #include "hv/exec_journal.h"
 #include "hv/exec_status.h"
 
@@ -35,7 +36,8 @@ static int teardown(void **state)
 
 static void path_of(char *out, size_t n, const char *name)
 {
-    snprintf(out, n, "%s/%s", dir, name);
+    int k = snprintf(out, n, "%s/%s", dir, name);
+    assert_true(k > 0 && (size_t)k < n);
 }
 
 static void append_raw(const char *path, const char *bytes)
@@ -88,17 +90,27 @@ static void test_write_replay(void **state)
     free(fx);
 }
 
+/* A new journal `name` of a one-stop plan whose first fruit is picked; still open. */
+static fx_t *one_picked(const char *name, char *path, size_t n, hv_exec_journal_t *j)
+{
+    fx_t *fx = malloc(sizeof *fx);
+    assert_non_null(fx);
+    fx_plan(fx, 1, 2);
+    path_of(path, n, name);
+    char err[256];
+    hv_exec_progress_t prog;
+    assert_int_equal(hv_exec_journal_open(j, path, &fx->plan, &prog, err, sizeof err), HV_OK);
+    assert_int_equal(hv_exec_journal_outcome(j, 0, HV_OUT_PICKED, HV_RSN_OK, 1, 1.0), HV_OK);
+    return fx;
+}
+
 static void test_torn_and_corrupt(void **state)
 {
     (void)state;
-    fx_t *fx = malloc(sizeof *fx);
-    fx_plan(fx, 1, 2);
     char path[128], err[256];
-    path_of(path, sizeof path, "b.journal");
     hv_exec_journal_t j;
     hv_exec_progress_t prog;
-    assert_int_equal(hv_exec_journal_open(&j, path, &fx->plan, &prog, err, sizeof err), HV_OK);
-    assert_int_equal(hv_exec_journal_outcome(&j, 0, HV_OUT_PICKED, HV_RSN_OK, 1, 1.0), HV_OK);
+    fx_t *fx = one_picked("b.journal", path, sizeof path, &j);
     hv_exec_journal_close(&j);
     /* a crash in the middle of a write leaves a line without its newline */
     append_raw(path, "F L L0_1 pick");
@@ -152,6 +164,76 @@ static void test_other_plan(void **state)
     free(b);
 }
 
+/* A complete line with its checksum, as the executor writes it. */
+static void append_record(const char *path, const char *text)
+{
+    char line[256];
+    snprintf(line, sizeof line, "%s *%08x\n", text, (unsigned)hv_crc32(0, text, strlen(text)));
+    append_raw(path, line);
+}
+
+static void test_estop_clear_record(void **state)
+{
+    (void)state;
+    char path[128], err[256];
+    hv_exec_journal_t j;
+    hv_exec_progress_t prog;
+    fx_t *fx = one_picked("e.journal", path, sizeof path, &j);
+    unsigned two = (1u << HV_EXEC_VEHICLE) | (1u << HV_EXEC_RIGHT);
+    assert_int_equal(hv_exec_journal_estop_clear(&j, "a.n-other_2", two, 2.5), HV_OK);
+    /* what cannot stand in a record: refused before anything is written */
+    const char *bad_names[] = {"", "two words", "x\n", "a*b", "0123456789012345678901234567890123"};
+    for (size_t k = 0; k < sizeof bad_names / sizeof bad_names[0]; k++)
+        assert_int_equal(hv_exec_journal_estop_clear(&j, bad_names[k], two, 3.0), HV_ERR_ARG);
+    assert_int_equal(hv_exec_journal_estop_clear(&j, NULL, two, 3.0), HV_ERR_ARG);
+    assert_int_equal(hv_exec_journal_estop_clear(&j, "ann", 0, 3.0), HV_ERR_ARG);
+    assert_int_equal(hv_exec_journal_estop_clear(&j, "ann", 1u << HV_EXEC_NODES, 3.0), HV_ERR_ARG);
+    hv_exec_journal_close(&j);
+
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    char text[1024];
+    size_t n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[n] = '\0';
+    assert_non_null(strstr(text, "\nE a.n-other_2 nodes=vehicle,right_arm t=2.500 *"));
+    assert_null(strstr(text, "ann")); /* nothing of the refused calls was written */
+
+    /* replayed: the clear counted, the fruits' progress as before */
+    assert_int_equal(hv_exec_journal_open(&j, path, &fx->plan, &prog, err, sizeof err), HV_OK);
+    assert_int_equal(prog.estop_clears, 1);
+    assert_int_equal(prog.pick[0], HV_PROG_DONE);
+    assert_int_equal(prog.pick[1], HV_PROG_PENDING);
+    hv_exec_journal_close(&j);
+
+    /* a torn E record is cut off like any other */
+    append_raw(path, "E ann nodes=left_a");
+    assert_int_equal(hv_exec_journal_open(&j, path, &fx->plan, &prog, err, sizeof err), HV_OK);
+    assert_int_equal(j.torn_bytes, strlen("E ann nodes=left_a"));
+    assert_int_equal(prog.estop_clears, 1);
+    hv_exec_journal_close(&j);
+
+    /* complete E lines with a good checksum but a bad field: refused, the line named */
+    const char *bad_lines[] = {"E ann nodes=left_arm,left_arm t=1.000", "E ann nodes=arm t=1.000",
+                               "E a*b nodes=vehicle t=1.000", "E ann nodes= t=1.000",
+                               "E ann nodes=vehicle t=1.000 extra"};
+    for (size_t k = 0; k < sizeof bad_lines / sizeof bad_lines[0]; k++) {
+        char bad[128];
+        snprintf(bad, sizeof bad, "bad%zu.journal", k);
+        char bpath[160];
+        path_of(bpath, sizeof bpath, bad);
+        assert_int_equal(hv_exec_journal_open(&j, bpath, &fx->plan, &prog, err, sizeof err),
+                         HV_OK);
+        hv_exec_journal_close(&j);
+        append_record(bpath, bad_lines[k]);
+        assert_int_equal(hv_exec_journal_open(&j, bpath, &fx->plan, &prog, err, sizeof err),
+                         HV_ERR_EXEC_JOURNAL_FORMAT);
+        assert_non_null(strstr(err, "line 2"));
+        assert_non_null(strstr(err, "e-stop clear"));
+    }
+    free(fx);
+}
+
 /* Carry out the journal actions of a fake run into a real journal. */
 static void write_journal(const fx_t *fx, hv_exec_journal_t *j, int upto)
 {
@@ -171,6 +253,7 @@ static void write_journal(const fx_t *fx, hv_exec_journal_t *j, int upto)
                                          a->u.jr.attempt, 0.0);
             break;
         case HV_JR_DONE: st = hv_exec_journal_done(j, 0.0); break;
+        case HV_JR_ESTOP_CLEAR: st = hv_exec_journal_estop_clear(j, "test", a->u.jr.nodes, 0.0); break;
         }
         assert_int_equal(st, HV_OK);
     }
@@ -297,6 +380,7 @@ int main(void)
         cmocka_unit_test(test_write_replay),
         cmocka_unit_test(test_torn_and_corrupt),
         cmocka_unit_test(test_other_plan),
+        cmocka_unit_test(test_estop_clear_record),
         cmocka_unit_test(test_kill_and_resume),
         cmocka_unit_test(test_unreadable_ids_never_written),
     };

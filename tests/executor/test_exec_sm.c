@@ -350,19 +350,28 @@ static void test_vehicle_faults(void **state)
 static void test_recovery_fails(void **state)
 {
     (void)state;
-    fx_t *fx = new_fx(1, 1);
-    fx->f.joint_fault_at[0] = 1;
-    fx->f.home_never[0] = 1; /* only startup homing works: set after it */
-    fx->motion_ns = 300000000ull; /* a slower row, so it is still running */
-    fx_start(fx, NULL);
-    fx->f.home_never[0] = 0;
-    fx_run(fx, 0.5); /* through start-up homing */
-    fx->f.home_never[0] = 1;
-    fx_run(fx, 120.0);
-    assert_int_equal(fx->sm.phase, HV_PH_SAFE);
-    assert_int_equal(fx->sm.safe_reason, HV_SAFE_TIMEOUT);
-    assert_int_equal(fx->sm.safe_node, HV_EXEC_LEFT);
-    free(fx);
+    /* the recovery's HOME never completes (its timeout), or faults the arm again (at once) */
+    for (int faults = 0; faults < 2; faults++) {
+        fx_t *fx = new_fx(1, 1);
+        fx->f.joint_fault_at[0] = 1;
+        fx->motion_ns = 300000000ull; /* a slower row, so it is still running */
+        fx_start(fx, NULL);
+        fx_run(fx, 0.5); /* through start-up homing, which works */
+        if (faults)
+            fx->f.home_faults[0] = 1;
+        else
+            fx->f.home_never[0] = 1;
+        fx_run(fx, 120.0);
+        assert_int_equal(fx->sm.phase, HV_PH_SAFE);
+        assert_int_equal(fx->sm.safe_reason, faults ? HV_SAFE_FAULT : HV_SAFE_TIMEOUT);
+        assert_int_equal(fx->sm.safe_node, HV_EXEC_LEFT);
+        /* the e-stop comes after the recovery's HOME; a fault stops before its deadline */
+        int home = fx_find(fx, fx_find(fx, 0, HV_ACT_MOVE, -1), HV_ACT_COMMAND, HV_CMD_HOME);
+        int stop = fx_find(fx, home, HV_ACT_ESTOP, -1);
+        assert_true(home >= 0 && stop > home);
+        assert_true(faults == (fx->log[stop].t_ns < fx->sm.arm[0].deadline_ns));
+        free(fx);
+    }
 }
 
 static void test_homing_fails(void **state)
@@ -396,6 +405,250 @@ static void test_operator_and_journal_stop(void **state)
         assert_true(hv_exec_finished(&fx->sm));
         free(fx);
     }
+}
+
+/* ---- the e-stop latch and the operator's clear ---------------------------------------- */
+
+static int commands_from(const fx_t *fx, int from, int command)
+{
+    int n = 0;
+    for (int i = from; (i = fx_find(fx, i, HV_ACT_COMMAND, command)) >= 0; i++)
+        n++;
+    return n;
+}
+
+static void test_latched_estop_keeps_a_start_safe(void **state)
+{
+    (void)state;
+    for (int latched = 0; latched < HV_EXEC_NODES; latched++) {
+        fx_t *fx = new_fx(1, 2);
+        fx_start(fx, NULL);
+        fx_latch_estop(fx, latched); /* a previous run's e-stop, or a button on the node */
+        fx_run(fx, 5.0);
+        assert_int_equal(fx->sm.phase, HV_PH_SAFE);
+        assert_int_equal(fx->sm.safe_reason, HV_SAFE_ESTOP_LATCHED);
+        assert_int_equal(fx->sm.safe_node, latched);
+        /* not a single command: no DISABLE, CLEAR_FAULT, CLEAR_ESTOP, ENABLE, HOME */
+        assert_int_equal(fx_count(fx, HV_ACT_COMMAND, -1), 0);
+        assert_int_equal(fx_count(fx, HV_ACT_JOURNAL, HV_JR_ESTOP_CLEAR), 0);
+        assert_int_equal(fx_count(fx, HV_ACT_MOVE, -1) + fx_count(fx, HV_ACT_SETPOINT, -1), 0);
+        assert_true(fx_count(fx, HV_ACT_ESTOP, -1) >= 10); /* it stays safe, saying so */
+        assert_int_equal(fx->estop_clears[latched], 0);
+        assert_int_equal(fx->node[latched].estop, 1);
+        free(fx);
+    }
+}
+
+/* An e-stop mid-row; a restart without the operator's clear stays safe; one with it
+ * resumes: no fruit cut twice, none lost. */
+static void test_estop_then_restarts(void **state)
+{
+    (void)state;
+    fx_t *fx = new_fx(2, 2);
+    fx->f.estop_at_cut = 3; /* the right arm's e-stop trips on its third cut */
+    fx_start(fx, NULL);
+    fx_run(fx, 30.0);
+    assert_int_equal(fx->sm.safe_reason, HV_SAFE_ESTOP);
+    assert_int_equal(fx->sm.safe_node, HV_EXEC_RIGHT);
+    unsigned picked = fx->sm.picked;
+    assert_true(picked > 0 && picked < fx->plan.n_picks);
+
+    int run2 = fx_restart(fx); /* the operator did not clear it */
+    fx_run(fx, 5.0);
+    assert_int_equal(fx->sm.safe_reason, HV_SAFE_ESTOP_LATCHED);
+    assert_true(fx_find(fx, run2, HV_ACT_COMMAND, -1) < 0);
+    for (int i = 0; i < HV_EXEC_NODES; i++)
+        assert_int_equal(fx->node[i].estop, 1);
+
+    fx->prm.clear_estop = 1;
+    int run3 = fx_restart(fx);
+    fx_run(fx, 60.0);
+    assert_int_equal(fx->sm.phase, HV_PH_ROW_DONE);
+    assert_int_equal(picked + fx->sm.picked, fx->plan.n_picks);
+    for (int p = 0; p < fx->plan.n_picks; p++)
+        assert_int_equal(fx->cuts_done[fx->plan.picks[p].side][p], 1);
+    /* the clear: journalled first, then CLEAR_ESTOP once to each latched node, and only
+     * then CLEAR_FAULT, ENABLE and HOME */
+    int e = fx_find(fx, run3, HV_ACT_JOURNAL, HV_JR_ESTOP_CLEAR);
+    assert_true(e >= 0);
+    assert_int_equal(fx->log[e].a.u.jr.nodes, HV_EXEC_ALL_NODES);
+    assert_int_equal(fx_count(fx, HV_ACT_JOURNAL, HV_JR_ESTOP_CLEAR), 1);
+    int c = fx_find(fx, run3, HV_ACT_COMMAND, HV_CMD_CLEAR_ESTOP);
+    int f = fx_find(fx, run3, HV_ACT_COMMAND, HV_CMD_CLEAR_FAULT);
+    int en = fx_find(fx, run3, HV_ACT_COMMAND, HV_CMD_ENABLE);
+    int h = fx_find(fx, run3, HV_ACT_COMMAND, HV_CMD_HOME);
+    assert_true(e < c && c < f && f < en && en < h);
+    assert_int_equal(commands_from(fx, 0, HV_CMD_CLEAR_ESTOP), HV_EXEC_NODES);
+    for (int i = 0; i < HV_EXEC_NODES; i++)
+        assert_int_equal(fx->estop_clears[i], 1);
+    free(fx);
+}
+
+/* ---- by hand: the frames of each node in the order they arrive -------------------------- */
+
+typedef struct hand {
+    fx_t *fx;
+    hv_exec_actions_t out; /* the last step's actions */
+    int sent[HV_EXEC_NODES][HV_CMD_CLEAR_ESTOP + 1]; /* commands sent so far, by kind */
+    int seq[HV_EXEC_NODES];                          /* the last command's sequence number */
+} hand_t;
+
+static void hand_step(hand_t *h, hv_exec_event_t *ev)
+{
+    h->fx->now_ns += 10000000ull; /* 10 ms a frame: far inside every timeout */
+    h->out.n = 0;
+    assert_int_equal(hv_exec_step(&h->fx->sm, ev, h->fx->now_ns, &h->out), HV_OK);
+    for (unsigned k = 0; k < h->out.n; k++) {
+        const hv_exec_action_t *a = &h->out.a[k];
+        if (a->kind == HV_ACT_COMMAND) {
+            h->sent[a->node][a->u.cmd.command]++;
+            h->seq[a->node] = a->u.cmd.seq;
+        }
+    }
+}
+
+static void hand_hb(hand_t *h, int node, int health)
+{
+    hv_exec_event_t ev;
+    memset(&ev, 0, sizeof ev);
+    ev.kind = HV_EV_HEARTBEAT;
+    ev.node = node;
+    ev.u.hb.health = health;
+    ev.u.hb.time_scale = 10.0;
+    ev.u.hb.protocol = HV_PROTOCOL_VERSION;
+    hand_step(h, &ev);
+}
+
+/* A status echoing `cmd_seq`; `estop` says whether the node still holds its e-stop. */
+static void hand_status(hand_t *h, int node, int state, int cmd_seq, int estop)
+{
+    hv_exec_event_t ev;
+    memset(&ev, 0, sizeof ev);
+    ev.node = node;
+    if (node == HV_EXEC_VEHICLE) {
+        ev.kind = HV_EV_VEHICLE_STATUS;
+        ev.u.veh.state = state;
+        ev.u.veh.cmd_seq = cmd_seq;
+        ev.u.veh.fault_bits = estop ? HV_VEH_FAULT_ESTOP : 0;
+    } else {
+        ev.kind = HV_EV_ARM_STATUS;
+        ev.u.arm.state = state;
+        ev.u.arm.cmd_seq = cmd_seq;
+        ev.u.arm.fault_bits = estop ? HV_ARM_FAULT_ESTOP : 0;
+    }
+    hand_step(h, &ev);
+}
+
+static void hand_tick(hand_t *h)
+{
+    hv_exec_event_t ev;
+    memset(&ev, 0, sizeof ev);
+    ev.kind = HV_EV_TICK;
+    hand_step(h, &ev);
+}
+
+static int hand_sent(const hand_t *h, int command)
+{
+    int n = 0;
+    for (int i = 0; i < HV_EXEC_NODES; i++)
+        n += h->sent[i][command];
+    return n;
+}
+
+/* Start-up with both arms latched (the vehicle not) and the operator's clear: up to the
+ * point where every CLEAR_ESTOP has been echoed. The nodes' heartbeats from before the
+ * clear still say ESTOP. */
+static void hand_clear(hand_t *h)
+{
+    fx_t *fx = new_fx(1, 1);
+    fx->prm.clear_estop = 1;
+    fx_start(fx, NULL);
+    memset(h, 0, sizeof *h);
+    h->fx = fx;
+    for (int i = 0; i < HV_EXEC_NODES; i++) {
+        int latched = i != HV_EXEC_VEHICLE;
+        hand_hb(h, i, latched ? HV_HEALTH_ESTOP : HV_HEALTH_OK);
+        hand_status(h, i, latched ? HV_NODE_ESTOP : HV_NODE_DISABLED, 40 + i, latched);
+        if (i != HV_EXEC_VEHICLE) {
+            hv_exec_event_t ee;
+            memset(&ee, 0, sizeof ee);
+            ee.kind = HV_EV_EE_STATUS;
+            ee.node = i;
+            hand_step(h, &ee);
+        }
+    }
+    assert_int_equal(fx->sm.phase, HV_PH_ENABLE);
+    assert_int_equal(hand_sent(h, HV_CMD_DISABLE), HV_EXEC_NODES);
+    for (int i = 0; i < HV_EXEC_NODES; i++)
+        hand_status(h, i, i == HV_EXEC_VEHICLE ? HV_NODE_DISABLED : HV_NODE_ESTOP, h->seq[i],
+                    i != HV_EXEC_VEHICLE);
+    /* the journal record first, in the same step as the clears, to the latched nodes only */
+    assert_int_equal(h->out.a[0].kind, HV_ACT_JOURNAL);
+    assert_int_equal(h->out.a[0].u.jr.kind, HV_JR_ESTOP_CLEAR);
+    assert_int_equal(h->out.a[0].u.jr.nodes, (1u << HV_EXEC_LEFT) | (1u << HV_EXEC_RIGHT));
+    assert_int_equal(h->sent[HV_EXEC_VEHICLE][HV_CMD_CLEAR_ESTOP], 0);
+    assert_int_equal(h->sent[HV_EXEC_LEFT][HV_CMD_CLEAR_ESTOP], 1);
+    assert_int_equal(h->sent[HV_EXEC_RIGHT][HV_CMD_CLEAR_ESTOP], 1);
+    /* a heartbeat already on its way when the clear went out: from before it */
+    hand_hb(h, HV_EXEC_RIGHT, HV_HEALTH_ESTOP);
+    for (int i = HV_EXEC_LEFT; i <= HV_EXEC_RIGHT; i++)
+        hand_status(h, i, HV_NODE_DISABLED, h->seq[i], 0);
+}
+
+static void test_stale_estop_reports_after_a_clear_do_not_count(void **state)
+{
+    (void)state;
+    hand_t h;
+    hand_clear(&h);
+    /* every arm's last heartbeat says ESTOP, but it was sent before the arm's clear */
+    assert_int_equal(h.fx->sm.node[HV_EXEC_RIGHT].health, HV_HEALTH_ESTOP);
+    hand_tick(&h);
+    assert_int_equal(h.fx->sm.phase, HV_PH_ENABLE);
+    assert_int_equal(hand_sent(&h, HV_CMD_CLEAR_FAULT) + hand_sent(&h, HV_CMD_ENABLE), 0);
+    free(h.fx);
+}
+
+static void test_enable_waits_for_every_node_after_the_clear(void **state)
+{
+    (void)state;
+    hand_t h;
+    hand_clear(&h);
+    /* the arms speak after their clears; the vehicle (not latched) only by a heartbeat */
+    for (int i = HV_EXEC_LEFT; i <= HV_EXEC_RIGHT; i++) {
+        hand_hb(&h, i, HV_HEALTH_OK);
+        hand_status(&h, i, HV_NODE_DISABLED, h.seq[i], 0);
+    }
+    hand_hb(&h, HV_EXEC_VEHICLE, HV_HEALTH_OK);
+    hand_tick(&h);
+    assert_int_equal(hand_sent(&h, HV_CMD_CLEAR_FAULT) + hand_sent(&h, HV_CMD_ENABLE), 0);
+    /* the vehicle's status after the clear: now every node is fresh */
+    hand_status(&h, HV_EXEC_VEHICLE, HV_NODE_DISABLED, h.seq[HV_EXEC_VEHICLE], 0);
+    assert_int_equal(hand_sent(&h, HV_CMD_CLEAR_FAULT), HV_EXEC_NODES);
+    assert_int_equal(hand_sent(&h, HV_CMD_ENABLE), 0);
+    for (int i = 0; i < HV_EXEC_NODES; i++)
+        hand_status(&h, i, HV_NODE_DISABLED, h.seq[i], 0);
+    assert_int_equal(hand_sent(&h, HV_CMD_ENABLE), HV_EXEC_NODES);
+    assert_int_equal(h.fx->sm.phase, HV_PH_ENABLE);
+    free(h.fx);
+}
+
+static void test_estop_reported_after_the_clear_stops(void **state)
+{
+    (void)state;
+    hand_t h;
+    hand_clear(&h);
+    hand_hb(&h, HV_EXEC_LEFT, HV_HEALTH_OK);
+    hand_status(&h, HV_EXEC_LEFT, HV_NODE_DISABLED, h.seq[HV_EXEC_LEFT], 0);
+    /* the right arm's e-stop is still pressed: it latches again after the clear */
+    hand_hb(&h, HV_EXEC_RIGHT, HV_HEALTH_ESTOP);
+    assert_int_equal(h.fx->sm.phase, HV_PH_ENABLE); /* its status is not fresh yet */
+    hand_status(&h, HV_EXEC_RIGHT, HV_NODE_ESTOP, h.seq[HV_EXEC_RIGHT], 1);
+    assert_int_equal(h.fx->sm.phase, HV_PH_SAFE);
+    assert_int_equal(h.fx->sm.safe_reason, HV_SAFE_ESTOP);
+    assert_int_equal(h.fx->sm.safe_node, HV_EXEC_RIGHT);
+    assert_int_equal(h.out.a[0].kind, HV_ACT_ESTOP);
+    assert_int_equal(hand_sent(&h, HV_CMD_CLEAR_FAULT) + hand_sent(&h, HV_CMD_ENABLE), 0);
+    free(h.fx);
 }
 
 static void test_resume(void **state)
@@ -507,6 +760,15 @@ static void test_bad_input(void **state)
     assert_int_equal(hv_exec_init(NULL, &fx->plan, &p, NULL), HV_ERR_ARG);
     assert_string_equal(hv_exec_status_name(HV_ERR_EXEC_EVENT), "HV_ERR_EXEC_EVENT");
     assert_string_equal(hv_exec_phase_name(HV_PH_ROW_DONE), "row_done");
+    assert_string_equal(hv_exec_safe_reason_name(HV_SAFE_ESTOP_LATCHED), "estop_latched");
+    char list[32];
+    assert_int_equal(hv_exec_node_list((1u << HV_EXEC_VEHICLE) | (1u << HV_EXEC_RIGHT), list,
+                                       sizeof list), HV_OK);
+    assert_string_equal(list, "vehicle,right_arm");
+    assert_int_equal(hv_exec_node_list(0, list, sizeof list), HV_OK);
+    assert_string_equal(list, "");
+    assert_int_equal(hv_exec_node_list(1u << HV_EXEC_NODES, list, sizeof list), HV_ERR_ARG);
+    assert_int_equal(hv_exec_node_list(7u, list, 12), HV_ERR_ARG); /* does not fit */
     free(fx);
 }
 
@@ -550,6 +812,11 @@ int main(void)
         cmocka_unit_test(test_recovery_fails),
         cmocka_unit_test(test_homing_fails),
         cmocka_unit_test(test_operator_and_journal_stop),
+        cmocka_unit_test(test_latched_estop_keeps_a_start_safe),
+        cmocka_unit_test(test_estop_then_restarts),
+        cmocka_unit_test(test_stale_estop_reports_after_a_clear_do_not_count),
+        cmocka_unit_test(test_enable_waits_for_every_node_after_the_clear),
+        cmocka_unit_test(test_estop_reported_after_the_clear_stops),
         cmocka_unit_test(test_resume),
         cmocka_unit_test(test_resume_cut_not_held),
         cmocka_unit_test(test_unreachable_skipped),

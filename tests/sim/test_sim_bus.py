@@ -140,15 +140,17 @@ def test_command_state_machine(sim, ex, prefix):
     e.accepted(prefix, "ENABLE", "IDLE")
     st = e.accepted(prefix, "ESTOP", "ESTOP")
     assert st["FaultBits"] & (1 << ESTOP_BIT[prefix])
-    e.refused(prefix, "ENABLE")                      # latched until CLEAR_FAULT
-    st = e.accepted(prefix, "CLEAR_FAULT", "DISABLED")
+    e.refused(prefix, "ENABLE")                      # latched until CLEAR_ESTOP
+    e.refused(prefix, "CLEAR_FAULT")                 # which a fault clear never is
+    st = e.accepted(prefix, "CLEAR_ESTOP", "DISABLED")
     assert st["FaultBits"] == 0
     e.accepted(prefix, "ENABLE", "IDLE")
     events = h.stop()
     cmds = [x for x in events if x["event"] == "command" and x["node"] == NODE_OF[prefix]]
     labels = [(x["command"], x["accepted"]) for x in cmds if x["command"] != "NONE"]
     assert labels == [("HOME", False), ("ENABLE", True), ("DISABLE", True), ("ENABLE", True),
-                      ("ESTOP", True), ("ENABLE", False), ("CLEAR_FAULT", True), ("ENABLE", True)]
+                      ("ESTOP", True), ("ENABLE", False), ("CLEAR_FAULT", False),
+                      ("CLEAR_ESTOP", True), ("ENABLE", True)]
 
 
 # -- arm motion ---------------------------------------------------------------------------------
@@ -327,7 +329,7 @@ def test_vehicle_move_outside_travel_is_refused(sim, ex):
 
 # -- e-stop -------------------------------------------------------------------------------------
 
-def test_estop_frame_stops_every_node_until_clear_fault(sim, ex):
+def test_estop_frame_stops_every_node_until_clear_estop(sim, ex):
     h, c = sim()
     e = ex(c)
     for prefix in ("Vehicle", "LeftArm", "RightArm"):
@@ -353,9 +355,28 @@ def test_estop_frame_stops_every_node_until_clear_fault(sim, ex):
     assert not any(s["TargetReached"] and s["SetpointSeq"] == sp for s in c.all("LeftArmStatus"))
     for prefix in ("Vehicle", "LeftArm", "RightArm"):
         e.refused(prefix, "ENABLE")
-        st = e.accepted(prefix, "CLEAR_FAULT", "DISABLED")
+        e.refused(prefix, "CLEAR_FAULT")
+        st = e.accepted(prefix, "CLEAR_ESTOP", "DISABLED")
         assert st["FaultBits"] == 0
     assert len(h.events("estop_frame")) == 6   # two frames, each delivered to three nodes
+
+
+def test_fault_estop_latches_one_node_until_clear_estop(sim, ex):
+    h, c = sim("--fault", "estop:node=left_arm,after_s=1")
+    e = ex(c)
+    mark = c.mark()
+    _, st = c.wait_for("LeftArmStatus", lambda s: s["State"] == e.state("LeftArm", "ESTOP"),
+                       since=mark)
+    assert st["FaultBits"] == 1 << ESTOP_BIT["LeftArm"]
+    _, hb = c.wait_for("LeftArmHeartbeat", since=c.mark())
+    assert hb["Health"] == val(e.p, "LeftArmHeartbeat", "Health", "ESTOP")
+    for prefix in ("Vehicle", "RightArm"):     # the others' own e-stops did not trip
+        assert e.sync(prefix)["State"] == e.state(prefix, "DISABLED")
+    e.refused("LeftArm", "CLEAR_FAULT")
+    e.accepted("LeftArm", "CLEAR_ESTOP", "DISABLED")
+    e.accepted("LeftArm", "ENABLE", "IDLE")
+    injected = one(h.events("fault_injected", "left_arm"))
+    assert injected["fault"] == "estop" and injected["t"] == pytest.approx(1.0, abs=TIME_TOL)
 
 
 # -- fault injection: each one visible on the bus -------------------------------------------------
@@ -491,6 +512,37 @@ def test_fault_silent_node_stops_sending(sim):
     assert names[last_left_hb + 1:].count("LeftArmStatus") >= 20
     assert {(x["node"], x["frames"]) for x in h.events("fault_injected")} == {
         ("vehicle", "all"), ("left_arm", "heartbeat")}
+
+
+def test_fault_silent_for_a_while_then_back(sim):
+    h, c = sim("--fault", "silent:after_s=1,node=vehicle,for_s=2")
+    h.wait_events("fault_ended", 1)
+    mark = c.mark()
+    _, hb = c.wait_for("VehicleHeartbeat", since=mark)
+    names = [n for _, n, _ in c.frames]
+    # no vehicle frame for 2 s simulated: about 20 right-arm heartbeats in a row
+    run = longest = 0
+    for n in names:
+        run = 0 if n.startswith("Vehicle") else run + (n == "RightArmHeartbeat")
+        longest = max(longest, run)
+    assert 15 <= longest <= 25
+    ended = one(h.events("fault_ended", "vehicle"))
+    assert ended["t"] == pytest.approx(3.0, abs=TIME_TOL)
+    assert one(h.events("fault_injected", "vehicle"))["for_s"] == 2
+
+
+def test_fault_silent_just_after_a_pick(sim, ex):
+    h, c = sim("--fault", "silent:node=left_arm,pick=1,for_s=2", "--cut-time", "0.5")
+    e = ex(c)
+    e.accepted("LeftArm", "ENABLE", "IDLE")
+    seq, mark = e.ee("LeftArm", "CUT")
+    c.wait_for("LeftArmEeStatus", lambda s: s["EeSeq"] == seq and
+               s["State"] == e.ee_state("LeftArm", "DONE"), since=mark)
+    # the cut's DONE was held back by the silence: its end is in the record before it
+    pick = one(h.events("pick", "left_arm"))
+    assert one(h.events("fault_injected", "left_arm"))["t"] == pytest.approx(pick["t"], abs=TIME_TOL)
+    ended = one(h.events("fault_ended", "left_arm"))
+    assert ended["t"] == pytest.approx(pick["t"] + 2, abs=TIME_TOL)
 
 
 def test_fault_reject_the_nth_setpoint(sim, ex):

@@ -23,7 +23,7 @@ def run(*args, timeout=60):
 def test_help_lists_every_fault():
     r = run("--help")
     assert r.returncode == 0
-    for word in ("drop:", "delay:", "stall:", "joint_fault:", "silent:", "reject:",
+    for word in ("drop:", "delay:", "stall:", "joint_fault:", "silent:", "reject:", "estop:",
                  "--time-scale", "--record", "--rate"):
         assert word in r.stdout
 

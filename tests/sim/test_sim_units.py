@@ -93,6 +93,16 @@ def test_fault_flags_parse_with_defaults():
         "type": "stall", "node": "left_arm", "joint": 2, "setpoint": 1, "fraction": 0.5}
     assert faults.parse_flag("joint_fault:node=right_arm,joint=4,pick=3")["kind"] == "following"
     assert faults.parse_flag("silent:after_s=2.5,node=vehicle,frames=heartbeat")["after_s"] == 2.5
+    assert "for_s" not in faults.parse_flag("silent:after_s=1")
+    assert faults.parse_flag("silent:after_s=1,for_s=3")["for_s"] == 3.0
+    assert faults.parse_flag("silent:node=left_arm,pick=2") == {
+        "type": "silent", "node": "left_arm", "pick": 2, "frames": "all"}
+    assert faults.parse_flag("joint_fault:node=left_arm,joint=2,home=2") == {
+        "type": "joint_fault", "node": "left_arm", "joint": 2, "home": 2, "at": 0.5,
+        "kind": "following"}
+    assert faults.parse_flag("estop:after_s=4") == {"type": "estop", "node": "all", "after_s": 4.0}
+    assert faults.parse_flag("estop:node=right_arm,pick=3") == {
+        "type": "estop", "node": "right_arm", "pick": 3}
 
 
 @pytest.mark.parametrize("flag,field", [
@@ -104,6 +114,12 @@ def test_fault_flags_parse_with_defaults():
     ("silent:node=vehicle", "after_s"), ("reject:node=left_arm,setpoint=0", "setpoint"),
     ("reject:node=left_arm,setpoint=1,colour=red", "colour"), ("explode:x=1", "type"),
     ("drop:fraction", "fraction"),
+    ("joint_fault:node=left_arm,joint=1,pick=1,home=2", "home"),
+    ("joint_fault:node=left_arm,joint=1,pick=1,at=0.3", "at"),
+    ("silent:after_s=1,for_s=0", "for_s"), ("estop:node=vehicle", "after_s"),
+    ("silent:node=vehicle,pick=1", "node"), ("silent:after_s=1,pick=1", "pick"),
+    ("estop:after_s=1,pick=2", "pick"), ("estop:node=vehicle,pick=2", "node"),
+    ("estop:node=left_arm,pick=0", "pick"),
 ])
 def test_bad_fault_flags_name_the_field(flag, field):
     with pytest.raises(faults.FaultError, match=field):
@@ -175,8 +191,63 @@ def test_arm_estop_brakes_and_latches():
     assert a.velocities(stop + 1) == [0.0] * 4 and not a.target_reached
     a.on_command(stop + 1, node_mod.CMD_ENABLE, 2)
     assert a.state == node_mod.ESTOP and a.command_seq == 1
-    a.on_command(stop + 1, node_mod.CMD_CLEAR_FAULT, 3)
-    assert a.state == node_mod.DISABLED and a.fault_bits == 0
+    a.on_command(stop + 1, node_mod.CMD_CLEAR_FAULT, 3)   # never releases an e-stop
+    assert a.state == node_mod.ESTOP and a.command_seq == 1
+    a.on_command(stop + 1, node_mod.CMD_CLEAR_ESTOP, 4)
+    assert a.state == node_mod.DISABLED and a.fault_bits == 0 and a.command_seq == 4
+
+
+def test_clear_estop_leaves_an_older_fault_latched():
+    log = Log()
+    v = VehicleNode(MODEL, log)
+    v.on_command(0.0, node_mod.CMD_ENABLE, 1)
+    v.comm_timeout(1.0)
+    v.estop(2.0, "test")
+    assert v.state == node_mod.ESTOP and v.health() == node_mod.HEALTH_ESTOP
+    v.on_command(3.0, node_mod.CMD_CLEAR_ESTOP, 2)
+    assert v.state == node_mod.FAULT and v.fault_bits == 1 << 3   # the comm timeout
+    assert v.health() == node_mod.HEALTH_FAULT
+    v.on_command(3.0, node_mod.CMD_CLEAR_FAULT, 3)
+    assert v.state == node_mod.DISABLED and v.fault_bits == 0 and v.command_seq == 3
+
+
+def test_injected_estop_after_the_kth_pick_keeps_the_fruit():
+    log = Log()
+    a = ArmNode("left_arm", MODEL, log, faults=[faults.parse_flag("estop:node=left_arm,pick=2")],
+                cut_s=1.0, release_s=0.5)
+    a.on_command(0.0, node_mod.CMD_ENABLE, 1)
+    t = 0.0
+    for k in range(2):
+        a.on_ee(t, arm_mod.ACT_CUT, 2 * k)
+        a.update(t + 1.0)
+        assert a.state == (node_mod.IDLE if k == 0 else node_mod.ESTOP)
+        if k == 0:
+            a.on_ee(t + 1.0, arm_mod.ACT_RELEASE, 2 * k + 1)
+            a.update(t + 1.5)
+        t += 2.0
+    assert a.picks == 2 and a.fruit_held and a.ee_state == arm_mod.EE_DONE
+    assert [e["pick"] for e in log.of("fault_injected")] == [2]
+    a.on_command(t, node_mod.CMD_CLEAR_ESTOP, 2)
+    assert a.state == node_mod.DISABLED and a.fruit_held
+
+
+def test_injected_joint_fault_during_the_nth_homing():
+    log = Log()
+    a = ArmNode("right_arm", MODEL, log, start=[0.05, 0.6, 0.3, -1.0],
+                faults=[faults.parse_flag("joint_fault:node=right_arm,joint=1,home=2,at=0.5")])
+    a.on_command(0.0, node_mod.CMD_ENABLE, 1)
+    a.on_command(0.0, node_mod.CMD_HOME, 2)
+    first = a.next_event()
+    a.update(first)
+    assert a.homed and a.state == node_mod.IDLE           # the first homing is untouched
+    a.on_setpoint(first, [0.05, 0.6, 0.3, -1.0], 1)
+    a.update(100.0)
+    a.on_command(100.0, node_mod.CMD_HOME, 3)
+    due = a.next_event()
+    assert due == pytest.approx(100.0 + 0.5 * (a.motion["t_end"] - 100.0))
+    a.update(due)
+    assert a.state == node_mod.FAULT and a.fault_bits == 1 << arm_mod.BIT_FOLLOWING
+    assert a.motion is None and [e["joint"] for e in log.of("fault_injected")] == [1]
 
 
 def test_end_effector_cut_counts_picks():

@@ -7,9 +7,15 @@
  *   R <L|R> <fruit id> a=<attempt> t=<s>     release issued
  *   F <L|R> <fruit id> <picked|failed|skipped> <reason> a=<attempt> t=<s>
  *   D t=<s>                             row done
+ *   E <operator> nodes=<node>[,<node>] t=<s>   an operator cleared the e-stop latched on
+ *                                       these nodes (vehicle, left_arm, right_arm)
+ * <operator>: 1 to 32 of A-Z a-z 0-9 . _ - (hv_exec_journal_operator_ok).
  * t is the executor's run time (s, informational). Each record is written with one
  * write() and made durable with fdatasync() before the call returns, so the program
  * carries out the next action only after the record is on disk.
+ *
+ * Journals written before the E record existed read the same (the version stays 1); a
+ * program that predates it stops at an E line with "unknown record".
  *
  * Opening an existing journal replays it into an hv_exec_progress_t: a torn last line
  * (a crash in the middle of a write: no newline) is cut off; a complete line with a bad
@@ -56,6 +62,12 @@ hv_status_t hv_exec_journal_release(hv_exec_journal_t *j, int pick, int attempt,
 hv_status_t hv_exec_journal_outcome(hv_exec_journal_t *j, int pick, int outcome, int reason,
                                     int attempt, double t_s);
 hv_status_t hv_exec_journal_done(hv_exec_journal_t *j, double t_s);
+/* `nodes`: 1 << HV_EXEC_* of the nodes cleared (not 0); HV_ERR_ARG for a bad operator name. */
+hv_status_t hv_exec_journal_estop_clear(hv_exec_journal_t *j, const char *operator_name,
+                                        unsigned nodes, double t_s);
+
+/* 1 when `name` can stand as the operator of an E record. */
+int hv_exec_journal_operator_ok(const char *name);
 
 void hv_exec_journal_close(hv_exec_journal_t *j);
 

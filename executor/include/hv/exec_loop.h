@@ -35,6 +35,8 @@ typedef struct hv_exec_loop {
     hv_exec_telemetry_t *tm;         /* may be NULL */
     volatile sig_atomic_t *stop;     /* set by a signal handler: stop safely */
     FILE *progress;                  /* phase changes and outcomes, or NULL */
+    const char *clear_by;            /* the operator who cleared the e-stop (E record), or
+                                        NULL: an e-stop clear then fails like a journal write */
     double tick_s;                   /* timer tick (s, real), default 0.01 */
     double linger_s;                 /* keep running after the end (e-stop repeats), s */
     /* private */

@@ -45,6 +45,7 @@ typedef struct hv_exec_progress {
     uint8_t reason[HV_EXEC_MAX_PICKS];  /* hv_exec_reason_t when DONE */
     uint8_t stop_reached[HV_EXEC_MAX_STOPS];
     int row_done;
+    unsigned estop_clears;              /* operator e-stop clears journalled (E records) */
 } hv_exec_progress_t;
 
 const char *hv_exec_outcome_name(int outcome);  /* "picked", "failed", "skipped" */

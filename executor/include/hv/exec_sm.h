@@ -8,8 +8,8 @@
  * a fake clock and a fake bus.
  *
  * The run: WAIT_NODES (heartbeats + a status from each node, same time scale) -> ENABLE
- * (ENABLE to all three nodes, each echoes the command) -> HOMING (HOME to both arms, wait
- * Homed) -> per stop: DRIVING (VehicleMove, wait Arrived with the move's sequence number)
+ * (DISABLE, CLEAR_FAULT, ENABLE to all three nodes, each echoes the command) -> HOMING
+ * (HOME to both arms, wait Homed) -> per stop: DRIVING (VehicleMove, wait Arrived with the move's sequence number)
  * -> HARVEST (both arms run their pick cycles independently; the stop ends when the slower
  * arm is done) -> ... -> FINAL_DRIVE (to the course end) -> ROW_DONE (arms and drive
  * disabled).
@@ -18,6 +18,14 @@
  * its SetpointSeq) -> CUT (journal "cut issued", EeCommand CUT, wait EeStatus DONE with the
  * EeSeq) -> RETURN (setpoint = home) -> RELEASE (journal "release issued", EeCommand
  * RELEASE, wait DONE) -> journal "picked" -> next pick.
+ *
+ * E-stop latch: a node that reports an e-stop when every node has been seen keeps the
+ * executor from starting: SAFE (estop_latched), nothing but e-stops and heartbeats sent,
+ * unless the operator cleared the e-stop for this run (params.clear_estop). Then the clear
+ * is journalled, CLEAR_ESTOP goes to the latched nodes, and nothing more is sent before a
+ * heartbeat and a status of every node, received after the last CLEAR_ESTOP was echoed,
+ * show no e-stop (what a node reported before its clear no longer says anything). Only
+ * CLEAR_ESTOP releases a latch (DBC): the CLEAR_FAULTs of start-up and recovery never do.
  *
  * Faults and their safe states:
  *   - e-stop reported by a node, lost heartbeat (heartbeat_timeout_s), a node reporting
@@ -38,6 +46,7 @@
 #ifndef HV_EXEC_SM_H
 #define HV_EXEC_SM_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "hv/exec_outcome.h"
@@ -52,10 +61,12 @@ extern "C" {
 enum { HV_NODE_EXECUTOR = 1, HV_NODE_VEHICLE = 2, HV_NODE_ARM_L = 3, HV_NODE_ARM_R = 4 };
 /* our index of the three remote nodes */
 enum { HV_EXEC_VEHICLE = 0, HV_EXEC_LEFT = 1, HV_EXEC_RIGHT = 2, HV_EXEC_NODES = 3 };
+/* a set of them: 1 << HV_EXEC_* */
+#define HV_EXEC_ALL_NODES ((1u << HV_EXEC_NODES) - 1u)
 
 /* Node commands, states and end-effector values: as in the DBC's value tables. */
 enum { HV_CMD_NONE = 0, HV_CMD_ENABLE = 1, HV_CMD_DISABLE = 2, HV_CMD_HOME = 3,
-       HV_CMD_ESTOP = 4, HV_CMD_CLEAR_FAULT = 5 };
+       HV_CMD_ESTOP = 4, HV_CMD_CLEAR_FAULT = 5, HV_CMD_CLEAR_ESTOP = 6 };
 enum { HV_NODE_DISABLED = 0, HV_NODE_IDLE = 1, HV_NODE_HOMING = 2, HV_NODE_MOVING = 3,
        HV_NODE_FAULT = 4, HV_NODE_ESTOP = 5 };
 enum { HV_HEALTH_OK = 0, HV_HEALTH_WARNING = 1, HV_HEALTH_FAULT = 2, HV_HEALTH_ESTOP = 3 };
@@ -86,6 +97,16 @@ typedef enum hv_exec_phase {
     HV_PH_COUNT
 } hv_exec_phase_t;
 
+/* The steps of the ENABLE phase (sm->sub), in order; the e-stop clear only with a latch
+ * and the operator's clear. */
+typedef enum hv_exec_enable_step {
+    HV_EN_DISABLE = 0, /* DISABLE sent to all: what a previous run left moving stops */
+    HV_EN_CLEAR_ESTOP, /* the clear journalled, CLEAR_ESTOP sent to the latched nodes */
+    HV_EN_FRESH,       /* waiting for a heartbeat and a status of every node after the clear */
+    HV_EN_CLEAR_FAULT, /* CLEAR_FAULT sent to all */
+    HV_EN_ENABLE       /* ENABLE sent to all, IDLE expected */
+} hv_exec_enable_step_t;
+
 typedef enum hv_exec_arm_phase {
     HV_ARM_IDLE = 0,   /* no pick at this stop yet / between stops */
     HV_ARM_APPROACH,
@@ -110,6 +131,7 @@ typedef enum hv_exec_safe_reason {
     HV_SAFE_FAULT,          /* a node faulted during start-up or recovery */
     HV_SAFE_JOURNAL,        /* the journal could not be written */
     HV_SAFE_OPERATOR,       /* stop requested (signal) */
+    HV_SAFE_ESTOP_LATCHED,  /* a node reports a latched e-stop at start-up, no operator clear */
     HV_SAFE_COUNT
 } hv_exec_safe_reason_t;
 
@@ -129,11 +151,13 @@ typedef struct hv_exec_params {
     unsigned max_retries;       /* further attempts of a fruit after a recoverable fault */
     double resend_s;            /* real time before an unacknowledged frame is sent again
                                    (> 0; several status periods, so a status was missed) */
+    int clear_estop;            /* 1: an operator cleared the e-stop for this run: a latch
+                                   found at start-up is released; 0: it keeps us in SAFE */
 } hv_exec_params_t;
 
 /* Defaults: margin 0.5, slack 1 s, latency 0.3 s, heartbeat 0.5 s / 0.1 s, start-up 10 s,
  * command 1 s, cut 1 s, release 0.5 s, 0.1 m/s, 0.1 m/s^2, 2 retries, resend 0.25 s,
- * time scale 0; home_max_s is
+ * time scale 0, no e-stop clear; home_max_s is
  * the arm's business: set it (hv_exec_home_max_s). */
 void hv_exec_params_default(hv_exec_params_t *p);
 
@@ -180,7 +204,8 @@ typedef enum hv_exec_journal_kind {
     HV_JR_CUT,      /* cut issued for a pick */
     HV_JR_RELEASE,  /* release issued for a pick */
     HV_JR_OUTCOME,  /* a pick's outcome */
-    HV_JR_DONE      /* row done */
+    HV_JR_DONE,     /* row done */
+    HV_JR_ESTOP_CLEAR /* the operator's e-stop clear, of the nodes in u.jr.nodes */
 } hv_exec_journal_kind_t;
 
 typedef enum hv_exec_fruit_event_kind {
@@ -197,7 +222,7 @@ typedef struct hv_exec_action {
         struct { int action; int seq; } ee;
         struct { double target_m; double speed_mps; int seq; } move;
         struct { hv_exec_journal_kind_t kind; int pick; int stop; int attempt;
-                 int outcome; int reason; } jr;
+                 int outcome; int reason; unsigned nodes; } jr; /* nodes: 1 << HV_EXEC_* */
         struct { hv_exec_fruit_event_kind_t kind; int pick; int attempt; int outcome;
                  int reason; } fe;
     } u;
@@ -214,6 +239,7 @@ typedef struct hv_exec_actions {
 typedef struct hv_exec_node {
     int seen;              /* a heartbeat with our protocol version arrived */
     int status_seen;       /* a status frame arrived */
+    uint64_t hb_rx, st_rx; /* arrival order (hv_exec_sm_t.rx) of the last heartbeat, status */
     uint64_t last_hb_ns;
     double time_scale;
     int health;
@@ -248,7 +274,10 @@ typedef struct hv_exec_sm {
     hv_exec_params_t prm;
     hv_exec_progress_t prog;   /* per-pick progress (journal replay + this run) */
     hv_exec_phase_t phase;
-    int sub;                   /* ENABLE: 0 DISABLE, 1 CLEAR_FAULT, 2 ENABLE sent */
+    int sub;                   /* ENABLE: the hv_exec_enable_step_t reached */
+    unsigned latched;          /* nodes (1 << HV_EXEC_*) that reported an e-stop at start-up */
+    uint64_t rx;               /* heartbeats and statuses received so far (their order) */
+    uint64_t clear_rx;         /* rx when the last CLEAR_ESTOP was echoed: later is fresh */
     hv_exec_safe_reason_t safe_reason;
     int safe_node;             /* node of the safe reason, -1 when none */
     double time_scale;         /* in use (from the nodes once they agree) */
@@ -286,6 +315,11 @@ int hv_exec_finished(const hv_exec_sm_t *sm);
 const char *hv_exec_phase_name(int phase);
 const char *hv_exec_arm_phase_name(int phase);
 const char *hv_exec_safe_reason_name(int reason);
+/* "vehicle", "left_arm", "right_arm" for HV_EXEC_*, "none" for -1, else "unknown". */
+const char *hv_exec_node_name(int node);
+/* The names of the nodes in `nodes` (1 << HV_EXEC_*), comma-separated, into buf ("" for
+ * none); HV_ERR_ARG when a bit names no node or buf is too small (> 27 bytes is enough). */
+hv_status_t hv_exec_node_list(unsigned nodes, char *buf, size_t len);
 
 #ifdef __cplusplus
 }

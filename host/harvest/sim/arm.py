@@ -53,7 +53,9 @@ class ArmNode(Node):
         self.setpoints_received = 0
         self.setpoints_accepted = 0
         self.cuts_received = 0
+        self.homings = 0
         self.picks = 0
+        self.pick_times = []        # simulated time of each pick
         self.ee_state, self.ee_action, self.ee_seq = EE_IDLE, ACT_NONE, 0
         self.ee_done_t = None
         self.fruit_held = False
@@ -71,6 +73,12 @@ class ArmNode(Node):
         self.pending_fault = None
         self._fail_ee(t, "arm started moving")
 
+    def on_homing(self, t):
+        self.homings += 1
+        jf = self._fault_at("joint_fault", "home", self.homings)
+        if jf is not None:
+            self.pending_fault = (t + jf["at"] * (self.motion["t_end"] - t), jf)
+
     def on_stopped(self, t, why):
         self.pending_fault = None
         self._fail_ee(t, why)
@@ -87,8 +95,7 @@ class ArmNode(Node):
         """Handle <Arm>Setpoint with joint positions q (m, rad) and its 5-bit sequence."""
         self.setpoints_received += 1
         reason, bits = "", 0
-        injected = next((f for f in self.faults if f["type"] == "reject"
-                         and f["setpoint"] == self.setpoints_received), None)
+        injected = self._fault_at("reject", "setpoint", self.setpoints_received)
         if self.state not in (IDLE, MOVING):
             reason = f"state {STATE_NAMES[self.state]}"
         elif injected is not None:
@@ -112,13 +119,11 @@ class ArmNode(Node):
         motion = self.start_motion(t, q, "setpoint", seq)
         self.on_new_motion(t)
         fields = {}
-        stall = next((f for f in self.faults if f["type"] == "stall"
-                      and f["setpoint"] == self.setpoints_accepted), None)
+        stall = self._fault_at("stall", "setpoint", self.setpoints_accepted)
         if stall is not None:
             self._stall(t, stall, motion)
             fields["stall"] = {"joint": stall["joint"], "fraction": stall["fraction"]}
-        jf = next((f for f in self.faults if f["type"] == "joint_fault"
-                   and f.get("setpoint") == self.setpoints_accepted), None)
+        jf = self._fault_at("joint_fault", "setpoint", self.setpoints_accepted)
         if jf is not None:
             at = t + jf["at"] * (motion["t_end"] - t)
             self.pending_fault = (at, jf)
@@ -144,8 +149,7 @@ class ArmNode(Node):
         self.ee_changed = True
         if action == ACT_CUT:
             self.cuts_received += 1
-            jf = next((f for f in self.faults if f["type"] == "joint_fault"
-                       and f.get("pick") == self.cuts_received), None)
+            jf = self._fault_at("joint_fault", "pick", self.cuts_received)
             if jf is not None and self.state not in (FAULT, ESTOP):
                 self.log(t, "ee", action=name, seq=seq, accepted=False,
                          reason=f"injected joint fault at pick #{self.cuts_received}")
@@ -175,6 +179,11 @@ class ArmNode(Node):
                  done_at=self.ee_done_t)
 
     # -- faults and the end effector ----------------------------------------------------------
+    def _fault_at(self, kind, trigger, count):
+        """This arm's injected fault of `kind` whose `trigger` field is `count`, or None."""
+        return next((f for f in self.faults if f["type"] == kind and f.get(trigger) == count),
+                    None)
+
     def _joint_fault(self, t, jf):
         j = jf["joint"] - 1
         bit = (BIT_FOLLOWING if jf["kind"] == "following" else BIT_LIMIT) + j
@@ -207,6 +216,7 @@ class ArmNode(Node):
             if self.ee_action == ACT_CUT:
                 self.fruit_held = True
                 self.picks += 1
+                self.pick_times.append(done)
                 self.log(done, "pick", pick=self.picks, seq=self.ee_seq, positions=q,
                          vehicle_position=self.vehicle_position(done))
             else:
@@ -215,6 +225,10 @@ class ArmNode(Node):
             self._set_ee(done, EE_DONE)
             self.log(done, "ee_done", action=ACTION_NAMES[self.ee_action], seq=self.ee_seq,
                      result="DONE")
+            if self.ee_action == ACT_CUT and self._fault_at("estop", "pick", self.picks):
+                # once the cut is done: the arm stops with the fruit held
+                self.log(done, "fault_injected", fault="estop", pick=self.picks)
+                self.estop(done, f"injected e-stop after pick #{self.picks}")
 
     def next_event(self):
         times = [x for x in (super().next_event(), self.ee_done_t,

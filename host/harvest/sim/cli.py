@@ -27,10 +27,17 @@ faults (repeat --fault; same fields in a --scenario JSON file {"seed": N, "fault
                                                        N-th accepted setpoint: never reached
   joint_fault:node=ARM,joint=J,pick=K[,kind=following|limit]
   joint_fault:node=ARM,joint=J,setpoint=N[,at=F][,kind=...]
+  joint_fault:node=ARM,joint=J,home=N[,at=F][,kind=...]
                                                        FAULT with joint J's bit at the K-th
-                                                       CUT, or at F of setpoint N's motion
-  silent:after_s=S[,node=N][,frames=all|heartbeat]     stop sending after S
+                                                       CUT, or at F of setpoint N's or of
+                                                       homing N's motion
+  silent:after_s=S[,node=N][,frames=all|heartbeat][,for_s=D]
+  silent:node=ARM,pick=K[,frames=...][,for_s=D]        stop sending after S, or just after
+                                                       the arm's K-th pick (for D)
   reject:node=ARM,setpoint=N                           refuse the N-th setpoint (bit 11)
+  estop:after_s=S[,node=N]                             the node's own e-stop trips at S
+  estop:node=ARM,pick=K                                ... just after the arm's K-th pick;
+                                                       latched until CLEAR_ESTOP
   nodes: vehicle, left_arm, right_arm, all (default); ARM: left_arm or right_arm
 
 examples:

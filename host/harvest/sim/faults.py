@@ -10,11 +10,17 @@ flag and a file entry mean exactly the same thing. Times are simulated seconds.
   stall        node (an arm), joint 1..4, setpoint n >= 1 (1), fraction [0, 1) (0.5)
                on the n-th accepted setpoint the joint stops at that fraction of its way
                and the arm never reports the target reached
-  joint_fault  node (an arm), joint 1..4, and either pick k >= 1 (on the k-th CUT command)
-               or setpoint n >= 1 (after `at` (0.5) of that setpoint's motion time);
+  joint_fault  node (an arm), joint 1..4, and one of pick k >= 1 (on the k-th CUT command),
+               setpoint n >= 1 or home n >= 1 (after `at` (0.5) of the n-th accepted
+               setpoint's or the n-th homing's motion time);
                kind following|limit (following): the arm goes to FAULT with that joint's bit
-  silent       after_s >= 0, node (all), frames all|heartbeat (all)
-               the node stops sending (everything, or only its heartbeat) from after_s on
+  silent       node (all), frames all|heartbeat (all), for_s > 0 (for ever), and one of
+               after_s >= 0 or pick k >= 1 (an arm: just after its k-th pick)
+               the node stops sending (everything, or only its heartbeat) from then on,
+               and sends again after for_s
+  estop        node (all), and one of after_s >= 0 or pick k >= 1 (an arm: just after its
+               k-th pick, the fruit held): the node's own e-stop trips and latches, as an
+               e-stop button wired to it would; only CLEAR_ESTOP releases it
   reject       node (an arm), setpoint n >= 1: the n-th setpoint received is refused as
                out of range (fault bit 11), whatever its values
 
@@ -74,10 +80,20 @@ _FIELDS = {
     "drop": {"fraction", "direction", "node"},
     "delay": {"delay_s", "direction", "node"},
     "stall": {"node", "joint", "setpoint", "fraction"},
-    "joint_fault": {"node", "joint", "pick", "setpoint", "kind", "at"},
-    "silent": {"after_s", "node", "frames"},
+    "joint_fault": {"node", "joint", "pick", "setpoint", "home", "kind", "at"},
+    "silent": {"after_s", "pick", "node", "frames", "for_s"},
     "reject": {"node", "setpoint"},
+    "estop": {"node", "after_s", "pick"},
 }
+
+
+def _one_of(spec, keys, where, kind):
+    """The one trigger field of `keys` that `spec` has; FaultError unless exactly one."""
+    given = [k for k in keys if k in spec]
+    if len(given) != 1:
+        names = ", ".join(f"'{k}'" for k in keys)
+        raise FaultError(f"{where}: a {kind} needs exactly one of fields {names}")
+    return given[0]
 
 
 def validate(spec, where):
@@ -108,24 +124,35 @@ def validate(spec, where):
     elif kind == "joint_fault":
         out["node"] = _choice(spec, "node", where, ARMS)
         out["joint"] = _num(spec, "joint", where, lo=1, hi=4, integer=True)
-        if ("pick" in spec) == ("setpoint" in spec):
-            raise FaultError(f"{where}: a joint_fault needs exactly one of fields 'pick', 'setpoint'")
-        if "pick" in spec:
-            out["pick"] = _num(spec, "pick", where, lo=1, integer=True)
+        trigger = _one_of(spec, ("pick", "setpoint", "home"), where, kind)
+        out[trigger] = _num(spec, trigger, where, lo=1, integer=True)
+        if trigger == "pick":
             if "at" in spec:
-                raise FaultError(f"{where}: field 'at' only applies with 'setpoint'")
+                raise FaultError(f"{where}: field 'at' only applies with 'setpoint' or 'home'")
         else:
-            out["setpoint"] = _num(spec, "setpoint", where, lo=1, integer=True)
             out["at"] = _num(spec, "at", where, 0.5, lo=0.0, hi=1.0, lo_open=True, hi_open=True)
         out["kind"] = _choice(spec, "kind", where, ("following", "limit"), "following")
     elif kind == "silent":
-        out["after_s"] = _num(spec, "after_s", where, lo=0.0)
-        out["node"] = _choice(spec, "node", where, NODES + ("all",), "all")
+        _trigger(spec, out, where, kind)
         out["frames"] = _choice(spec, "frames", where, ("all", "heartbeat"), "all")
+        if "for_s" in spec:
+            out["for_s"] = _num(spec, "for_s", where, lo=0.0, lo_open=True)
     elif kind == "reject":
         out["node"] = _choice(spec, "node", where, ARMS)
         out["setpoint"] = _num(spec, "setpoint", where, lo=1, integer=True)
+    elif kind == "estop":
+        _trigger(spec, out, where, kind)
     return out
+
+
+def _trigger(spec, out, where, kind):
+    """`node` and when: a time (any node, default all) or an arm's k-th pick."""
+    if _one_of(spec, ("after_s", "pick"), where, kind) == "pick":
+        out["node"] = _choice(spec, "node", where, ARMS)
+        out["pick"] = _num(spec, "pick", where, lo=1, integer=True)
+    else:
+        out["node"] = _choice(spec, "node", where, NODES + ("all",), "all")
+        out["after_s"] = _num(spec, "after_s", where, lo=0.0)
 
 
 def parse_flag(text):

@@ -12,8 +12,8 @@ from .profile import Profile
 DISABLED, IDLE, HOMING, MOVING, FAULT, ESTOP = range(6)
 STATE_NAMES = ("DISABLED", "IDLE", "HOMING", "MOVING", "FAULT", "ESTOP")
 # Command (VAL_ of <Node>Command.Command)
-CMD_NONE, CMD_ENABLE, CMD_DISABLE, CMD_HOME, CMD_ESTOP, CMD_CLEAR_FAULT = range(6)
-COMMAND_NAMES = ("NONE", "ENABLE", "DISABLE", "HOME", "ESTOP", "CLEAR_FAULT")
+CMD_NONE, CMD_ENABLE, CMD_DISABLE, CMD_HOME, CMD_ESTOP, CMD_CLEAR_FAULT, CMD_CLEAR_ESTOP = range(7)
+COMMAND_NAMES = ("NONE", "ENABLE", "DISABLE", "HOME", "ESTOP", "CLEAR_FAULT", "CLEAR_ESTOP")
 # Health (VAL_ of <Node>Heartbeat.Health)
 HEALTH_OK, HEALTH_WARNING, HEALTH_FAULT, HEALTH_ESTOP = range(4)
 HEALTH_NAMES = ("OK", "WARNING", "FAULT", "ESTOP")
@@ -36,7 +36,6 @@ class Node:
 
     ESTOP_BIT = 0     # fault bit latched by an e-stop (subclass)
     COMM_BIT = 0      # fault bit of a lost executor heartbeat (subclass)
-    LATCHED = 0       # bits that only CLEAR_FAULT clears
 
     def __init__(self, name, positions, limits, log):
         self.name = name
@@ -130,7 +129,8 @@ class Node:
             pass
         elif command == CMD_ENABLE:
             if self.state in (FAULT, ESTOP):
-                accepted, why = False, f"latched {STATE_NAMES[self.state]}: CLEAR_FAULT first"
+                accepted, why = False, (f"latched {STATE_NAMES[self.state]}: "
+                                        f"{'CLEAR_ESTOP' if self.state == ESTOP else 'CLEAR_FAULT'} first")
             elif self.state == DISABLED:
                 self.set_state(t, IDLE, "ENABLE")
         elif command == CMD_DISABLE:
@@ -145,15 +145,25 @@ class Node:
             elif self.state != HOMING:
                 self.start_motion(t, self.home_targets(), "home")
                 self.on_new_motion(t)
+                self.on_homing(t)
                 self.set_state(t, HOMING, "HOME")
                 self.log(t, "homing", targets=self.motion["targets"],
                          duration=self.motion["t_end"] - t)
         elif command == CMD_ESTOP:
             self.estop(t, "ESTOP command")
         elif command == CMD_CLEAR_FAULT:
-            self.clear_bits(0xFFFF)
-            if self.state in (FAULT, ESTOP):
-                self.set_state(t, DISABLED, "CLEAR_FAULT")
+            # an e-stop is the operator's: only CLEAR_ESTOP releases it (DBC)
+            if self.state == ESTOP:
+                accepted, why = False, "latched ESTOP: CLEAR_ESTOP first"
+            else:
+                self.clear_bits(0xFFFF)
+                if self.state == FAULT:
+                    self.set_state(t, DISABLED, "CLEAR_FAULT")
+        elif command == CMD_CLEAR_ESTOP:
+            self.clear_bits(1 << self.ESTOP_BIT)
+            if self.state == ESTOP:
+                # a fault from before the e-stop is still there: FAULT until CLEAR_FAULT
+                self.set_state(t, FAULT if self.fault_bits else DISABLED, "CLEAR_ESTOP")
         else:
             accepted, why = False, f"unknown command {command}"
         if accepted and seq != self.command_seq:
@@ -174,6 +184,9 @@ class Node:
 
     def on_new_motion(self, t):
         """A new motion replaced the running one (hook)."""
+
+    def on_homing(self, t):
+        """A homing motion started (hook, after on_new_motion)."""
 
     # -- time --------------------------------------------------------------------------
     def update(self, t):

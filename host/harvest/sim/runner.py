@@ -89,6 +89,7 @@ class Simulator:
 
     def _build_wire_faults(self):
         self._drops, self._delays, self._silent = [], [], []
+        self._timed_estops = []   # [(sim t, node)] still to trip, soonest first
         for i, f in enumerate(self.opt.faults):
             nodes = NODE_ORDER if f.get("node", "all") == "all" else (f["node"],)
             if f["type"] == "drop":
@@ -98,8 +99,48 @@ class Simulator:
             elif f["type"] == "delay":
                 self._delays.append((f, set(nodes)))
             elif f["type"] == "silent":
-                self._silent.append((f, set(nodes)))
+                self._silent.append((f, set(nodes), i))
+            elif f["type"] == "estop" and "after_s" in f:
+                self._timed_estops += [(f["after_s"], n) for n in nodes]
+        self._timed_estops.sort()
         self._silent_logged = set()
+        self._silent_ended = set()
+
+    def _silence_start(self, f, node):
+        """Simulated time a silent fault starts on `node`, None while its pick is to come."""
+        if "after_s" in f:
+            return f["after_s"]
+        times = self.arms[node].pick_times
+        return times[f["pick"] - 1] if len(times) >= f["pick"] else None
+
+    def _silenced(self, t, node, kind):
+        """Whether a silent fault holds back this frame; records where a silence starts and ends."""
+        for f, nodes, i in self._silent:
+            if node not in nodes or (f["frames"] != "all" and kind != "Heartbeat"):
+                continue
+            start = self._silence_start(f, node)
+            if start is None or t < start:
+                continue
+            if "for_s" in f and t >= start + f["for_s"]:
+                if (i, node) not in self._silent_ended:
+                    self._silent_ended.add((i, node))
+                    self.record.write(start + f["for_s"], self.clock.wall(), node,
+                                      "fault_ended", fault="silent", frames=f["frames"])
+                continue
+            if (i, node) not in self._silent_logged:
+                self._silent_logged.add((i, node))
+                self.record.write(start, self.clock.wall(), node, "fault_injected",
+                                  fault="silent", frames=f["frames"], for_s=f.get("for_s"))
+            return True
+        return False
+
+    def _trip_timed_estops(self, t):
+        while self._timed_estops and self._timed_estops[0][0] <= t:
+            at, node = self._timed_estops.pop(0)
+            n = self.nodes[node]
+            n.update(at)
+            self.record.write(at, self.clock.wall(), node, "fault_injected", fault="estop")
+            n.estop(at, "injected e-stop")
 
     def _build_schedule(self):
         period = 1.0 / self.opt.rate_hz
@@ -119,14 +160,9 @@ class Simulator:
 
     def emit(self, t, node, kind, signals):
         name = f"{NODE_PREFIX[node]}{kind}"
-        for f, nodes in self._silent:
-            if node in nodes and t >= f["after_s"] and (f["frames"] == "all" or kind == "Heartbeat"):
-                if (node, f["frames"]) not in self._silent_logged:
-                    self._silent_logged.add((node, f["frames"]))
-                    self.record.write(f["after_s"], self.clock.wall(), node, "fault_injected",
-                                      fault="silent", frames=f["frames"])
-                self.stats["tx_silenced"] += 1
-                return
+        if self._silenced(t, node, kind):
+            self.stats["tx_silenced"] += 1
+            return
         for f, _, rng in self._wire_match(self._drops, node, "tx"):
             if rng.random() < f["fraction"]:
                 self.stats["tx_dropped"] += 1
@@ -324,6 +360,7 @@ class Simulator:
         """Everything due at simulated time t; returns the next simulated deadline."""
         for n in self.nodes.values():
             n.update(t)
+        self._trip_timed_estops(t)
         while self._rx_queue and self._rx_queue[0][0] <= t:
             _, _, node, name, s = heapq.heappop(self._rx_queue)
             self.nodes[node].update(t)
@@ -342,6 +379,7 @@ class Simulator:
             self._send(t, heapq.heappop(self._tx_queue)[2])
         deadlines = [e[0] for e in self._periodic]
         deadlines += [x for x in (n.next_event() for n in self.nodes.values()) if x is not None]
+        deadlines += [at for at, _ in self._timed_estops[:1]]
         for q in (self._tx_queue, self._rx_queue):
             if q:
                 deadlines.append(q[0][0])

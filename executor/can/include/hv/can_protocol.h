@@ -23,7 +23,7 @@ enum hv_can_node {
 enum hv_can_cmd {
     HV_CAN_CMD_ESTOP = 0,      /* broadcast node only */
     HV_CAN_CMD_HEARTBEAT = 1,
-    HV_CAN_CMD_COMMAND = 2,    /* enable/disable/home/e-stop/clear fault */
+    HV_CAN_CMD_COMMAND = 2,    /* enable/disable/home/e-stop/clear fault/clear e-stop */
     HV_CAN_CMD_STATUS = 3,
     HV_CAN_CMD_SETPOINT = 4,   /* arms: joint setpoint; vehicle: move */
     HV_CAN_CMD_JOINT_STATE = 5,
