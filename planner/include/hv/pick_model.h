@@ -29,7 +29,8 @@ typedef struct hv_pick_model {
 
 /* The product's model: exact IK of each pair with the configured arms (hv_pick_solve).
  * The cost is the pick's whole cycle, 2 move_s + cut_s + release_s (the executor's), with
- * plan.pick_cycle; the paper's G = move_s (home -> fruit) without. Must outlive `model`. */
+ * plan.pick_cycle; the paper's G = move_s (home -> fruit) without; rounded to whole ms
+ * (the solver's proofs are to the ms). Must outlive `model`. */
 typedef struct hv_ik_model {
     hv_arm_t arm[2];  /* [HV_SIDE_LEFT], [HV_SIDE_RIGHT] */
     int cycle;        /* plan.pick_cycle */
