@@ -158,13 +158,14 @@ hv_status_t hv_costtab_load(const char *path, hv_costtab_file_t *file, char *err
     return HV_OK;
 }
 
-hv_status_t hv_costtab_load_for(const char *path, const hv_config_t *cfg, hv_side_t side,
-                                hv_costtab_file_t *file, char *err, size_t errlen)
+hv_status_t hv_costtab_check_for(const char *path, const hv_config_t *cfg, hv_side_t side,
+                                 char *err, size_t errlen)
 {
     if (cfg == NULL) {
         return HV_ERR_ARG;
     }
-    hv_status_t st = hv_costtab_load(path, file, err, errlen);
+    hv_costtab_file_t file;
+    hv_status_t st = hv_costtab_load(path, &file, err, errlen);
     if (st != HV_OK) {
         return st;
     }
@@ -174,13 +175,13 @@ hv_status_t hv_costtab_load_for(const char *path, const hv_config_t *cfg, hv_sid
     hv_config_grid(cfg, side, &grid);
     hv_diag_t d;
     memset(&d, 0, sizeof d);
-    st = hv_costtab_expect_arm(&file->tab, &arm, &grid, &d);
+    st = hv_costtab_expect_arm(&file.tab, &arm, &grid, &d);
     if (st != HV_OK) {
         char msg[sizeof d.message + 40];
         snprintf(msg, sizeof msg, "%s (%s)", d.message, hv_status_name(st));
         set_err(err, errlen, path, d.field, msg);
-        hv_costtab_unload(file);
     }
+    hv_costtab_unload(&file);
     return st;
 }
 

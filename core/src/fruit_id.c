@@ -6,7 +6,7 @@
 #define ID_SET "A-Z a-z 0-9 _ . -"
 
 /* The set by hand, not <ctype.h>: isalnum() follows the locale, the id set must not. */
-static int id_char(unsigned char c)
+int hv_fruit_id_char(int c)
 {
     return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
            c == '_' || c == '.' || c == '-';
@@ -37,7 +37,7 @@ hv_status_t hv_fruit_id_check(const char *id, size_t len, hv_diag_t *diag)
     }
     for (size_t i = 0; i < len; ++i) {
         unsigned char c = (unsigned char)id[i];
-        if (!id_char(c)) {
+        if (!hv_fruit_id_char(c)) {
             snprintf(msg, sizeof msg,
                      "character 0x%02x at position %zu not allowed (only " ID_SET ")",
                      (unsigned)c, i + 1);

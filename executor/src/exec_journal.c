@@ -2,7 +2,6 @@
 #define _POSIX_C_SOURCE 200809L
 #include "hv/exec_journal.h"
 
-#include <ctype.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <libgen.h>
@@ -153,7 +152,7 @@ int hv_exec_journal_operator_ok(const char *name)
     if (n == 0 || n > OPERATOR_MAX)
         return 0;
     for (size_t i = 0; i < n; i++)
-        if (!isalnum((unsigned char)name[i]) && !strchr("._-", name[i]))
+        if (!hv_fruit_id_char((unsigned char)name[i]))
             return 0;
     return 1;
 }

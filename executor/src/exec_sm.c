@@ -776,6 +776,13 @@ static int first_pending(const hv_exec_sm_t *sm, unsigned nodes)
     return -1;
 }
 
+/* Enter a start-up step: each has the command timeout to be answered. */
+static void enable_step(ctx_t *c, int sub)
+{
+    c->sm->sub = sub;
+    c->sm->deadline_ns = c->now + secs_ns(c->sm->prm.command_timeout_s);
+}
+
 /* Start-up after every node was seen: DISABLE -> [e-stop clear] -> CLEAR_FAULT -> ENABLE
  * -> HOME (hv_exec_enable_step_t). */
 static void enable_progress(ctx_t *c)
@@ -793,19 +800,17 @@ static void enable_progress(ctx_t *c)
             if (a)
                 a->u.jr.nodes = sm->latched;
             send_to(c, sm->latched, HV_CMD_CLEAR_ESTOP);
-            sm->sub = HV_EN_CLEAR_ESTOP;
+            enable_step(c, HV_EN_CLEAR_ESTOP);
         } else {
             send_to(c, HV_EXEC_ALL_NODES, HV_CMD_CLEAR_FAULT);
-            sm->sub = HV_EN_CLEAR_FAULT;
+            enable_step(c, HV_EN_CLEAR_FAULT);
         }
-        sm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
         return;
     case HV_EN_CLEAR_ESTOP:
         if ((waiting = first_pending(sm, sm->latched)) >= 0)
             break;
         sm->clear_rx = sm->rx;
-        sm->sub = HV_EN_FRESH;
-        sm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
+        enable_step(c, HV_EN_FRESH);
         return;
     case HV_EN_FRESH:
         for (int i = 0; i < HV_EXEC_NODES && waiting < 0; i++)
@@ -815,15 +820,13 @@ static void enable_progress(ctx_t *c)
             break;
         /* every node spoke after the clear and none reports an e-stop (global_checks) */
         send_to(c, HV_EXEC_ALL_NODES, HV_CMD_CLEAR_FAULT);
-        sm->sub = HV_EN_CLEAR_FAULT;
-        sm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
+        enable_step(c, HV_EN_CLEAR_FAULT);
         return;
     case HV_EN_CLEAR_FAULT:
         if ((waiting = first_pending(sm, HV_EXEC_ALL_NODES)) >= 0)
             break;
         send_to(c, HV_EXEC_ALL_NODES, HV_CMD_ENABLE);
-        sm->sub = HV_EN_ENABLE;
-        sm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
+        enable_step(c, HV_EN_ENABLE);
         return;
     default:
         for (int i = 0; i < HV_EXEC_NODES; i++)
@@ -879,8 +882,7 @@ static void phase_logic(ctx_t *c, const hv_exec_event_t *ev)
                 n->next_move_seq = (n->move_seq + 1) & 0xFF;
             }
             send_to(c, HV_EXEC_ALL_NODES, HV_CMD_DISABLE);
-            sm->sub = HV_EN_DISABLE;
-            sm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
+            enable_step(c, HV_EN_DISABLE);
             set_phase(c, HV_PH_ENABLE);
         } else if (c->now >= sm->deadline_ns) {
             enter_safe(c, HV_SAFE_NODES_ABSENT, -1);

@@ -301,14 +301,11 @@ int main(int argc, char **argv)
     hv_arm_t arms[2];
     for (int s = 0; s < 2; s++) {
         hv_config_arm(&cfg, (hv_side_t)s, &arms[s]);
-        hv_costtab_file_t tf;
-        if (o.table[s] && hv_costtab_load_for(o.table[s], &cfg, (hv_side_t)s, &tf, err,
-                                              sizeof err) != HV_OK) {
+        if (o.table[s] &&
+            hv_costtab_check_for(o.table[s], &cfg, (hv_side_t)s, err, sizeof err) != HV_OK) {
             fprintf(stderr, "harvest-exec: %s\n", err);
             return EXIT_USAGE;
         }
-        if (o.table[s])
-            hv_costtab_unload(&tf);
     }
     double margin_m = 0.0;
     if (hv_pick_stop_margin(&cfg, &margin_m) != HV_OK) {

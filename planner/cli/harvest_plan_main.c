@@ -370,10 +370,7 @@ static int check_table(const char *path, hv_side_t side, const hv_config_t *cfg)
         return 0;
     }
     char err[512];
-    hv_costtab_file_t tf;
-    hv_status_t st = hv_costtab_load_for(path, cfg, side, &tf, err, sizeof err);
-    hv_costtab_unload(&tf);
-    if (st != HV_OK) {
+    if (hv_costtab_check_for(path, cfg, side, err, sizeof err) != HV_OK) {
         fprintf(stderr, "harvest-plan: %s\n", err);
         return EXIT_INPUT;
     }

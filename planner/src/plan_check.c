@@ -393,9 +393,7 @@ hv_status_t hv_plan_check_files(const hv_plan_t *plan, const char *plan_path,
     st = hv_config_load(config_path, &cfg, err, errlen);
     for (int side = 0; side < 2 && st == HV_OK; ++side) {
         if (tables[side] != NULL) {
-            hv_costtab_file_t tf;
-            st = hv_costtab_load_for(tables[side], &cfg, (hv_side_t)side, &tf, err, errlen);
-            hv_costtab_unload(&tf);
+            st = hv_costtab_check_for(tables[side], &cfg, (hv_side_t)side, err, errlen);
         }
     }
     hv_ik_model_t ik;

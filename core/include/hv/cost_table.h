@@ -13,7 +13,7 @@
  *
  * The loader works on a caller-supplied buffer (no OS calls, no allocation): read the file
  * into memory or mmap it, then hv_costtab_open(); hosted programs use hv_costtab_load() /
- * hv_costtab_load_for() of hv/file_io.h. Files are named *.bin (costgen writes
+ * hv_costtab_check_for() of hv/file_io.h. Files are named *.bin (costgen writes
  * costtab_left.bin and costtab_right.bin).
  *
  * The planner and the executor do not take their pick costs from the table: both solve

@@ -40,12 +40,12 @@ hv_status_t hv_costtab_load(const char *path, hv_costtab_file_t *file, char *err
                             size_t errlen);
 void hv_costtab_unload(hv_costtab_file_t *file);
 
-/* hv_costtab_load(), then the table against the configuration's `side` arm and grid
- * (hv_costtab_expect_arm): HV_ERR_TAB_MISMATCH with "<path>: <field>: <why>
- * (HV_ERR_TAB_MISMATCH)" in err, and nothing kept, when it was built for another mount,
- * joint limits, home pose, elbow mode or grid. Every program that takes a table uses it. */
-hv_status_t hv_costtab_load_for(const char *path, const hv_config_t *cfg, hv_side_t side,
-                                hv_costtab_file_t *file, char *err, size_t errlen);
+/* Read a table (hv_costtab_load) and check it against the configuration's `side` arm and
+ * grid (hv_costtab_expect_arm); nothing is kept. HV_ERR_TAB_MISMATCH with "<path>:
+ * <field>: <why> (HV_ERR_TAB_MISMATCH)" in err when it was built for another mount, joint
+ * limits, home pose, elbow mode or grid. Every program that takes a table checks it so. */
+hv_status_t hv_costtab_check_for(const char *path, const hv_config_t *cfg, hv_side_t side,
+                                 char *err, size_t errlen);
 
 #ifdef __cplusplus
 }

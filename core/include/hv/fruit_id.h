@@ -19,6 +19,10 @@ extern "C" {
 
 #define HV_FRUIT_ID_MAX_CHARS 31 /* the 32-byte id fields, with their NUL */
 
+/* 1 when `c` is in the id set, else 0. Other names that travel the same ways (the
+ * operator's in the executor's journal) use the same set. */
+int hv_fruit_id_char(int c);
+
 /* HV_OK when the `len` bytes at `id` form a valid id (they need no NUL); else
  * HV_ERR_FRUIT_ID with `diag` (may be NULL) saying why: field "id", the message names
  * the first byte outside the set (as 0xNN) and its position, or the length. */

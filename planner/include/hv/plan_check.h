@@ -41,7 +41,7 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
 /* Re-read the config and the fruit map (limits from the plan's row), then hv_plan_check()
  * with the exact-IK model of the config. Cost tables, when named (here or in the plan's
  * inputs), are read and must have been built for the configured arms and grid
- * (hv_costtab_load_for). A NULL path is taken from plan->inputs and, unless absolute,
+ * (hv_costtab_check_for). A NULL path is taken from plan->inputs and, unless absolute,
  * resolved against the folder of `plan_path`, the plan's file (plan_paths.h); `plan_path`
  * may be NULL only when every path is given. An empty table path in the plan means none. */
 hv_status_t hv_plan_check_files(const hv_plan_t *plan, const char *plan_path,
