@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The end-to-end demo: set-up, Release build, cost tables, the installation-pose search,
 # a paper-default scenario, the MILP plan, then the simulator and the executor on one CAN
-# bus with telemetry logged and plotted. Ends with fruits picked, planned vs executed
-# makespan, faults and the paths of the plots.
+# bus with telemetry logged and plotted, the bus recorded (BLF) and the telemetry exported to
+# MCAP. Ends with fruits picked, planned vs executed makespan, faults and the files' paths.
 # Usage: scripts/demo.sh [--help] [--out DIR] [--time-scale K] [--seed S] [--time-limit S]
 #
 # The bus is CAN carried over UDP multicast (python-can's udp_multicast wire format) on
@@ -59,6 +59,9 @@ if ((inner)); then
   "$py" -m harvest telemetry log --url "$lcm_url" --out "$out/telemetry.lcmlog" --until-done \
         --grace 1 --ready-file "$out/logger.ready" >"$out/logger.log" 2>&1 &
   logger=$!
+  # the bus as python-can's BLF log: replay with `python -m can.player`, decode with the DBC
+  "$py" -m can.logger -i udp_multicast -c "$group" -f "$out/bus.blf" >"$out/can_logger.log" 2>&1 &
+  pids+=($!)
   for _ in $(seq 100); do [[ -f "$out/logger.ready" ]] && break; sleep 0.1; done
   [[ -f "$out/logger.ready" ]] || { echo "demo: the telemetry logger did not start (see $out/logger.log)" >&2; exit 1; }
   set +e
@@ -113,8 +116,9 @@ unshare -rn bash "$0" --inner --out "$out" --time-scale "$time_scale"
 exec_rc=$?
 set -e
 
-step "telemetry plots"
+step "telemetry plots and the run in MCAP"
 "$py" -m harvest telemetry gantt "$out/telemetry.lcmlog" --out "$out/gantt.png" --out "$out/gantt.svg"
+"$py" -m harvest telemetry mcap "$out/telemetry.lcmlog" --out "$out/telemetry.mcap"
 
 step "result"
 "$py" - "$out" "$exec_rc" <<'PY'
@@ -138,7 +142,8 @@ print(f"faults: {s['faults']} recoverable arm faults" + ("" if rc == 0 else f", 
 # its work follows the simulated clock: at time scale K the run is K times faster than real time
 print(f"executor CPU {s['cpu_s'] / s['wall_s'] * 100:.2f} % of a core at time scale {s['time_scale']:g}, "
       f"peak memory {s['peak_rss_kb']} KiB")
-for f in ("gantt.png", "gantt.svg", "telemetry.lcmlog", "run.journal", "sim.jsonl", "mountopt.json"):
+for f in ("gantt.png", "gantt.svg", "telemetry.lcmlog", "telemetry.mcap", "bus.blf", "run.journal",
+          "sim.jsonl", "mountopt.json"):
     print(f"  {os.path.join(out, f)}")
 PY
 exit "$exec_rc"
