@@ -59,9 +59,13 @@ if ((inner)); then
   "$py" -m harvest telemetry log --url "$lcm_url" --out "$out/telemetry.lcmlog" --until-done \
         --grace 1 --ready-file "$out/logger.ready" >"$out/logger.log" 2>&1 &
   logger=$!
-  # the bus as python-can's BLF log: replay with `python -m can.player`, decode with the DBC
+  # the bus as python-can's BLF log: replay with `python -m can.player`, decode with the DBC.
+  # Started as a job (set -m): a plain background command ignores SIGINT, and only SIGINT
+  # makes the logger close the file properly.
+  set -m
   "$py" -m can.logger -i udp_multicast -c "$group" -f "$out/bus.blf" >"$out/can_logger.log" 2>&1 &
   pids+=($!)
+  set +m
   for _ in $(seq 100); do [[ -f "$out/logger.ready" ]] && break; sleep 0.1; done
   [[ -f "$out/logger.ready" ]] || { echo "demo: the telemetry logger did not start (see $out/logger.log)" >&2; exit 1; }
   set +e
