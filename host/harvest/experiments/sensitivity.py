@@ -98,7 +98,7 @@ def figure(tables, out_dir, default_width_m=None):
         ax.fill_between(w, [100 * t["min_gain"] for t in rows],
                         [100 * t["max_gain"] for t in rows], color=color, alpha=0.15)
         ax.plot(w, [100 * t["median_gain"] for t in rows], "o-", color=color, ms=3,
-                label=f"median, plan.pick_cycle = {int(pc)} (band: range)")
+                label=f"median, plan.pick_cycle = {int(pc)} (shaded: range)")
     if default_width_m is not None:
         ax.axvline(default_width_m, color="black", ls=":", lw=1, label="main run's width")
     ax.set_xlabel("FOV window width (m)")
