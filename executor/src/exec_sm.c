@@ -169,7 +169,7 @@ static void send_heartbeat(ctx_t *c)
 {
     hv_exec_action_t *a = push(c, HV_ACT_HEARTBEAT, -1);
     if (a) {
-        a->u.hb.health = c->sm->phase == HV_PH_SAFE ? HV_HEALTH_ESTOP : HV_HEALTH_OK;
+        a->u.hb.health = c->sm->phase == HV_PH_SAFE ? HV_CAN_HEALTH_ESTOP : HV_CAN_HEALTH_OK;
         a->u.hb.time_scale = c->sm->time_scale;
     }
 }
@@ -371,7 +371,7 @@ static void start_release(ctx_t *c, int side)
             0, 0);
     sm->prog.pick[arm->pick] = HV_PROG_RELEASE;
     arm->phase = HV_ARM_RELEASE;
-    send_ee(c, side, HV_EE_RELEASE);
+    send_ee(c, side, HV_CAN_EE_ACTION_RELEASE);
     arm->deadline_ns = motion_deadline(c, sm->prm.release_s);
     fruit_event(c, HV_FE_RELEASE, arm->pick, (int)arm->attempt, 0, 0);
 }
@@ -473,7 +473,7 @@ static void start_recover(ctx_t *c, int side, hv_exec_reason_t why)
     arm->fault_reason = why;
     arm->recover_step = 0;
     /* DISABLE first: whatever the arm was doing, its motion stops */
-    send_command(c, arm_node[side], HV_CMD_DISABLE);
+    send_command(c, arm_node[side], HV_CAN_CMD_DISABLE);
     arm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
 }
 
@@ -485,7 +485,7 @@ static void recover_progress(ctx_t *c, int side)
     const hv_exec_node_t *n = &sm->node[node];
     if (!echoed(sm, node))
         return;
-    if (arm->recover_step >= 2 && n->state == HV_NODE_FAULT) {
+    if (arm->recover_step >= 2 && n->state == HV_CAN_STATE_FAULT) {
         /* faulted again after its fault was cleared: the recovery itself failed */
         enter_safe(c, HV_SAFE_FAULT, node);
         return;
@@ -493,23 +493,23 @@ static void recover_progress(ctx_t *c, int side)
     switch (arm->recover_step) {
     case 0:
         arm->recover_step = 1;
-        send_command(c, node, HV_CMD_CLEAR_FAULT);
+        send_command(c, node, HV_CAN_CMD_CLEAR_FAULT);
         arm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
         break;
     case 1:
         arm->recover_step = 2;
-        send_command(c, node, HV_CMD_ENABLE);
+        send_command(c, node, HV_CAN_CMD_ENABLE);
         arm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
         break;
     case 2:
-        if (n->state != HV_NODE_IDLE)
+        if (n->state != HV_CAN_STATE_IDLE)
             break;
         arm->recover_step = 3;
-        send_command(c, node, HV_CMD_HOME);
+        send_command(c, node, HV_CAN_CMD_HOME);
         arm->deadline_ns = motion_deadline(c, sm->prm.home_max_s);
         break;
     default:
-        if (n->state == HV_NODE_IDLE && n->homed && n->fault_bits == 0) {
+        if (n->state == HV_CAN_STATE_IDLE && n->homed && n->fault_bits == 0) {
             sm->node[node].wait_cmd_seq = -1;
             if (arm->pick < 0) {
                 arm->phase = HV_ARM_DONE;
@@ -527,9 +527,9 @@ static int arm_fault_reason(const hv_exec_node_t *n)
 {
     if (n->fault_bits & HV_ARM_FAULT_REJECTED)
         return HV_RSN_REJECTED;
-    if ((n->fault_bits & HV_ARM_FAULT_EE) || (n->ee_seen && n->ee_state == HV_EE_FAULTED))
+    if ((n->fault_bits & HV_ARM_FAULT_EE) || (n->ee_seen && n->ee_state == HV_CAN_EE_STATE_FAULT))
         return HV_RSN_EE_FAULT;
-    if ((n->fault_bits & HV_ARM_FAULT_JOINTS) || n->state == HV_NODE_FAULT)
+    if ((n->fault_bits & HV_ARM_FAULT_JOINTS) || n->state == HV_CAN_STATE_FAULT)
         return HV_RSN_JOINT_FAULT;
     return 0;
 }
@@ -556,17 +556,17 @@ static void arm_update(ctx_t *c, int side)
             journal(c, HV_JR_CUT, arm->pick, pk->stop, (int)arm->attempt, 0, 0);
             sm->prog.pick[arm->pick] = HV_PROG_CUT;
             arm->phase = HV_ARM_CUT;
-            send_ee(c, side, HV_EE_CUT);
+            send_ee(c, side, HV_CAN_EE_ACTION_CUT);
             arm->deadline_ns = motion_deadline(c, sm->prm.cut_s);
             fruit_event(c, HV_FE_CUT, arm->pick, (int)arm->attempt, 0, 0);
         }
         break;
     case HV_ARM_CUT:
         if (n->ee_seen && n->ee_seq == arm->ee_seq) {
-            if (n->ee_state == HV_EE_DONE) {
+            if (n->ee_state == HV_CAN_EE_STATE_DONE) {
                 arm->cut_confirmed = 1;
                 start_return(c, side);
-            } else if (n->ee_state == HV_EE_FAILED) {
+            } else if (n->ee_state == HV_CAN_EE_STATE_FAILED) {
                 arm->fault_reason = HV_RSN_CUT_FAILED;
                 start_return(c, side);
             }
@@ -584,13 +584,13 @@ static void arm_update(ctx_t *c, int side)
         break;
     case HV_ARM_RELEASE:
         if (n->ee_seen && n->ee_seq == arm->ee_seq) {
-            if (n->ee_state == HV_EE_DONE) {
+            if (n->ee_state == HV_CAN_EE_STATE_DONE) {
                 int resumed = !arm->cut_confirmed;
                 record_outcome(c, arm->pick, (int)arm->attempt, HV_OUT_PICKED,
                                resumed ? HV_RSN_RESUMED : HV_RSN_OK);
                 arm->next++;
                 arm_advance(c, side);
-            } else if (n->ee_state == HV_EE_FAILED) {
+            } else if (n->ee_state == HV_CAN_EE_STATE_FAILED) {
                 start_recover(c, side, HV_RSN_EE_FAULT);
             }
         }
@@ -698,7 +698,8 @@ static int reports_estop(const hv_exec_sm_t *sm, int i)
 {
     const hv_exec_node_t *n = &sm->node[i];
     int estop_bit = i == HV_EXEC_VEHICLE ? HV_VEH_FAULT_ESTOP : HV_ARM_FAULT_ESTOP;
-    return n->health == HV_HEALTH_ESTOP || n->state == HV_NODE_ESTOP || (n->fault_bits & estop_bit);
+    return n->health == HV_CAN_HEALTH_ESTOP || n->state == HV_CAN_STATE_ESTOP ||
+           (n->fault_bits & estop_bit);
 }
 
 /* A heartbeat and a status of node i arrived after the last CLEAR_ESTOP was echoed. */
@@ -754,7 +755,7 @@ static void global_checks(ctx_t *c)
         }
     }
     const hv_exec_node_t *v = &sm->node[HV_EXEC_VEHICLE];
-    if (sm->phase >= HV_PH_HOMING && (v->state == HV_NODE_FAULT || (v->fault_bits & 0x07)))
+    if (sm->phase >= HV_PH_HOMING && (v->state == HV_CAN_STATE_FAULT || (v->fault_bits & 0x07)))
         enter_safe(c, HV_SAFE_VEHICLE_FAULT, HV_EXEC_VEHICLE);
 }
 
@@ -771,7 +772,7 @@ static int first_pending(const hv_exec_sm_t *sm, unsigned nodes)
 {
     for (int i = 0; i < HV_EXEC_NODES; i++)
         if ((nodes & (1u << i)) &&
-            (!echoed(sm, i) || (sm->sub == HV_EN_ENABLE && sm->node[i].state != HV_NODE_IDLE)))
+            (!echoed(sm, i) || (sm->sub == HV_EN_ENABLE && sm->node[i].state != HV_CAN_STATE_IDLE)))
             return i;
     return -1;
 }
@@ -799,10 +800,10 @@ static void enable_progress(ctx_t *c)
             hv_exec_action_t *a = journal(c, HV_JR_ESTOP_CLEAR, -1, -1, 0, 0, 0);
             if (a)
                 a->u.jr.nodes = sm->latched;
-            send_to(c, sm->latched, HV_CMD_CLEAR_ESTOP);
+            send_to(c, sm->latched, HV_CAN_CMD_CLEAR_ESTOP);
             enable_step(c, HV_EN_CLEAR_ESTOP);
         } else {
-            send_to(c, HV_EXEC_ALL_NODES, HV_CMD_CLEAR_FAULT);
+            send_to(c, HV_EXEC_ALL_NODES, HV_CAN_CMD_CLEAR_FAULT);
             enable_step(c, HV_EN_CLEAR_FAULT);
         }
         return;
@@ -819,25 +820,25 @@ static void enable_progress(ctx_t *c)
         if (waiting >= 0)
             break;
         /* every node spoke after the clear and none reports an e-stop (global_checks) */
-        send_to(c, HV_EXEC_ALL_NODES, HV_CMD_CLEAR_FAULT);
+        send_to(c, HV_EXEC_ALL_NODES, HV_CAN_CMD_CLEAR_FAULT);
         enable_step(c, HV_EN_CLEAR_FAULT);
         return;
     case HV_EN_CLEAR_FAULT:
         if ((waiting = first_pending(sm, HV_EXEC_ALL_NODES)) >= 0)
             break;
-        send_to(c, HV_EXEC_ALL_NODES, HV_CMD_ENABLE);
+        send_to(c, HV_EXEC_ALL_NODES, HV_CAN_CMD_ENABLE);
         enable_step(c, HV_EN_ENABLE);
         return;
     default:
         for (int i = 0; i < HV_EXEC_NODES; i++)
-            if (echoed(sm, i) && sm->node[i].state == HV_NODE_FAULT) {
+            if (echoed(sm, i) && sm->node[i].state == HV_CAN_STATE_FAULT) {
                 enter_safe(c, HV_SAFE_FAULT, i);
                 return;
             }
         if ((waiting = first_pending(sm, HV_EXEC_ALL_NODES)) >= 0)
             break;
         for (int s = 0; s < 2; s++)
-            send_command(c, arm_node[s], HV_CMD_HOME);
+            send_command(c, arm_node[s], HV_CAN_CMD_HOME);
         sm->node[HV_EXEC_VEHICLE].wait_cmd_seq = -1;
         sm->deadline_ns = motion_deadline(c, sm->prm.home_max_s);
         set_phase(c, HV_PH_HOMING);
@@ -881,7 +882,7 @@ static void phase_logic(ctx_t *c, const hv_exec_event_t *ev)
                 n->next_ee_seq = (n->ee_seq + 1) & 0xFF;
                 n->next_move_seq = (n->move_seq + 1) & 0xFF;
             }
-            send_to(c, HV_EXEC_ALL_NODES, HV_CMD_DISABLE);
+            send_to(c, HV_EXEC_ALL_NODES, HV_CAN_CMD_DISABLE);
             enable_step(c, HV_EN_DISABLE);
             set_phase(c, HV_PH_ENABLE);
         } else if (c->now >= sm->deadline_ns) {
@@ -895,11 +896,11 @@ static void phase_logic(ctx_t *c, const hv_exec_event_t *ev)
         int done = 1;
         for (int s = 0; s < 2; s++) {
             const hv_exec_node_t *n = &sm->node[arm_node[s]];
-            if (echoed(sm, arm_node[s]) && (n->state == HV_NODE_FAULT || n->fault_bits)) {
+            if (echoed(sm, arm_node[s]) && (n->state == HV_CAN_STATE_FAULT || n->fault_bits)) {
                 enter_safe(c, HV_SAFE_FAULT, arm_node[s]);
                 return;
             }
-            done &= echoed(sm, arm_node[s]) && n->state == HV_NODE_IDLE && n->homed;
+            done &= echoed(sm, arm_node[s]) && n->state == HV_CAN_STATE_IDLE && n->homed;
         }
         if (done) {
             for (int s = 0; s < 2; s++)
@@ -918,7 +919,7 @@ static void phase_logic(ctx_t *c, const hv_exec_event_t *ev)
                 sm->prog.row_done = 1;
                 sm->t_row_end_ns = c->now;
                 for (int i = 0; i < HV_EXEC_NODES; i++)
-                    send_command(c, i, HV_CMD_DISABLE);
+                    send_command(c, i, HV_CAN_CMD_DISABLE);
                 set_phase(c, HV_PH_ROW_DONE);
                 break;
             }

@@ -49,6 +49,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "hv/can_enums.h"
 #include "hv/exec_outcome.h"
 #include "hv/exec_plan.h"
 #include "hv/status.h"
@@ -64,14 +65,9 @@ enum { HV_EXEC_VEHICLE = 0, HV_EXEC_LEFT = 1, HV_EXEC_RIGHT = 2, HV_EXEC_NODES =
 /* a set of them: 1 << HV_EXEC_* */
 #define HV_EXEC_ALL_NODES ((1u << HV_EXEC_NODES) - 1u)
 
-/* Node commands, states and end-effector values: as in the DBC's value tables. */
-enum { HV_CMD_NONE = 0, HV_CMD_ENABLE = 1, HV_CMD_DISABLE = 2, HV_CMD_HOME = 3,
-       HV_CMD_ESTOP = 4, HV_CMD_CLEAR_FAULT = 5, HV_CMD_CLEAR_ESTOP = 6 };
-enum { HV_NODE_DISABLED = 0, HV_NODE_IDLE = 1, HV_NODE_HOMING = 2, HV_NODE_MOVING = 3,
-       HV_NODE_FAULT = 4, HV_NODE_ESTOP = 5 };
-enum { HV_HEALTH_OK = 0, HV_HEALTH_WARNING = 1, HV_HEALTH_FAULT = 2, HV_HEALTH_ESTOP = 3 };
-enum { HV_EE_NONE = 0, HV_EE_CUT = 1, HV_EE_RELEASE = 2 };
-enum { HV_EE_IDLE = 0, HV_EE_BUSY = 1, HV_EE_DONE = 2, HV_EE_FAILED = 3, HV_EE_FAULTED = 4 };
+/* Node commands, states, health and end-effector values (HV_CAN_CMD_*, HV_CAN_STATE_*,
+ * HV_CAN_HEALTH_*, HV_CAN_EE_ACTION_*, HV_CAN_EE_STATE_*) are hv/can_enums.h, generated
+ * from the DBC's value tables by the build. */
 
 /* Arm FaultBits (DBC) */
 #define HV_ARM_FAULT_JOINTS 0x00FFu   /* bits 0..7: joint limit, following error (stall) */

@@ -19,9 +19,9 @@ import threading
 import can
 
 from harvest.canbus import PROTOCOL_VERSION, buses
+from harvest.canbus.enums import State, check_same
 
-from .arm import ArmNode, check_ee_against
-from .node import STATE_NAMES, check_against
+from .arm import ArmNode
 from .vehicle import VehicleNode
 
 NODE_PREFIX = {"vehicle": "Vehicle", "left_arm": "LeftArm", "right_arm": "RightArm"}
@@ -58,10 +58,7 @@ class Simulator:
         self.record, self.clock = record, clock
         self.stop_event = stop_event or threading.Event()
         self.out = out
-        for prefix in NODE_PREFIX.values():
-            check_against(proto, prefix)
-        check_ee_against(proto, "LeftArm")
-        check_ee_against(proto, "RightArm")
+        check_same(proto)  # the nodes use the value tables of the DBC read at import
         self.stats = {"tx": 0, "rx": 0, "tx_dropped": 0, "rx_dropped": 0, "tx_delayed": 0,
                       "rx_delayed": 0, "tx_silenced": 0, "tx_errors": 0, "ignored": 0,
                       **{f"rx_{r}": 0 for r in REJECT_REASONS}}
@@ -427,7 +424,7 @@ class Simulator:
 
     def _progress(self):
         t = self.clock.sim()
-        states = " ".join(f"{n}={STATE_NAMES[self.nodes[n].state]}" for n in NODE_ORDER)
+        states = " ".join(f"{n}={State(self.nodes[n].state).name}" for n in NODE_ORDER)
         print(f"sim t={t:.1f}s vehicle={self.vehicle.positions(t)[0]:.3f}m "
               f"tx={self.stats['tx']} rx={self.stats['rx']} states[{states}]",
               file=self.out, flush=True)
