@@ -24,8 +24,10 @@
 #include "hv/plan_status.h"
 #include "hv/pick_model.h"
 
-enum { EXIT_DONE = 0, EXIT_INPUT = 1, EXIT_USAGE = 2, EXIT_FAILED = 3, EXIT_INTERRUPTED = 5 };
+enum { EXIT_DONE = 0, EXIT_INPUT = 1, EXIT_USAGE = 2, EXIT_FAILED = 3, EXIT_EXEC_SAFE = 4,
+       EXIT_INTERRUPTED = 5 };
 #define MAX_HORIZONS 4096
+#define REPUBLISH_S 2.0 /* wall s between repeats of the committed plan (a lost one heals) */
 
 static const char k_usage[] =
     "usage: harvest-plan-online --config CFG --lcm-url URL [options]\n"
@@ -35,7 +37,7 @@ static const char k_usage[] =
     "each horizon of --window m is solved by the MILP and its first --commit m committed\n"
     "once the camera has seen all its stops can reach. The committed plan (plan_commit_t on\n"
     "HARVEST_PLAN_COMMIT) goes to `harvest-exec --online`, after each horizon and every\n"
-    "second; committed stops never change. Each pick costs the executor's cycle (exact IK,\n"
+    "2 s; committed stops never change. Each pick costs the executor's cycle (exact IK,\n"
     "plan.pick_cycle of the config, whole ms).\n"
     "\n"
     "Bad detections are refused, logged with their reason and counted, never planned:\n"
@@ -49,7 +51,9 @@ static const char k_usage[] =
     "  --window H         horizon solved per step, m (default 2)\n"
     "  --commit M         committed per step, m (default 1, at most H)\n"
     "  --time-limit S     MILP limit per horizon, s (default 10)\n"
-    "  --progress S       a progress line every S s of wall time (default 5; 0: per horizon\n"
+    "  --threads N        1 or 2 (default): the MILP's second thread; 1 leaves a core to the\n"
+"                     executor and the simulator on a 2-core machine\n"
+"  --progress S       a progress line every S s of wall time (default 5; 0: per horizon\n"
     "                     only)\n"
     "  --summary FILE     write a JSON summary at the end\n"
 "  --out PLAN.json    write the committed plan at the end, in the plan format\n"
@@ -58,9 +62,11 @@ static const char k_usage[] =
     "  --quiet            no progress lines (refusals and errors are still printed)\n"
     "  --help             this text\n"
     "\n"
-    "It ends once the whole row is committed and the executor reports row_done or safe\n"
-    "(HARVEST_EXEC_STATE), or on SIGINT / SIGTERM (which also stop a horizon's solve).\n"
-    "exit codes: 0 done, 1 bad input, 2 usage, 3 planning failed, 5 interrupted.\n";
+    "It ends once the whole row is committed and the executor reports row_done, when the\n"
+    "executor reports safe (HARVEST_EXEC_STATE), or on SIGINT / SIGTERM (which also stop a\n"
+    "horizon's solve).\n"
+    "exit codes: 0 done, 1 bad input, 2 usage, 3 planning failed, 4 the executor stopped in\n"
+    "the safe state, 5 interrupted before the row was planned.\n";
 
 static atomic_int g_stop; /* set by SIGINT / SIGTERM: the only process-wide state */
 
@@ -381,6 +387,15 @@ int main(int argc, char **argv)
         else if (strcmp(f, "--commit") == 0) bad = parse_pos(f, v, &opt.commit_m, 0);
         else if (strcmp(f, "--time-limit") == 0) bad = parse_pos(f, v, &opt.milp.time_limit_s, 0);
         else if (strcmp(f, "--progress") == 0) bad = parse_pos(f, v, &progress_s, 1);
+        else if (strcmp(f, "--threads") == 0) {
+            bad = strcmp(v, "1") != 0 && strcmp(v, "2") != 0;
+            if (bad) {
+                fprintf(stderr, "harvest-plan-online: --threads must be 1 or 2, not %s\n", v);
+            } else if (v[0] == '1') {
+                opt.milp.helper_thread = 0;
+                opt.milp.tree_threads = 1;
+            }
+        }
         else {
             fprintf(stderr, "harvest-plan-online: unknown option %s (see --help)\n", f);
             return EXIT_USAGE;
@@ -482,7 +497,7 @@ int main(int argc, char **argv)
             break;
         }
         double t = now_s();
-        if (t - last_pub >= 1.0) {
+        if (t - last_pub >= REPUBLISH_S) {
             publish(a);
             last_pub = t;
         }
@@ -490,8 +505,12 @@ int main(int argc, char **argv)
             progress(a, "progress");
             last_progress = t;
         }
-        if (a->o.done && a->exec_seen &&
-            (strcmp(a->exec_phase, "row_done") == 0 || strcmp(a->exec_phase, "safe") == 0)) {
+        if (a->exec_seen && strcmp(a->exec_phase, "safe") == 0) {
+            fprintf(stderr, "harvest-plan-online: the executor stopped in the safe state\n");
+            rc = EXIT_EXEC_SAFE;
+            break;
+        }
+        if (a->o.done && a->exec_seen && strcmp(a->exec_phase, "row_done") == 0) {
             break;
         }
     }

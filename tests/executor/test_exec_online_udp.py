@@ -48,7 +48,7 @@ def test_online_row_every_fruit_once(tmp_path):
     planner = None
     try:
         planner = subprocess.Popen(
-            [PLAN_ONLINE, "--config", str(cfg), "--lcm-url", URL, "--time-limit", "2",
+            [PLAN_ONLINE, "--config", str(cfg), "--lcm-url", URL, "--time-limit", "2", "--threads", "1",
              "--summary", str(tmp_path / "planner.json"), "--out", str(tmp_path / "plan.json")],
             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         argv = [H.EXEC, "--online", "--lcm-url", URL, "--config", str(cfg), "--journal",
