@@ -63,14 +63,20 @@ group=239.74.163.2
 missing() { echo "demo: MISSING PIECE: $*" >&2; exit 1; }
 step() { echo; echo "=== demo: $* ==="; }
 
-# ---- online mode, inside the private network namespace: simulator + camera, online
-# planner, executor -------------------------------------------------------------------------
-if ((inner == 2)); then
+# Inside the private network namespace: multicast on its loopback, and whatever we start
+# (pids) is stopped when we exit.
+netns_up() {
   ip link set lo up
   ip route add 224.0.0.0/4 dev lo
   pids=()
   cleanup() { for p in "${pids[@]}"; do kill -INT "$p" 2>/dev/null || true; done; wait || true; }
   trap cleanup EXIT
+}
+
+# ---- online mode, inside the private network namespace: simulator + camera, online
+# planner, executor -------------------------------------------------------------------------
+if ((inner == 2)); then
+  netns_up
   rm -f "$out/run.journal" "$out/planner.json" "$out/plan.json"
   # The planner runs beside the robot's processes on this machine (2 cores): it gets one
   # thread at a lower priority, and both ends of the bus 2 s before they call a node lost
@@ -99,11 +105,7 @@ fi
 
 # ---- inside the private network namespace: simulator, logger, executor ------------------
 if ((inner == 1)); then
-  ip link set lo up
-  ip route add 224.0.0.0/4 dev lo
-  pids=()
-  cleanup() { for p in "${pids[@]}"; do kill -INT "$p" 2>/dev/null || true; done; wait || true; }
-  trap cleanup EXIT
+  netns_up
   # the vehicle waits at the start of its course (docs/PLAN_FORMAT.md: row start - stop margin)
   vstart=$("$py" -c "import json, sys; p = json.load(open(sys.argv[1]))['params']; print(p['row_start_m'] - p['stop_margin_m'])" "$out/plan.json")
   "$py" -m harvest sim --interface udp_multicast --channel "$group" --time-scale "$time_scale" --vehicle-start "$vstart" \
