@@ -476,7 +476,11 @@ int main(int argc, char **argv)
     clock_gettime(CLOCK_REALTIME, &ts);
     hv_exec_tm_plan(&w->tm, &w->plan, o.plan ? o.plan : "(online)", &prm, o.time_scale,
                     (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000);
-    if (!o.quiet)
+    if (!o.quiet && o.online)
+        fprintf(stderr, "harvest-exec: online on %s: the plan grows from the planner's "
+                "committed stops (HARVEST_PLAN_COMMIT on %s); waiting for the nodes\n",
+                hv_can_name(&w->bus), o.lcm_url);
+    else if (!o.quiet)
         fprintf(stderr, "harvest-exec: %u stops, %u fruits on %s; expected makespan %.1f s "
                 "(plan's objective %.1f s); waiting for the nodes\n",
                 (unsigned)w->plan.n_stops, (unsigned)w->plan.n_picks, hv_can_name(&w->bus),
@@ -503,13 +507,21 @@ int main(int argc, char **argv)
              : w->sm.phase == HV_PH_ROW_DONE             ? EXIT_ROW_DONE
              : w->sm.safe_reason == HV_SAFE_ESTOP_LATCHED ? EXIT_ESTOP_LATCHED
                                                          : EXIT_SAFE;
+    /* an online plan has no objective of its own: the planner's horizons each had one */
+    char objective[96];
+    if (o.online)
+        snprintf(objective, sizeof objective, "online, %u stops committed%s",
+                 (unsigned)w->plan.n_stops, w->sm.plan_final ? ", final" : "");
+    else
+        snprintf(objective, sizeof objective, "plan's objective %.2f s",
+                 w->plan.planned_makespan_s);
     printf("harvest-exec: %s%s%s: picked %u, failed %u, skipped %u this run (%u remaining), "
-           "faults %u; executed %.2f s vs expected %.2f s (plan's objective %.2f s)\n",
+           "faults %u; executed %.2f s vs expected %.2f s (%s)\n",
            hv_exec_phase_name(w->sm.phase), w->sm.phase == HV_PH_SAFE ? " " : "",
            w->sm.phase == HV_PH_SAFE ? hv_exec_safe_reason_name(w->sm.safe_reason) : "",
            w->sm.picked, w->sm.failed, w->sm.skipped, hv_exec_remaining(&w->sm), w->sm.faults,
            hv_exec_executed_s(&w->sm, hv_exec_now_ns()), w->plan.expected_makespan_s,
-           w->plan.planned_makespan_s);
+           objective);
     if (rc == EXIT_ESTOP_LATCHED) {
         char latched[64];
         hv_exec_node_list(w->sm.latched, latched, sizeof latched);
