@@ -54,7 +54,7 @@ static int params_ok(const hv_exec_params_t *p)
     return p->time_scale >= 0.0 && isfinite(p->time_scale) && p->margin >= 0.0 &&
            isfinite(p->margin) && p->slack_s >= 0.0 && isfinite(p->slack_s) &&
            p->latency_s >= 0.0 && isfinite(p->latency_s) && p->max_retries < 100 &&
-           (p->clear_estop == 0 || p->clear_estop == 1);
+           (p->clear_estop == 0 || p->clear_estop == 1) && (p->online == 0 || p->online == 1);
 }
 
 hv_status_t hv_exec_init(hv_exec_sm_t *sm, const hv_exec_plan_t *plan,
@@ -325,6 +325,8 @@ static int stop_has_work(ctx_t *c, int p)
     return work;
 }
 
+static void advance(ctx_t *c);
+
 static void next_stop(ctx_t *c)
 {
     hv_exec_sm_t *sm = c->sm;
@@ -337,6 +339,17 @@ static void next_stop(ctx_t *c)
             return;
         }
     }
+    if (sm->prm.online && !sm->plan_final) {
+        /* the committed part is done: wait for the planner's next stops where we are */
+        sm->stop = plan->n_stops - 1;
+        sm->wait_from_ns = c->now;
+        sm->wait_first = sm->t_row_start_ns == 0;
+        sm->waits += !sm->wait_first;
+        sm->advancing = 0;
+        set_phase(c, HV_PH_WAIT_PLAN);
+        advance(c);
+        return;
+    }
     sm->stop = plan->n_stops;
     send_move(c, hv_exec_course_end(plan));
     set_phase(c, HV_PH_FINAL_DRIVE);
@@ -346,6 +359,42 @@ static int vehicle_arrived(const hv_exec_sm_t *sm)
 {
     const hv_exec_node_t *v = &sm->node[HV_EXEC_VEHICLE];
     return v->arrived && v->move_seq == ((v->next_move_seq + 0xFF) & 0xFF);
+}
+
+/* WAIT_PLAN: the planner committed the course further than the vehicle stands and no stop
+ * with work lies there: drive on to the commit line, so the camera sees further. */
+static void advance(ctx_t *c)
+{
+    hv_exec_sm_t *sm = c->sm;
+    if (!sm->advancing && sm->advance_m > sm->node[HV_EXEC_VEHICLE].position_m + 0.005 &&
+        sm->advance_m <= hv_exec_course_end(sm->plan)) {
+        send_move(c, sm->advance_m);
+        sm->advancing = 1;
+    }
+}
+
+/* WAIT_PLAN: go on once the plan has a stop after the current one or is final. */
+static void wait_plan(ctx_t *c)
+{
+    hv_exec_sm_t *sm = c->sm;
+    if (sm->advancing) {
+        if (!vehicle_arrived(sm)) {
+            if (c->now >= sm->deadline_ns)
+                enter_safe(c, HV_SAFE_TIMEOUT, HV_EXEC_VEHICLE);
+            return;
+        }
+        sm->advancing = 0;
+    }
+    if (sm->stop + 1 < (int)sm->plan->n_stops || sm->plan_final) {
+        uint64_t w = c->now - sm->wait_from_ns;
+        if (sm->wait_first)
+            sm->wait_first_ns += w;
+        else
+            sm->wait_row_ns += w;
+        next_stop(c);
+    } else {
+        advance(c);
+    }
 }
 
 /* ---- the pick cycle --------------------------------------------------------------- */
@@ -620,6 +669,8 @@ static int event_ok(const hv_exec_event_t *ev)
     case HV_EV_STOP_REQUEST:
     case HV_EV_JOURNAL_FAILED:
         return 1;
+    case HV_EV_PLAN_GROWN:
+        return (ev->u.plan.final == 0 || ev->u.plan.final == 1) && isfinite(ev->u.plan.advance_m);
     case HV_EV_HEARTBEAT:
         return ev->node >= 0 && ev->node < HV_EXEC_NODES && isfinite(ev->u.hb.time_scale);
     case HV_EV_VEHICLE_STATUS:
@@ -633,6 +684,12 @@ static int event_ok(const hv_exec_event_t *ev)
 
 static void apply_event(hv_exec_sm_t *sm, const hv_exec_event_t *ev, uint64_t now)
 {
+    if (ev->kind == HV_EV_PLAN_GROWN) {
+        sm->plan_final |= ev->u.plan.final;
+        if (ev->u.plan.advance_m > sm->advance_m)
+            sm->advance_m = ev->u.plan.advance_m;
+        return;
+    }
     if (ev->kind == HV_EV_TICK || ev->kind == HV_EV_STOP_REQUEST ||
         ev->kind == HV_EV_JOURNAL_FAILED)
         return;
@@ -937,6 +994,9 @@ static void phase_logic(ctx_t *c, const hv_exec_event_t *ev)
             enter_safe(c, HV_SAFE_TIMEOUT, HV_EXEC_VEHICLE);
         }
         break;
+    case HV_PH_WAIT_PLAN:
+        wait_plan(c);
+        break;
     case HV_PH_HARVEST:
         for (int s = 0; s < 2 && sm->phase == HV_PH_HARVEST; s++) {
             int ev_arm = (ev->kind == HV_EV_ARM_STATUS || ev->kind == HV_EV_EE_STATUS) &&
@@ -961,6 +1021,7 @@ hv_status_t hv_exec_step(hv_exec_sm_t *sm, const hv_exec_event_t *ev, uint64_t n
         return HV_ERR_EXEC_EVENT;
     ctx_t c = {sm, now_ns, out, 0};
     if (!sm->started) {
+        sm->advance_m = hv_exec_course_start(sm->plan);
         sm->started = 1;
         sm->t_start_ns = now_ns;
         sm->deadline_ns = now_ns + secs_ns(sm->prm.startup_timeout_s);
@@ -1011,6 +1072,20 @@ double hv_exec_executed_s(const hv_exec_sm_t *sm, uint64_t now_ns)
     return (double)(end - sm->t_row_start_ns) * 1e-9 * sm->time_scale;
 }
 
+void hv_exec_plan_wait_s(const hv_exec_sm_t *sm, uint64_t now_ns, double *first_s,
+                         double *row_s)
+{
+    uint64_t first = sm->wait_first_ns, row = sm->wait_row_ns;
+    if (sm->phase == HV_PH_WAIT_PLAN && now_ns > sm->wait_from_ns) {
+        if (sm->wait_first)
+            first += now_ns - sm->wait_from_ns;
+        else
+            row += now_ns - sm->wait_from_ns;
+    }
+    *first_s = (double)first * 1e-9 * sm->time_scale;
+    *row_s = (double)row * 1e-9 * sm->time_scale;
+}
+
 int hv_exec_finished(const hv_exec_sm_t *sm)
 {
     return sm->phase == HV_PH_ROW_DONE || sm->phase == HV_PH_SAFE;
@@ -1020,7 +1095,7 @@ const char *hv_exec_phase_name(int phase)
 {
     static const char *const names[HV_PH_COUNT] = {"wait_nodes", "enable", "homing",
                                                    "driving", "harvest", "final_drive",
-                                                   "row_done", "safe"};
+                                                   "row_done", "safe", "wait_plan"};
     return phase >= 0 && phase < HV_PH_COUNT ? names[phase] : "unknown";
 }
 

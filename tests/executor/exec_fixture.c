@@ -397,3 +397,20 @@ int fx_find(const fx_t *fx, int from, hv_exec_action_kind_t kind, int sub)
     }
     return -1;
 }
+
+void fx_event(fx_t *fx, const hv_exec_event_t *ev)
+{
+    step(fx, ev);
+}
+
+hv_status_t fx_append_stop(fx_t *fx, const hv_exec_plan_t *src, int s)
+{
+    const hv_exec_stop_t *st = &src->stops[s];
+    hv_status_t r = hv_exec_plan_append(&fx->plan, st->plan_index, st->y_m,
+                                        &src->picks[st->first[HV_SIDE_LEFT]],
+                                        st->count[HV_SIDE_LEFT], st->count[HV_SIDE_RIGHT]);
+    hv_exec_timing_t tm = {1.0, 1.0, 0.1, 0.1};
+    if (r == HV_OK && hv_exec_plan_prepare(&fx->plan, arms, &tm) != HV_OK)
+        abort();
+    return r;
+}

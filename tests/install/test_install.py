@@ -11,7 +11,8 @@ import pytest
 SOURCE_DIR = os.environ.get("HV_SOURCE_DIR", "")
 BUILD_DIR = os.environ.get("HV_BUILD_DIR", "")
 CONSUMER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "consumer")
-PROGRAMS = ["harvest-plan", "harvest-exec", "hv-can-tool", "costgen", "mountopt"]
+PROGRAMS = ["harvest-plan", "harvest-plan-online", "harvest-exec", "hv-can-tool", "costgen",
+            "mountopt"]
 
 
 def _cache(key):
