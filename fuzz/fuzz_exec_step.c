@@ -17,8 +17,9 @@
  *
  * Properties, checked after every step: no crash or undefined behaviour; the step never
  * overflows its action list; every CAN action encodes; SAFE and ROW_DONE are final; in
- * SAFE only e-stops, heartbeats and telemetry leave the executor, and a start that found
- * a latched e-stop without the operator's clear never commands a node; no pick is
+ * SAFE only e-stops, heartbeats and telemetry leave the executor, and a start that finds
+ * a latched e-stop without the operator's clear has commanded no node, nor does later;
+ * no pick is
  * journalled after its outcome, nor given a second outcome. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -54,6 +55,7 @@ typedef struct run {
     uint64_t now;
     uint8_t outcome_seen[HV_EXEC_MAX_PICKS];
     int latched_without_clear; /* a latch found at start-up, no operator clear */
+    int commanded;             /* a command, setpoint, ee or move was sent in this run */
 } run_t;
 
 static void check_actions(run_t *R, hv_exec_phase_t before, const hv_exec_actions_t *out)
@@ -71,6 +73,7 @@ static void check_actions(run_t *R, hv_exec_phase_t before, const hv_exec_action
             hv_fuzz_fail("action %d sent while SAFE", (int)a->kind);
         if (R->latched_without_clear && commanding)
             hv_fuzz_fail("command to a latched node without the operator's clear");
+        R->commanded |= commanding;
         if (a->kind == HV_ACT_JOURNAL && a->u.jr.kind != HV_JR_STOP &&
             a->u.jr.kind != HV_JR_DONE && a->u.jr.kind != HV_JR_ESTOP_CLEAR) {
             int p = a->u.jr.pick;
@@ -96,9 +99,12 @@ static void step(run_t *R, const hv_exec_event_t *ev)
         hv_fuzz_fail("step returned %d", (int)st);
     if ((before == HV_PH_SAFE || before == HV_PH_ROW_DONE) && R->sm.phase != before)
         hv_fuzz_fail("left final phase %d for %d", (int)before, (int)R->sm.phase);
-    if (R->sm.phase == HV_PH_SAFE && R->sm.safe_reason == HV_SAFE_ESTOP_LATCHED)
-        R->latched_without_clear = 1;
     check_actions(R, before, &out);
+    if (R->sm.phase == HV_PH_SAFE && R->sm.safe_reason == HV_SAFE_ESTOP_LATCHED) {
+        if (R->commanded)
+            hv_fuzz_fail("a latched e-stop found after commands were sent");
+        R->latched_without_clear = 1;
+    }
 }
 
 static void frame_in(run_t *R, const hv_can_frame_t *f)

@@ -66,7 +66,12 @@ put("resume-cut", [2] + [1] * 12 + [5] * 30)
 put("resume-release", [3] + [2] * 12 + [5] * 30)
 # every node seen, the vehicle reporting a latched e-stop, time passing
 put("estop-latched", [0, 2, 0, 3, 0, 2, 1, 0, 0, 2, 2, 0, 0, 3, 0, 5, 4, 0, 0x10, 0,
-                      3, 1, 1, 4, 0, 0, 0, 3, 2, 1, 4, 0, 0, 0] + [0, 10] * 5)
+                      3, 1, 1, 4, 0, 0, 0, 3, 2, 1, 4, 0, 0, 0, 4, 0, 0, 0, 2, 0,
+                      4, 1, 0, 0, 2, 0] + [0, 10] * 5)
+# the same with the operator's clear: CLEAR_ESTOP, then the run
+put("estop-cleared", [1, 2, 0, 3, 0, 2, 1, 0, 0, 2, 2, 0, 0, 3, 0, 5, 4, 0, 0x10, 0,
+                      3, 1, 1, 4, 0, 0, 0, 3, 2, 1, 4, 0, 0, 0, 4, 0, 0, 0, 2, 0,
+                      4, 1, 0, 0, 2, 0] + [5] * 40)
 # the left arm faults (joint bit 0) part way, then behaves
 put("arm-fault", [0] + [5] * 5 + [3, 1, 4, 4, 0, 1, 0] + [5] * 30)
 # a cut fails, then the end effector reports faulted
