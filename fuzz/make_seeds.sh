@@ -2,12 +2,13 @@
 # Write the seed corpora of the fuzz targets (fuzz/corpus/<target>/seed-*) from files the
 # product itself writes: the config, a cost table by costgen (coarse grid, so it is small),
 # a fruit map by `python -m harvest scenario`, plans by harvest-plan and make-test-plan,
-# journals by harvest-exec against the simulator, datagrams packed by python-can.
+# journals by harvest-exec against the simulator (the whole run's also becomes
+# tests/reliability/data/run.journal, for the power-loss test), datagrams packed by python-can.
 # Usage: fuzz/make_seeds.sh [BUILD_DIR]   (a Release build with tools; default build/)
 # Reproducers of fixed crashes (fuzz/corpus/<target>/crash-*) are kept as they are.
 set -euo pipefail
 if [[ "${1:-}" == "--help" || "${1:-}" == "-h" ]]; then
-  sed -n '2,7p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,8p' "$0" | sed 's/^# \{0,1\}//'
   exit 0
 fi
 root=$(cd "$(dirname "$0")/.." && pwd)
