@@ -16,6 +16,7 @@ apt_pkgs=(
   libglpk-dev glpk-utils                         # planner/: the MILP (C API; glpsol to cross-check)
   libjansson-dev                                 # plan files: the JSON reader
   libcmocka-dev                                  # C unit tests
+  clang libclang-rt-14-dev                       # fuzz/: clang, its libFuzzer + ASan/UBSan runtimes (HV_FUZZ)
   liblcm-dev liblcm-bin                          # telemetry: LCM library and lcm-gen
   libmsgpack-dev                                 # CAN over UDP, python-can's udp_multicast format
   python3 python3-venv python3-dev               # host/ package and pytest
