@@ -236,12 +236,14 @@ static void ee_status(run_t *R, int node, uint8_t state, uint8_t action, uint8_t
 static void good_round(run_t *R)
 {
     for (int n = 0; n < HV_EXEC_NODES; n++) {
-        heartbeat(R, n, HV_HEALTH_OK, 10.0);
-        status(R, n, HV_NODE_IDLE, 1 | 2 | 4, 0, 0);
+        heartbeat(R, n, HV_CAN_HEALTH_OK, 10.0);
+        status(R, n, HV_CAN_STATE_IDLE, 1 | 2 | 4, 0, 0);
         if (n != HV_EXEC_VEHICLE) {
             const hv_exec_arm_t *arm = &R->sm.arm[n == HV_EXEC_LEFT ? 0 : 1];
-            uint8_t action = arm->phase == HV_ARM_RELEASE ? HV_EE_RELEASE : HV_EE_CUT;
-            ee_status(R, n, HV_EE_DONE, action, (uint8_t)(2 | (action == HV_EE_CUT)), 0);
+            uint8_t action = arm->phase == HV_ARM_RELEASE ? HV_CAN_EE_ACTION_RELEASE
+                                                          : HV_CAN_EE_ACTION_CUT;
+            ee_status(R, n, HV_CAN_EE_STATE_DONE, action,
+                      (uint8_t)(2 | (action == HV_CAN_EE_ACTION_CUT)), 0);
         }
     }
     tick(R, 10000000u);
