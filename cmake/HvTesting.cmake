@@ -5,7 +5,8 @@
 #   hv_add_pytest(NAME <name> PATH <tests/x/test_y.py or dir> [LABELS <l...>] [TIMEOUT s])
 #
 # Python tests run with the project virtualenv (HV_PYTHON, default <src>/.venv/bin/python),
-# get HV_BUILD_DIR / HV_SOURCE_DIR in the environment, and see host/ on PYTHONPATH.
+# get HV_BUILD_DIR / HV_SOURCE_DIR in the environment, and import `harvest` as the venv has
+# it installed (scripts/setup.sh: pip install -e host).
 # A test that cannot run prints "SKIPPED: <reason>" and exits 77 (ctest reports it as
 # skipped, never passed): see SKIP_RETURN_CODE below and pytest's skip, which our conftest
 # turns into exit code 77 when every test of a file was skipped.
@@ -33,5 +34,5 @@ function(hv_add_pytest)
            WORKING_DIRECTORY ${CMAKE_SOURCE_DIR})
   set_tests_properties(${T_NAME} PROPERTIES
     LABELS "python;${T_LABELS}" TIMEOUT ${T_TIMEOUT} SKIP_RETURN_CODE 77
-    ENVIRONMENT "HV_BUILD_DIR=${CMAKE_BINARY_DIR};HV_SOURCE_DIR=${CMAKE_SOURCE_DIR};PYTHONPATH=${CMAKE_SOURCE_DIR}/host;PYTHONDONTWRITEBYTECODE=1")
+    ENVIRONMENT "HV_BUILD_DIR=${CMAKE_BINARY_DIR};HV_SOURCE_DIR=${CMAKE_SOURCE_DIR};PYTHONDONTWRITEBYTECODE=1")
 endfunction()

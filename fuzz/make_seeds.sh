@@ -14,7 +14,6 @@ fi
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=$(cd "${1:-$root/build}" && pwd)
 py="$root/.venv/bin/python"
-export PYTHONPATH="$root/host"
 corpus="$root/fuzz/corpus"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT

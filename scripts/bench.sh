@@ -15,7 +15,7 @@ which=("$@")
 "$root/scripts/setup.sh" >/dev/null
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j"$(nproc)" >/dev/null
-export HV_BUILD_DIR="$build" HV_SOURCE_DIR="$root" PYTHONPATH="$root/host"
+export HV_BUILD_DIR="$build" HV_SOURCE_DIR="$root"
 for b in "${which[@]}"; do
   echo "=== bench: $b ==="
   case "$b" in

@@ -55,7 +55,6 @@ else
 fi
 py="$root/.venv/bin/python"
 build="$root/build"
-export PYTHONPATH="$root/host${PYTHONPATH:+:$PYTHONPATH}"
 export HV_BUILD_DIR="$build" HV_SOURCE_DIR="$root"
 lcm_url="udpm://239.255.76.67:7667?ttl=0"
 group=239.74.163.2
@@ -152,7 +151,7 @@ cmake --build "$build" -j2
 [[ -x "$build/executor/harvest-exec" ]] || missing "harvest-exec (executor/) was not built: $build/executor/harvest-exec"
 "$py" -c "import harvest.sim.cli" 2>/dev/null || missing "the simulator (host/harvest/sim) cannot be imported"
 "$py" -c "import harvest.scenario.cli" 2>/dev/null || missing "the scenario generator (host/harvest/scenario) cannot be imported"
-[[ -f "$build/lcm_types/python/harvest/plan_t.py" ]] || missing "the generated LCM Python types ($build/lcm_types/python)"
+[[ -f "$build/lcm_types/python/harvest_lcm/plan_t.py" ]] || missing "the generated LCM Python types ($build/lcm_types/python)"
 
 if [[ -n "$row" ]]; then
   [[ -x "$build/planner/online/harvest-plan-online" ]] || missing "harvest-plan-online (planner/online, needs GLPK and LCM)"

@@ -24,7 +24,7 @@ while (($#)); do
 done
 build="$root/build"
 py="$root/.venv/bin/python"
-export PYTHONPATH="$root/host" HV_BUILD_DIR="$build" HV_SOURCE_DIR="$root"
+export HV_BUILD_DIR="$build" HV_SOURCE_DIR="$root"
 
 "$root/scripts/setup.sh" > /dev/null
 [[ -f "$build/build.ninja" ]] || cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release > /dev/null

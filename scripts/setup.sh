@@ -43,12 +43,15 @@ if [[ ! -x "$venv/bin/python" ]]; then
   echo "setup: creating virtualenv $venv"
   /usr/bin/python3 -m venv "$venv"
 fi
+# The pinned dependencies, then host/ itself as the package harvest-stack (editable: the
+# venv runs this checkout's code, `python -m harvest` and `harvest-stack` alike).
 req="$root/host/requirements.txt"
 stamp="$venv/.requirements.sha256"
-want=$(sha256sum "$req" | cut -d' ' -f1)
+want=$( (cat "$req" "$root/host/pyproject.toml"; echo "$root") | sha256sum | cut -d' ' -f1)
 if [[ ! -f "$stamp" || "$(cat "$stamp")" != "$want" ]]; then
-  echo "setup: installing Python packages from host/requirements.txt"
+  echo "setup: installing Python packages from host/requirements.txt and host/ (harvest-stack)"
   "$venv/bin/python" -m pip install -q --disable-pip-version-check -r "$req"
+  "$venv/bin/python" -m pip install -q --disable-pip-version-check --no-deps -e "$root/host"
   echo "$want" > "$stamp"
 else
   echo "setup: Python packages present"

@@ -4,15 +4,6 @@ A file whose tests were all skipped must not look like a pass to ctest: the sess
 exits with 77, which ctest's SKIP_RETURN_CODE reports as "Skipped" with pytest's reason
 printed by -rs above it.
 """
-import os
-import sys
-
-HERE = os.path.dirname(os.path.abspath(__file__))
-SOURCE_DIR = os.environ.get("HV_SOURCE_DIR", os.path.dirname(HERE))
-BUILD_DIR = os.environ.get("HV_BUILD_DIR", os.path.join(SOURCE_DIR, "build"))
-HOST_DIR = os.path.join(SOURCE_DIR, "host")
-if HOST_DIR not in sys.path:
-    sys.path.insert(0, HOST_DIR)
 
 _SKIP_EXIT = 77
 

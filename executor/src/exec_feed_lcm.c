@@ -8,14 +8,14 @@
 
 #include <lcm/lcm.h>
 
-#include "harvest_plan_commit_t.h"
+#include "harvest_lcm_plan_commit_t.h"
 #include "hv/exec_status.h"
 
 #define COMMIT_CHANNEL "HARVEST_PLAN_COMMIT"
 
 typedef struct feed_lcm {
     lcm_t *lcm;
-    harvest_plan_commit_t_subscription_t *sub;
+    harvest_lcm_plan_commit_t_subscription_t *sub;
     hv_exec_plan_t *plan;
     hv_arm_t arm[2];
     hv_exec_timing_t timing;
@@ -33,7 +33,7 @@ static void refuse(feed_lcm_t *f, const char *why)
     snprintf(f->st.last_refusal, sizeof f->st.last_refusal, "%s", why);
 }
 
-static int same_course(const hv_exec_plan_t *p, const harvest_plan_commit_t *m)
+static int same_course(const hv_exec_plan_t *p, const harvest_lcm_plan_commit_t *m)
 {
     return fabs(p->row_start_m - m->row_start_m) < 1e-9 &&
            fabs(p->row_length_m - m->row_length_m) < 1e-9 &&
@@ -41,13 +41,13 @@ static int same_course(const hv_exec_plan_t *p, const harvest_plan_commit_t *m)
 }
 
 /* Append stop s of the message (its picks from offset off). */
-static hv_status_t append_stop(feed_lcm_t *f, const harvest_plan_commit_t *m, int s, int off)
+static hv_status_t append_stop(feed_lcm_t *f, const harvest_lcm_plan_commit_t *m, int s, int off)
 {
     int n = m->stop_picks[s], nl = m->stop_left[s];
     if (n < 0 || nl < 0 || nl > n || off + n > m->n_picks || n > (int)HV_EXEC_MAX_PICKS)
         return HV_ERR_EXEC_PLAN_RANGE;
     for (int k = 0; k < n; k++) {
-        const harvest_detection_t *d = &m->picks[off + k];
+        const harvest_lcm_detection_t *d = &m->picks[off + k];
         hv_exec_pick_t *pk = &f->picks[k];
         memset(pk, 0, sizeof *pk);
         if (strlen(d->fruit_id) >= sizeof pk->id || (d->side != 0 && d->side != 1))
@@ -65,7 +65,7 @@ static hv_status_t append_stop(feed_lcm_t *f, const harvest_plan_commit_t *m, in
 }
 
 static void on_commit(const lcm_recv_buf_t *rbuf, const char *channel,
-                      const harvest_plan_commit_t *m, void *user)
+                      const harvest_lcm_plan_commit_t *m, void *user)
 {
     (void)rbuf;
     (void)channel;
@@ -145,7 +145,7 @@ hv_status_t hv_exec_feed_lcm_open(hv_exec_feed_t *feed, const char *url, hv_exec
         free(f);
         return HV_ERR_EXEC_TELEMETRY;
     }
-    f->sub = harvest_plan_commit_t_subscribe(f->lcm, COMMIT_CHANNEL, on_commit, f);
+    f->sub = harvest_lcm_plan_commit_t_subscribe(f->lcm, COMMIT_CHANNEL, on_commit, f);
     f->plan = plan;
     memcpy(f->arm, arm, sizeof f->arm);
     f->timing = *timing;
@@ -166,7 +166,7 @@ void hv_exec_feed_lcm_close(hv_exec_feed_t *feed)
     if (!feed || !feed->ctx)
         return;
     feed_lcm_t *f = feed->ctx;
-    harvest_plan_commit_t_unsubscribe(f->lcm, f->sub);
+    harvest_lcm_plan_commit_t_unsubscribe(f->lcm, f->sub);
     lcm_destroy(f->lcm);
     free(f);
     feed->ctx = NULL;

@@ -3,11 +3,11 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "harvest_arm_joint_state_t.h"
-#include "harvest_can_stats_t.h"
-#include "harvest_exec_state_t.h"
-#include "harvest_fruit_event_t.h"
-#include "harvest_plan_t.h"
+#include "harvest_lcm_arm_joint_state_t.h"
+#include "harvest_lcm_can_stats_t.h"
+#include "harvest_lcm_exec_state_t.h"
+#include "harvest_lcm_fruit_event_t.h"
+#include "harvest_lcm_plan_t.h"
 #include "hv/exec_status.h"
 #include "hv/exec_telemetry.h"
 
@@ -20,9 +20,9 @@ static int pub_plan(hv_exec_telemetry_t *t, const hv_exec_plan_t *plan, const ch
                     const hv_exec_params_t *prm, double time_scale, int64_t utime)
 {
     /* static: the message arrays are sized for the largest plan; sent once at start */
-    static harvest_plan_stop_t stops[HV_EXEC_MAX_STOPS];
-    static harvest_plan_pick_t picks[HV_EXEC_MAX_PICKS];
-    harvest_plan_t m;
+    static harvest_lcm_plan_stop_t stops[HV_EXEC_MAX_STOPS];
+    static harvest_lcm_plan_pick_t picks[HV_EXEC_MAX_PICKS];
+    harvest_lcm_plan_t m;
     memset(&m, 0, sizeof m);
     m.utime = utime;
     m.plan_path = (char *)(path ? path : "");
@@ -47,7 +47,7 @@ static int pub_plan(hv_exec_telemetry_t *t, const hv_exec_plan_t *plan, const ch
     m.picks = picks;
     for (uint16_t i = 0; i < plan->n_picks; i++) {
         const hv_exec_pick_t *k = &plan->picks[i];
-        harvest_plan_pick_t *o = &picks[i];
+        harvest_lcm_plan_pick_t *o = &picks[i];
         o->fruit_id = (char *)k->id;
         o->side = (int8_t)k->side;
         o->stop = (int16_t)k->stop;
@@ -61,13 +61,13 @@ static int pub_plan(hv_exec_telemetry_t *t, const hv_exec_plan_t *plan, const ch
         o->cycle_s = k->cycle_s;
         o->reachable = (int8_t)k->reachable;
     }
-    return harvest_plan_t_publish(lcm_of(t), HV_TM_CH_PLAN, &m);
+    return harvest_lcm_plan_t_publish(lcm_of(t), HV_TM_CH_PLAN, &m);
 }
 
 static int pub_state(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, uint64_t now_ns,
                      int64_t utime)
 {
-    harvest_exec_state_t m;
+    harvest_lcm_exec_state_t m;
     memset(&m, 0, sizeof m);
     m.utime = utime;
     m.t_s = hv_exec_executed_s(sm, now_ns);
@@ -85,7 +85,7 @@ static int pub_state(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, uint64_t no
     m.executed_s = m.t_s;
     m.expected_makespan_s = sm->plan->expected_makespan_s;
     m.time_scale = sm->time_scale;
-    return harvest_exec_state_t_publish(lcm_of(t), HV_TM_CH_STATE, &m);
+    return harvest_lcm_exec_state_t_publish(lcm_of(t), HV_TM_CH_STATE, &m);
 }
 
 static const char *const fe_names[] = {"approach", "cut", "return", "release", "outcome", "fault"};
@@ -94,7 +94,7 @@ static int pub_fruit(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const hv_ex
                      uint64_t now_ns, int64_t utime)
 {
     const hv_exec_pick_t *pk = &sm->plan->picks[a->u.fe.pick];
-    harvest_fruit_event_t m;
+    harvest_lcm_fruit_event_t m;
     memset(&m, 0, sizeof m);
     m.utime = utime;
     m.t_s = hv_exec_executed_s(sm, now_ns);
@@ -109,14 +109,14 @@ static int pub_fruit(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const hv_ex
     m.reason = (char *)(a->u.fe.kind == HV_FE_OUTCOME || a->u.fe.kind == HV_FE_FAULT
                             ? hv_exec_reason_name(a->u.fe.reason)
                             : "");
-    return harvest_fruit_event_t_publish(lcm_of(t), HV_TM_CH_FRUIT, &m);
+    return harvest_lcm_fruit_event_t_publish(lcm_of(t), HV_TM_CH_FRUIT, &m);
 }
 
 static int pub_arm(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const hv_exec_arm_sample_t *s,
                    int64_t utime)
 {
     const hv_exec_node_t *n = &sm->node[s->side == HV_SIDE_LEFT ? HV_EXEC_LEFT : HV_EXEC_RIGHT];
-    harvest_arm_joint_state_t m;
+    harvest_lcm_arm_joint_state_t m;
     memset(&m, 0, sizeof m);
     m.utime = utime;
     m.side = (int8_t)s->side;
@@ -127,13 +127,13 @@ static int pub_arm(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const hv_exec
     m.setpoint_seq = (int8_t)n->sp_seq;
     m.target_reached = (int8_t)n->reached;
     m.homed = (int8_t)n->homed;
-    return harvest_arm_joint_state_t_publish(
+    return harvest_lcm_arm_joint_state_t_publish(
         lcm_of(t), s->side == HV_SIDE_LEFT ? HV_TM_CH_ARM_LEFT : HV_TM_CH_ARM_RIGHT, &m);
 }
 
 static int pub_can(hv_exec_telemetry_t *t, const hv_exec_bus_stats_t *s, int64_t utime)
 {
-    harvest_can_stats_t m;
+    harvest_lcm_can_stats_t m;
     memset(&m, 0, sizeof m);
     m.utime = utime;
     m.bus = (char *)(s->bus ? s->bus : "");
@@ -145,7 +145,7 @@ static int pub_can(hv_exec_telemetry_t *t, const hv_exec_bus_stats_t *s, int64_t
     m.rx_filtered = (int64_t)s->rx_filtered;
     m.rx_kernel_drops = (int64_t)s->rx_kernel_drops;
     m.tx_failures = (int64_t)s->tx_failures;
-    return harvest_can_stats_t_publish(lcm_of(t), HV_TM_CH_CAN_STATS, &m);
+    return harvest_lcm_can_stats_t_publish(lcm_of(t), HV_TM_CH_CAN_STATS, &m);
 }
 
 static void lcm_close(hv_exec_telemetry_t *t)

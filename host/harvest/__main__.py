@@ -1,4 +1,5 @@
-"""`python -m harvest <command> [args]`: dispatch to harvest.<command>.cli:main(argv)."""
+"""`harvest-stack <command> [args]` (or `python -m harvest ...`): dispatch to
+harvest.<command>.cli:main(argv)."""
 import importlib
 import sys
 
@@ -11,7 +12,8 @@ COMMANDS = {
 
 
 def _usage(stream):
-    print("usage: python -m harvest <command> [--help] [args...]\n\ncommands:", file=stream)
+    print("usage: harvest-stack <command> [--help] [args...]   (or: python -m harvest ...)\n\n"
+          "commands:", file=stream)
     for name, what in COMMANDS.items():
         print(f"  {name:<12} {what}", file=stream)
 

@@ -12,9 +12,9 @@
 
 #include <lcm/lcm.h>
 
-#include "harvest_camera_frame_t.h"
-#include "harvest_exec_state_t.h"
-#include "harvest_plan_commit_t.h"
+#include "harvest_lcm_camera_frame_t.h"
+#include "harvest_lcm_exec_state_t.h"
+#include "harvest_lcm_plan_commit_t.h"
 #include "hv/file_io.h"
 #include "hv/fruit_id.h"
 #include "hv/online.h"
@@ -111,7 +111,7 @@ typedef struct app {
 } app_t;
 
 static void on_frame(const lcm_recv_buf_t *rbuf, const char *channel,
-                     const harvest_camera_frame_t *m, void *user)
+                     const harvest_lcm_camera_frame_t *m, void *user)
 {
     (void)rbuf;
     (void)channel;
@@ -125,7 +125,7 @@ static void on_frame(const lcm_recv_buf_t *rbuf, const char *channel,
     a->frames++;
     a->next_seq = m->seq + 1;
     for (int i = 0; i < m->n; ++i) {
-        const harvest_detection_t *d = &m->fruits[i];
+        const harvest_lcm_detection_t *d = &m->fruits[i];
         hv_fruit_t f;
         memset(&f, 0, sizeof f);
         size_t len = strlen(d->fruit_id);
@@ -157,7 +157,7 @@ static void on_frame(const lcm_recv_buf_t *rbuf, const char *channel,
 }
 
 static void on_exec_state(const lcm_recv_buf_t *rbuf, const char *channel,
-                          const harvest_exec_state_t *m, void *user)
+                          const harvest_lcm_exec_state_t *m, void *user)
 {
     (void)rbuf;
     (void)channel;
@@ -173,7 +173,7 @@ static void on_exec_state(const lcm_recv_buf_t *rbuf, const char *channel,
 static int publish(app_t *a)
 {
     const hv_online_t *o = &a->o;
-    harvest_plan_commit_t m;
+    harvest_lcm_plan_commit_t m;
     memset(&m, 0, sizeof m);
     m.utime = wall_utime();
     m.row_start_m = o->params.row_start_m;
@@ -202,7 +202,7 @@ static int publish(app_t *a)
             for (size_t k = 0; k < st->count; ++k) {
                 size_t i = st->first + k;
                 const hv_fruit_t *f = &o->fruits[o->fruit_of[i]];
-                harvest_detection_t *d = &m.picks[i];
+                harvest_lcm_detection_t *d = &m.picks[i];
                 memcpy(ids + i * HV_FRUIT_ID_LEN, f->id, HV_FRUIT_ID_LEN);
                 d->fruit_id = ids + i * HV_FRUIT_ID_LEN;
                 d->side = f->side == HV_SIDE_LEFT ? 0 : 1;
@@ -217,7 +217,7 @@ static int publish(app_t *a)
                 m.stop_left[s] = (int16_t)(m.stop_left[s] + (f->side == HV_SIDE_LEFT));
             }
         }
-        rc = harvest_plan_commit_t_publish(a->lcm, "HARVEST_PLAN_COMMIT", &m);
+        rc = harvest_lcm_plan_commit_t_publish(a->lcm, "HARVEST_PLAN_COMMIT", &m);
     }
     free(m.stop_index);
     free(m.stop_y_m);
@@ -443,13 +443,13 @@ int main(int argc, char **argv)
         free(a);
         return EXIT_INPUT;
     }
-    harvest_camera_frame_t_subscription_t *cam_sub =
-        harvest_camera_frame_t_subscribe(a->lcm, "HARVEST_CAMERA", on_frame, a);
-    harvest_exec_state_t_subscription_t *exec_sub =
-        harvest_exec_state_t_subscribe(a->lcm, "HARVEST_EXEC_STATE", on_exec_state, a);
+    harvest_lcm_camera_frame_t_subscription_t *cam_sub =
+        harvest_lcm_camera_frame_t_subscribe(a->lcm, "HARVEST_CAMERA", on_frame, a);
+    harvest_lcm_exec_state_t_subscription_t *exec_sub =
+        harvest_lcm_exec_state_t_subscribe(a->lcm, "HARVEST_EXEC_STATE", on_exec_state, a);
     /* LCM drops what a subscription has queued beyond its capacity (30 by default); no
      * frame may be lost while a horizon is solved */
-    harvest_camera_frame_t_subscription_set_queue_capacity(cam_sub, 0);
+    harvest_lcm_camera_frame_t_subscription_set_queue_capacity(cam_sub, 0);
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
@@ -526,8 +526,8 @@ int main(int argc, char **argv)
     if (out != NULL && a->o.done && write_plan(out, config, &cfg, a) != 0 && rc == EXIT_DONE) {
         rc = EXIT_FAILED;
     }
-    harvest_camera_frame_t_unsubscribe(a->lcm, cam_sub);
-    harvest_exec_state_t_unsubscribe(a->lcm, exec_sub);
+    harvest_lcm_camera_frame_t_unsubscribe(a->lcm, cam_sub);
+    harvest_lcm_exec_state_t_unsubscribe(a->lcm, exec_sub);
     lcm_destroy(a->lcm);
     hv_online_free(&a->o);
     free(a);

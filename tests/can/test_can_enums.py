@@ -85,7 +85,7 @@ def _variant(tmp_path, old, new, count=1):
 
 
 def _generate(dbc, out):
-    env = dict(os.environ, PYTHONPATH=os.path.join(SOURCE_DIR, "host"))
+    env = dict(os.environ)
     return subprocess.run([sys.executable, "-m", "harvest.canbus.dbc_enums", "--dbc", str(dbc),
                            "--c-header", str(out)], env=env, text=True,
                           stdout=subprocess.PIPE, stderr=subprocess.PIPE)

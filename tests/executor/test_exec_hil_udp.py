@@ -65,7 +65,7 @@ def test_whole_row_in_plan_order_within_5_percent(tmp_path, sim_factory):
 
 
 def test_telemetry_logged_and_plotted(tmp_path, sim_factory):
-    if not os.path.isfile(os.path.join(H.BUILD, "lcm_types", "python", "harvest", "plan_t.py")):
+    if not os.path.isfile(os.path.join(H.BUILD, "lcm_types", "python", "harvest_lcm", "plan_t.py")):
         pytest.skip("SKIPPED: built without LCM (HV_WITH_LCM=OFF): no telemetry to log")
     plan = H.make_plan(tmp_path / "plan.json", stops=2, per_arm=2, seed=4)
     n = sum(len(s["left"]) + len(s["right"]) for s in plan["stops"])

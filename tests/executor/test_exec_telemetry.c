@@ -11,9 +11,9 @@
 #include <lcm/lcm.h>
 
 #include "exec_fixture.h"
-#include "harvest_exec_state_t.h"
-#include "harvest_fruit_event_t.h"
-#include "harvest_plan_t.h"
+#include "harvest_lcm_exec_state_t.h"
+#include "harvest_lcm_fruit_event_t.h"
+#include "harvest_lcm_plan_t.h"
 #include "hv/exec_status.h"
 #include "hv/exec_telemetry.h"
 
@@ -25,7 +25,7 @@ typedef struct got {
     int picked;
 } got_t;
 
-static void on_plan(const lcm_recv_buf_t *rb, const char *ch, const harvest_plan_t *m, void *u)
+static void on_plan(const lcm_recv_buf_t *rb, const char *ch, const harvest_lcm_plan_t *m, void *u)
 {
     (void)rb;
     (void)ch;
@@ -36,7 +36,7 @@ static void on_plan(const lcm_recv_buf_t *rb, const char *ch, const harvest_plan
     g->expected = m->expected_makespan_s;
 }
 
-static void on_state(const lcm_recv_buf_t *rb, const char *ch, const harvest_exec_state_t *m,
+static void on_state(const lcm_recv_buf_t *rb, const char *ch, const harvest_lcm_exec_state_t *m,
                      void *u)
 {
     (void)rb;
@@ -47,7 +47,7 @@ static void on_state(const lcm_recv_buf_t *rb, const char *ch, const harvest_exe
     g->picked = m->picked;
 }
 
-static void on_fruit(const lcm_recv_buf_t *rb, const char *ch, const harvest_fruit_event_t *m,
+static void on_fruit(const lcm_recv_buf_t *rb, const char *ch, const harvest_lcm_fruit_event_t *m,
                      void *u)
 {
     (void)rb;
@@ -74,11 +74,11 @@ static void test_memq_round_trip(void **state)
     lcm_t *lcm = (lcm_t *)tm.impl; /* memq is per lcm_t: subscribe on the same instance */
     got_t g;
     memset(&g, 0, sizeof g);
-    harvest_plan_t_subscription_t *s1 = harvest_plan_t_subscribe(lcm, "HARVEST_PLAN", on_plan, &g);
-    harvest_exec_state_t_subscription_t *s2 =
-        harvest_exec_state_t_subscribe(lcm, "HARVEST_EXEC_STATE", on_state, &g);
-    harvest_fruit_event_t_subscription_t *s3 =
-        harvest_fruit_event_t_subscribe(lcm, "HARVEST_FRUIT", on_fruit, &g);
+    harvest_lcm_plan_t_subscription_t *s1 = harvest_lcm_plan_t_subscribe(lcm, "HARVEST_PLAN", on_plan, &g);
+    harvest_lcm_exec_state_t_subscription_t *s2 =
+        harvest_lcm_exec_state_t_subscribe(lcm, "HARVEST_EXEC_STATE", on_state, &g);
+    harvest_lcm_fruit_event_t_subscription_t *s3 =
+        harvest_lcm_fruit_event_t_subscribe(lcm, "HARVEST_FRUIT", on_fruit, &g);
 
     hv_exec_tm_plan(&tm, &fx->plan, "plan.json", &fx->prm, 10.0, 1);
     hv_exec_tm_state(&tm, &fx->sm, fx->now_ns, 2);
@@ -103,9 +103,9 @@ static void test_memq_round_trip(void **state)
     assert_string_equal(g.fruit_id, fx->plan.picks[3].id);
     assert_string_equal(g.event, "outcome");
     assert_string_equal(g.outcome, "failed");
-    harvest_plan_t_unsubscribe(lcm, s1);
-    harvest_exec_state_t_unsubscribe(lcm, s2);
-    harvest_fruit_event_t_unsubscribe(lcm, s3);
+    harvest_lcm_plan_t_unsubscribe(lcm, s1);
+    harvest_lcm_exec_state_t_unsubscribe(lcm, s2);
+    harvest_lcm_fruit_event_t_unsubscribe(lcm, s3);
     hv_exec_telemetry_close(&tm);
     free(fx);
 }

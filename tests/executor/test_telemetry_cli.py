@@ -26,9 +26,7 @@ SOURCE = os.environ.get("HV_SOURCE_DIR", os.getcwd())
 
 
 def env():
-    e = dict(os.environ)
-    e["PYTHONPATH"] = os.path.join(SOURCE, "host")
-    return e
+    return dict(os.environ)
 
 
 def _pick(fid, side, stop, cycle):

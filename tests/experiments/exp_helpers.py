@@ -20,6 +20,6 @@ def require(path, what):
 
 def harvest(*args, **kw):
     """Run `python -m harvest ...` as a user would, with host/ on the path."""
-    env = dict(os.environ, PYTHONPATH=os.path.join(SOURCE_DIR, "host"), HV_BUILD_DIR=BUILD_DIR)
+    env = dict(os.environ, HV_BUILD_DIR=BUILD_DIR)
     return subprocess.run([sys.executable, "-m", "harvest", *args], env=env, text=True,
                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, **kw)

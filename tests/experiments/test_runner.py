@@ -106,11 +106,10 @@ def _data_rows(path):
 
 def _run_args(out, *options):
     """`python -m harvest experiments run` into out, without a progress bar, and its
-    environment (host/ importable, the build of $HV_BUILD_DIR)."""
+    environment (the build of $HV_BUILD_DIR)."""
     args = [sys.executable, "-m", "harvest", "experiments", "run", "--out", str(out),
             "--config", CONFIG, "--no-progress", *options]
-    return args, dict(os.environ, PYTHONPATH=os.path.join(SOURCE_DIR, "host"),
-                      HV_BUILD_DIR=BUILD_DIR)
+    return args, dict(os.environ, HV_BUILD_DIR=BUILD_DIR)
 
 
 def test_interrupted_run_resumes_without_recomputing(tmp_path):

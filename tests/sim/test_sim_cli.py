@@ -12,7 +12,7 @@ from harvest.sim import record as sim_record
 
 SRC = os.environ.get("HV_SOURCE_DIR", os.path.dirname(os.path.dirname(os.path.dirname(
     os.path.abspath(__file__)))))
-ENV = dict(os.environ, PYTHONPATH=os.path.join(SRC, "host"), PYTHONDONTWRITEBYTECODE="1")
+ENV = dict(os.environ, PYTHONDONTWRITEBYTECODE="1")
 
 
 def run(*args, timeout=60):

@@ -24,7 +24,7 @@ GUEST_TIMEOUT_S = 1500
 
 def _suite_env(iface, slow):
     env = dict(os.environ, HV_SIM_BUS="socketcan", HV_SIM_CHANNEL=iface, HV_SOURCE_DIR=SRC,
-               PYTHONPATH=os.path.join(SRC, "host"), PYTHONDONTWRITEBYTECODE="1")
+               PYTHONDONTWRITEBYTECODE="1")
     if slow:
         env.update(HV_SIM_SCALE="4", HV_SIM_RATE="10", HV_SIM_WAIT="240", HV_SIM_INPROC="1")
     return env

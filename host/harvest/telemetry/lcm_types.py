@@ -1,18 +1,13 @@
-"""The LCM message classes of lcm_types/ (package `harvest`), as lcm-gen generated them
-into the build tree (<build>/lcm_types/python/harvest/*.py) with the same lcm-gen as the C
-side.
-
-lcm-gen names the Python package after the LCM package, `harvest`, which is also this
-package's name; the generated modules refer to each other as `harvest.<type>` and expect
-that attribute to be the class (their own __init__.py rebinds it so). `load()` therefore
-adds the generated folder to this package's search path and binds each class the same
-way, so both the generated code and we find `harvest.plan_t` etc.
+"""The LCM message classes of lcm_types/ (LCM package `harvest_lcm`), as lcm-gen generated
+them into the build tree (<build>/lcm_types/python/harvest_lcm/*.py) with the same lcm-gen
+as the C side. They are build outputs, not part of this installed package: `load()` puts
+the build's generated folder on the import path (named by --lcm-python or HV_BUILD_DIR),
+and says which folder it looked in when they are missing.
 """
 import glob
 import importlib
 import os
-
-import harvest
+import sys
 
 TYPES = ("plan_pick_t", "plan_stop_t", "plan_t", "exec_state_t", "arm_joint_state_t",
          "fruit_event_t", "can_stats_t", "detection_t", "camera_frame_t", "plan_commit_t")
@@ -47,20 +42,18 @@ def load(python_dir=None):
     """Dict type name -> class. Raises LcmTypesMissing naming the folder it looked in."""
     if _loaded:
         return dict(_loaded)
-    folder = os.path.join(python_dir or default_dir(), "harvest")
+    root = os.path.abspath(python_dir or default_dir())
+    folder = os.path.join(root, "harvest_lcm")
     missing = [t for t in TYPES if not os.path.isfile(os.path.join(folder, t + ".py"))]
     if missing:
         raise LcmTypesMissing(
             f"{folder}: generated LCM types missing ({', '.join(missing)}): build the project "
             "(cmake --build <build>) with HV_WITH_LCM=ON, or pass --lcm-python / HV_BUILD_DIR")
-    if folder not in harvest.__path__:
-        harvest.__path__.append(folder)
-    # dependencies first: plan_t refers to plan_stop_t and plan_pick_t at encode time
+    if root not in sys.path:
+        sys.path.append(root)
     for name in TYPES:
-        module = importlib.import_module("harvest." + name)
-        cls = getattr(module, name)
-        setattr(harvest, name, cls)
-        _loaded[name] = cls
+        module = importlib.import_module("harvest_lcm." + name)
+        _loaded[name] = getattr(module, name)
     return dict(_loaded)
 
 
@@ -72,4 +65,4 @@ def decode(channel, data, types=None):
 
 
 def generated_files(python_dir=None):
-    return sorted(glob.glob(os.path.join(python_dir or default_dir(), "harvest", "*.py")))
+    return sorted(glob.glob(os.path.join(python_dir or default_dir(), "harvest_lcm", "*.py")))
