@@ -358,7 +358,8 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
     int price = opt->algorithm == HV_MILP_ALG_PRICE;
     if (price && opt->export_lp_path == NULL) {
         res->incumbent_taken = inc != NULL;
-        return hv_price_solve(inst, opt, inc, inc_t, t_deadline, out, res);
+        return hv_price_solve(inst, opt, hv_milp_default_subsolver(), inc, inc_t, t_deadline,
+                              out, res);
     }
     hv_milp_model_opts_t mo;
     memset(&mo, 0, sizeof mo);
@@ -425,7 +426,8 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
     if (price) { /* the paper's model was wanted for the file only */
         hv_milp_model_free(&m);
         res->incumbent_taken = inc != NULL;
-        return hv_price_solve(inst, opt, inc, inc_t, t_deadline, out, res);
+        return hv_price_solve(inst, opt, hv_milp_default_subsolver(), inc, inc_t, t_deadline,
+                              out, res);
     }
     double *x = malloc(((size_t)m.n_cols + 1) * sizeof *x);
     if (x == NULL) {
@@ -832,4 +834,28 @@ hv_status_t hv_milp_solve(const hv_instance_t *inst, const hv_milp_options_t *op
                 res->bound_s, res->gap, res->runtime_s);
     }
     return st;
+}
+
+/* The sub-solver handed down to the branch-and-price's plugins (milp_subsolve.h). */
+static hv_status_t subsolver_solve(const hv_milp_subsolver_t *self, const hv_instance_t *inst,
+                                   const hv_milp_options_t *opt, const hv_assignment_t *inc,
+                                   hv_assignment_t *out, hv_milp_result_t *res)
+{
+    (void)self;
+    return hv_milp_solve(inst, opt, inc, out, res);
+}
+
+static hv_status_t subsolver_bound(const hv_milp_subsolver_t *self, const hv_instance_t *inst,
+                                   const hv_milp_options_t *opt, const double *skip_ms,
+                                   double cutoff_ms, double t_deadline_s, uint32_t *plan,
+                                   hv_price_bound_result_t *res)
+{
+    return hv_price_bound(inst, opt, self, skip_ms, cutoff_ms, t_deadline_s, plan, res);
+}
+
+static const hv_milp_subsolver_t subsolver = {subsolver_solve, subsolver_bound};
+
+const hv_milp_subsolver_t *hv_milp_default_subsolver(void)
+{
+    return &subsolver;
 }

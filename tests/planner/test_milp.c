@@ -509,7 +509,8 @@ static void test_window_improve(void **state)
         hv_window_stats_t ws;
         t = t0;
         window_reports_t rep = {&in, t0, 0, 0};
-        assert_int_equal(hv_window_improve(&in, &o, 2, 5.0, 1e12, &a, &t, &ws, NULL,
+        assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 2, 5.0, 1e12,
+                                           &a, &t, &ws, NULL,
                                            record_window, &rep), HV_OK);
         assert_int_equal(hv_assignment_makespan(&in, &a, &check), HV_OK);
         assert_true(fabs(check - t) < 1e-9);
@@ -525,7 +526,8 @@ static void test_window_improve(void **state)
         assert_int_equal(res.status, HV_SOLVE_OPTIMAL);
         assert_true(t >= res.objective_s - 1e-6);
         /* a window as wide as the plan is the whole problem: nothing to do */
-        assert_int_equal(hv_window_improve(&in, &o, 1000, 5.0, 1e12, &a, &t, &ws, NULL, NULL,
+        assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 1000, 5.0, 1e12,
+                                           &a, &t, &ws, NULL, NULL,
                                            NULL),
                          HV_OK);
         assert_int_equal(ws.windows, 0);
@@ -555,13 +557,15 @@ static void test_window_memo(void **state)
         double t1, t2, t3;
         plan_at_end_stops(&in, &a, 1);
         assert_int_equal(hv_assignment_makespan(&in, &a, &t1), HV_OK);
-        assert_int_equal(hv_window_improve(&in, &o, 3, 5.0, 1e12, &a, &t1, &ws, &memo, NULL,
+        assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 3, 5.0, 1e12,
+                                           &a, &t1, &ws, &memo, NULL,
                                            NULL),
                          HV_OK);
         assert_true(ws.windows > ws.improved);
         assert_int_equal(ws.proven, ws.windows); /* tiny windows: all proven */
         t2 = t1;
-        assert_int_equal(hv_window_improve(&in, &o, 3, 5.0, 1e12, &a, &t2, &ws2, &memo, NULL,
+        assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 3, 5.0, 1e12,
+                                           &a, &t2, &ws2, &memo, NULL,
                                            NULL),
                          HV_OK);
         assert_int_equal(ws2.windows, 0);
@@ -570,7 +574,8 @@ static void test_window_memo(void **state)
         assert_true(t2 == t1);
         plan_at_end_stops(&in, &a, 1);
         assert_int_equal(hv_assignment_makespan(&in, &a, &t3), HV_OK);
-        assert_int_equal(hv_window_improve(&in, &o, 3, 5.0, 1e12, &a, &t3, &ws2, &memo, NULL,
+        assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 3, 5.0, 1e12,
+                                           &a, &t3, &ws2, &memo, NULL,
                                            NULL),
                          HV_OK);
         assert_true(fabs(t3 - t1) < 1e-9);
@@ -581,7 +586,8 @@ static void test_window_memo(void **state)
         assert_int_equal(hv_window_memo_init(&memo, 1), HV_OK);
         for (int call = 0; call < 2; ++call) {
             t2 = t1;
-            assert_int_equal(hv_window_improve(&in, &o, 3, 5.0, 1e12, &a, &t2, &ws2, &memo,
+            assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 3, 5.0,
+                                               1e12, &a, &t2, &ws2, &memo,
                                                NULL, NULL),
                              HV_OK);
             assert_int_equal(ws2.repeats, call == 1 && pass == 1);
@@ -653,14 +659,16 @@ static void test_rins_improve(void **state)
         /* nothing freed: the plan as it was */
         memcpy(a.fruit_stop, poor.fruit_stop, nf * sizeof *a.fruit_stop);
         t = t0;
-        assert_int_equal(hv_rins_improve(&in, &o, freed, NULL, 30.0, &a, &t, &better, &res),
+        assert_int_equal(hv_rins_improve(&in, &o, hv_milp_default_subsolver(), freed, NULL, 30.0,
+                                         &a, &t, &better, &res),
                          HV_OK);
         assert_int_equal(better, 0);
         assert_true(t == t0);
         assert_memory_equal(a.fruit_stop, poor.fruit_stop, nf * sizeof *a.fruit_stop);
 
         /* no time, or a kept fruit at a stop that cannot reach it: refused, plan untouched */
-        assert_int_equal(hv_rins_improve(&in, &o, freed, NULL, 0.0, &a, &t, &better, &res),
+        assert_int_equal(hv_rins_improve(&in, &o, hv_milp_default_subsolver(), freed, NULL, 0.0,
+                                         &a, &t, &better, &res),
                          HV_ERR_ARG);
         for (uint32_t p = 0; p < in.n_stops; ++p) {
             if (hv_instance_pair_index(&in, 0, p) == SIZE_MAX) {
@@ -668,7 +676,8 @@ static void test_rins_improve(void **state)
                 break;
             }
         }
-        assert_int_equal(hv_rins_improve(&in, &o, freed, NULL, 30.0, &a, &t, &better, &res),
+        assert_int_equal(hv_rins_improve(&in, &o, hv_milp_default_subsolver(), freed, NULL, 30.0,
+                                         &a, &t, &better, &res),
                          HV_ERR_ARG);
         assert_int_equal(better, 0);
         assert_true(t == t0);
@@ -676,7 +685,8 @@ static void test_rins_improve(void **state)
 
         /* every fruit freed over every pair: the whole problem */
         memset(freed, 1, nf);
-        assert_int_equal(hv_rins_improve(&in, &o, freed, NULL, 30.0, &a, &t, &better, &res),
+        assert_int_equal(hv_rins_improve(&in, &o, hv_milp_default_subsolver(), freed, NULL, 30.0,
+                                         &a, &t, &better, &res),
                          HV_OK);
         assert_int_equal(res.status, HV_SOLVE_OPTIMAL);
         assert_true(fabs(t - t_opt) < 1e-6);
@@ -700,7 +710,8 @@ static void test_rins_improve(void **state)
         memcpy(a.fruit_stop, poor.fruit_stop, nf * sizeof *a.fruit_stop);
         double want = neighbourhood_best(&in, freed, open, &a, 0);
         t = t0;
-        assert_int_equal(hv_rins_improve(&in, &o, freed, open, 30.0, &a, &t, &better, &res),
+        assert_int_equal(hv_rins_improve(&in, &o, hv_milp_default_subsolver(), freed, open, 30.0,
+                                         &a, &t, &better, &res),
                          HV_OK);
         assert_int_equal(res.status, HV_SOLVE_OPTIMAL);
         if (fabs(t - want) > 1e-6) {
@@ -757,7 +768,8 @@ static void test_helper_thread(void **state)
     for (unsigned polish = 0; polish <= 300; polish += 300) {
         hv_helper_t *h;
         double t = INFINITY, check;
-        assert_int_equal(hv_helper_start(&in, &o, &a, t0, mono_s() + 60.0, polish, &h), HV_OK);
+        assert_int_equal(hv_helper_start(&in, &o, hv_milp_default_subsolver(), &a, t0, mono_s() +
+                                         60.0, polish, &h), HV_OK);
         int taken = 0;
         for (double until = mono_s() + 20.0; !taken && mono_s() < until;) {
             taken = hv_helper_take(h, t0, &got, &t);
