@@ -8,14 +8,9 @@
 #include "hv/milp_helper.h"
 #include "hv/milp_local_search.h"
 #include "hv/plan_status.h"
+#include "milp_tunables.h"
 
-#define HELPER_WINDOW_LIMIT_S 0.5 /* per window sub-solve */
-#define HELPER_KICKS 200          /* local-search kicks after a round of widths found nothing */
-#define HELPER_KICKS_CHUNK 20     /* ... run this many at a time (~10-30 ms) */
-#define POLISH_CHUNK 50           /* the first polish's kicks between two looks at the clock */
-#define HELPER_MEMO 1024          /* windows remembered as solved without gain (5-20 a pass) */
-
-/* 5 first: within a window's 0.5 s it leaves local optima of 4 (SOLVER.md, the widths' row) */
+/* 5 first: within a window's 0.5 s it leaves local optima of 4 (SOLVER.md's history) */
 static const unsigned widths[] = {5, 4, 3, 6, 2};
 #define N_WIDTHS (sizeof widths / sizeof widths[0])
 

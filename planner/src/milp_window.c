@@ -159,7 +159,7 @@ static hv_status_t window_once(const hv_instance_t *inst, const hv_milp_options_
 /* The order of a pass: the windows' starts (advancing by half the width, so each stop is
  * re-planned twice a pass), the cheapest sub-problem first (candidate stops times fruits): a
  * window at alpha 2.5-4 takes 0.02-0.5 s, and the dear ones often run out their limit
- * without a gain (SOLVER.md). Returns the number of windows. */
+ * without a gain (SOLVER.md's history). Returns the number of windows. */
 static size_t pass_order(const hv_instance_t *inst, const uint32_t *count,
                          const uint32_t *used, size_t k, unsigned width, uint32_t *order,
                          double *cost)

@@ -95,12 +95,8 @@ static void test_matches_brute_force(void **state)
         expect_optimal(&in, &o, best);
         hv_milp_options_default(&o);
         o.algorithm = HV_MILP_ALG_COMPACT;
-        o.branch_stops_first = 1;
-        o.side_bounds = 1;
         o.pcost_branching = 1;
         o.glpk_cuts = HV_MILP_CUT_GMI | HV_MILP_CUT_MIR | HV_MILP_CUT_COVER | HV_MILP_CUT_CLIQUE;
-        o.count_branching = 1;
-        o.block_stops = 3;
         o.pattern_cuts = 5;
         o.backtracking = 1;
         expect_optimal(&in, &o, best);
@@ -404,7 +400,7 @@ static void test_interval_pseudocosts(void **state)
  * every stalled node below the root is branched on early, and so narrow (1 ms) that the
  * stalled masters the incumbent does not prune tail off only by the open rule. (Closing such a node on an integral point before
  * its master is optimal could lose the optimum; on these instances a solver that did so
- * still found it, so that rule rests on its reasoning in milp_price.c.) */
+ * still found it, so that rule rests on its reasoning in price/node.c.) */
 static void test_interval_branching_and_tail(void **state)
 {
     (void)state;

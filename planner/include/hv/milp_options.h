@@ -1,7 +1,10 @@
 /* The MILP's options and results (milp.h solves with them). Every tunable of the solver,
- * option or constant, is in the parameter table (milp_params.h; planner/SOLVER.md). */
+ * option or constant, is in the parameter table (hv_milp_params; planner/SOLVER.md). */
 #ifndef HV_MILP_OPTIONS_H
 #define HV_MILP_OPTIONS_H
+
+#include <stddef.h>
+#include <stdio.h>
 
 #include "hv/plan_instance.h"
 
@@ -17,116 +20,29 @@ typedef enum hv_solve_status {
     HV_SOLVE_ERROR = 4
 } hv_solve_status_t;
 
+/* The solver's options. Every numeric field is a row of the parameter table
+ * (hv_milp_params, milp_options.c: default, unit, range and meaning; `harvest-plan
+ * --help-params` and planner/SOLVER.md print it), which hv_milp_options_default applies. */
 typedef struct hv_milp_options {
     double time_limit_s;        /* wall-clock limit for the solver, > 0 */
     double rel_gap;             /* stop when (obj - bound) / obj <= rel_gap; 0 = exact */
     int verbose;                /* 0 quiet, 1 progress lines on stderr, 2 GLPK's own output */
     const char *export_lp_path; /* when not NULL: write the model in CPLEX LP format */
 
-    /* Model and search choices; planner/SOLVER.md gives each one's measured effect.
-     * hv_milp_options_default() sets the combination SOLVER.md keeps. */
-    int link_disaggregated;  /* 0: sum_f a_fp <= n_p b_p per stop; 1: a_fp <= b_p per pair;
-                                2: the per-stop rows plus a_fp <= b_p added where violated
-                                (LP rounds at the root, cuts in the tree) */
-    int heuristic_incumbent; /* 1: when `incumbent` is NULL, run hv_heuristic_solve first */
-    int branch_stops_first;  /* 1: branch on a fractional b_p before any a_fp */
-    int side_bounds;         /* 1: add sum C_p + tau sum b_p >= each side's own optimum */
-    int ms_granularity;      /* 1: when every cost is a whole number of ms, prune nodes that
-                                cannot beat the incumbent by 1 ms (exact, not a tolerance) */
-    int decompose;           /* 1: solve row segments that share no stop separately */
-    int glpk_cuts;           /* GLPK cut families: HV_MILP_CUT_* bits */
-    int glpk_cuts_phase2;    /* cut families added in the second (post-polish) phase */
-    int pcost_branching;     /* 1: GLPK's pseudocost branching (else its default) */
-    int backtracking;        /* GLPK node selection: 0 best local bound, 1 depth first,
-                                2 best projection */
-    int count_branching;     /* 1: integer stop-count columns (all stops, and per block of
-                                block_stops stops when > 0), branched on first */
-    int block_stops;
-    int polish_work;         /* > 0: run the local search from the best plan with
-                                polish_work * 100 / n_fruits^2 kicks (at most 1000) on the
-                                helper thread from the start (price, helper_thread), else
-                                when the root does not close the gap (price) or when the
-                                root gap is > 0.2 % and phase 1 of the tree (20 % of the
-                                limit) does not prove optimality (compact) */
-    int algorithm;           /* HV_MILP_ALG_*: how the model is solved (both exact) */
-    int pattern_cuts;        /* tree depth down to which stop-pattern cuts are separated
-                                (milp_cuts.h); -1: none */
-    int column_dive;         /* price: a primal dive by column fixing after the root;
-                                0 never, 1 when the root leaves > 0.2 % on instances of
-                                fewer than 9,000 (fruit, stop) pairs, 2 always */
-    int window_width;        /* price: when the root leaves > 0.2 %, re-plan windows of this
-                                many consecutive stops of the incumbent exactly
-                                (milp_window.h) for up to a quarter of the limit; 0 never */
-    int helper_thread;       /* price, with window_width > 0: 1 a second thread, from the
-                                start of the solve, first runs the polish (polish_work)
-                                and then re-plans windows for the rest of the solve,
-                                cycling through widths 5, 4, 3, 6, 2 (milp_helper.h) */
-    int sr_cuts;             /* price: rounds of subset-row cuts on fruit triples at the root
-                                (milp_srcuts.h); 0 none */
-    int sr_cuts_large;       /* price: the same on instances of 9,000+ pairs (alpha 4), where
-                                each of the first five rounds raised the root's bound; with
-                                interval branching two measured best (SOLVER.md) */
-    int sr_purge;            /* price: 1 the cuts slack at the solved root (basic, zero duals)
-                                are deleted before the tree, whose master solves each cut
-                                row makes dearer; 0 they stay */
-    int sr_cross;            /* price: 1 the cuts' triples may hold fruits of both sides, 0
-                                one side only */
-    int interval_branching;  /* price: when the row's stop count is integral, branch on the
-                                count of stops in an interval of up to this many stops
-                                before any fruit's stop (SOLVER.md); 0 the whole row only */
-    int tail_off_ms;         /* price: below the root, branch without waiting for the column
-                                generation to converge once the master value has not
-                                fallen for 10 rounds and is within this many ms of the
-                                node's Lagrangian bound; 0 never */
-    int tail_off_open;       /* price, with tail_off_ms: 1 a master that has not fallen for
-                                10 rounds is also branched on, however far below it the
-                                Lagrangian bound lies, when the incumbent does not prune
-                                it (no bound that node could reach would); 0 only within
-                                tail_off_ms */
-    int pseudocost;          /* price: 1 fruit splits are chosen by pseudocosts (the bound
-                                rises seen per unit of mass moved), 0 the most balanced */
-    int binding_splits;      /* price, with pseudocost: 1 a fruit's split score is weighted
-                                by the share of its master mass in patterns where its
-                                arm's time is the pattern's max (SOLVER.md); 0 unweighted */
-    int iv_pseudocost;       /* price, with interval_branching: 1 an interval's count score
-                                is weighted by the bound rises its count children showed
-                                (pseudocosts per interval, SOLVER.md); 0 the score alone */
-    int balance_workers;     /* price, with two tree workers: 1 a worker whose best open bound
-                                lies well above the other's asks for the other's best node
-                                (milp_share.h); 0 only a worker without nodes asks */
-    int warm_transfer;       /* price, with two tree workers: 1 a node passed between them
-                                carries the basis and stabilisation centre its parent left
-                                it, its columns named by content (milp_share.h); 0 its path
-                                only, the taker starting from its own last basis */
-    int rins_every;          /* price: once the plan is within 0.2 % of the root's bound, every
-                                this many nodes the fruits on which the node's LP point and
-                                the plan disagree are re-planned exactly (milp_rins.h), and
-                                at the solved root while it is further; 0 never */
-    int region_stops;        /* price: after 16 nodes, try once per incumbent to prove it
-                                optimal by a regional bound (milp_region.h, SOLVER.md): a
-                                sub-solve over a stretch of at most this many stops around
-                                where its gap over the root's bound (before the cuts) lies;
-                                0 never */
-    int tree_threads;        /* price: 2 (default) a second thread searches the tree too
-                                once the incumbent is within 0.2 % of the bound, the
-                                helper thread stopping then (milp_share.h); 1 one thread.
-                                With 2, opt->stop is also called from that thread */
-    int auto_smoothing;      /* price: 1 the dual smoothing weight adapts each round to the
-                                pricing's subgradient (from 0.8 at each node); 0 fixed 0.8 */
-    int ascent_steps;        /* price: subgradient steps on the fruit rows' Lagrangian
-                                before the root (its first stabilisation centre and
-                                columns); 0 none, the centre then comes from the paper's
-                                LP on instances of 9,000+ pairs */
-    double sr_keep_gain;     /* price: the cuts stay in the tree only when they raised the
-                                root's bound by this share (they slow every master LP);
-                                0 keeps them always */
-    int cover_rows;          /* price: 1 the master's fruit rows are ">= 1" (set covering:
-                                the same optimum, since dropping a fruit from a pattern never
-                                costs more, and duals >= 0, on which the root's column
-                                generation converges in fewer simplex iterations); 0 "= 1"
-                                (set partitioning, whose tree measured better at alpha 2.5);
-                                2 ">= 1" on instances of 9,000+ pairs (alpha 4), whose root
-                                takes seconds, else "= 1" */
+    /* the model and the search (the table says what each does) */
+    int algorithm; /* HV_MILP_ALG_* */
+    int link_disaggregated, heuristic_incumbent, ms_granularity, decompose;
+    int glpk_cuts, glpk_cuts_phase2, pcost_branching, backtracking, pattern_cuts; /* compact */
+    int polish_work;
+    /* branch-and-price */
+    int column_dive, window_width, helper_thread, rins_every, region_stops;
+    int sr_cuts, sr_cuts_large, sr_purge, cover_rows;
+    double sr_keep_gain;
+    int interval_branching, iv_pseudocost, tail_off_ms, tail_off_open, pseudocost,
+        binding_splits;
+    int tree_threads, balance_workers, warm_transfer;
+    int auto_smoothing, ascent_steps;
+
     /* When not NULL, polled by the branch-and-price at each node and pricing round and by
      * GLPK's branch-and-cut at each of its callbacks: a non-zero return ends the solve as
      * its time limit would (status FEASIBLE or NO_SOLUTION, never OPTIMAL unless proven).
@@ -167,8 +83,32 @@ typedef struct hv_milp_result {
                                the taker's master (warm_transfer) */
 } hv_milp_result_t;
 
-/* Defaults: 60 s limit, gap 1e-6, quiet, no export, the choices SOLVER.md keeps. */
+/* Every field at its table default; no export, no stop callback. */
 void hv_milp_options_default(hv_milp_options_t *opt);
+
+/* One solver tunable: an option (a field of hv_milp_options_t, set per solve) or a
+ * constant (fixed when the solver is built, named as in planner/src/milp_tunables.h). */
+typedef struct hv_milp_param {
+    const char *name;
+    int is_option;  /* 1: hv_milp_options_t.<name>; 0: a constant */
+    int is_integer; /* the value is a whole number (an option: an int field) */
+    double value;   /* the default (an option) or the value (a constant) */
+    const char *unit; /* "" for a count, a flag or a choice */
+    double lo, hi;    /* the range the value may take (an option: hv_milp_option_set checks) */
+    const char *doc;  /* one line */
+    size_t offset;    /* an option: offsetof(hv_milp_options_t, <name>) */
+} hv_milp_param_t;
+
+/* The table: the options first, then the constants; *n receives its length. */
+const hv_milp_param_t *hv_milp_params(size_t *n);
+
+/* Set the option of "NAME=VALUE" in `opt`. HV_ERR_ARG when NAME is no option, VALUE does
+ * not parse (a whole number for an int field) or lies outside the option's range. */
+hv_status_t hv_milp_option_set(hv_milp_options_t *opt, const char *name_value);
+
+/* The table as Markdown (planner/SOLVER.md holds this text, `harvest-plan --help-params`
+ * prints it). */
+void hv_milp_params_write(FILE *f);
 
 #ifdef __cplusplus
 }

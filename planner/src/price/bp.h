@@ -23,55 +23,8 @@
 #include "hv/milp_subsolve.h"
 #include "hv/plan_eval.h"
 #include "hv/plan_instance.h"
+#include "../milp_tunables.h"
 
-#define BIG_MS 1e6         /* cost of an artificial column: keeps every node's master feasible */
-#define RC_EPS_MS 1e-6     /* a column enters when its reduced cost is below -RC_EPS_MS */
-#define LAMBDA_EPS 1e-6    /* a master value this close to 0 or 1 counts as integral */
-#define SMOOTHING 0.8      /* Wentges dual smoothing weight of the centre (SOLVER.md) */
-#define SMOOTH_STEP 0.1    /* auto_smoothing: the weight's step per round */
-#define SMOOTH_MAX 0.99    /* ... and its largest value */
-#define ASCENT_DEFLECT 0.5 /* the root's ascent: share of the last direction kept (SOLVER.md) */
-#define CAND_WINDOW 5      /* a stop's column enters when its reduced cost is the least
-                              within +-CAND_WINDOW stops */
-#define CENTRE_MIN_PAIRS 9000 /* from this many pairs, without ascent_steps, the root starts
-                                 from the paper's LP duals (SOLVER.md), cover_rows 2
-                                 makes the fruit rows ">= 1", the root separates
-                                 sr_cuts_large rounds of cuts, and column_dive 1 does
-                                 not dive */
-#define PRIMAL_ROOT_GAP 2e-3 /* polish, column dive, row windows and rounding at every node
-                                when the root leaves more than 0.2 % (SOLVER.md) */
-#define POLISH_MAX_KICKS 1000 /* ~0.15 s at 60 fruits */
-#define POLISH_CHUNK 50       /* kicks between two readings of the clock */
-#define WORKER_GAP 2e-3 /* the incumbent's gap from which the second core searches the tree */
-#define DIVE_EVERY 64     /* nodes between dives (search()) */
-#define BALANCE_SHARE 0.2 /* balance_workers: a worker asks for the other's best node once
-                             its own best bound is this share of its gap above the other's */
-#define ROUND_EVERY 8     /* nodes between roundings of the master point, once the plan is
-                             within PRIMAL_ROOT_GAP of the root's bound */
-#define WINDOW_SHARE 0.25 /* of the time left after the root, at most, for row windows */
-#define WINDOW_LIMIT_S 0.5 /* per window */
-#define RINS_LIMIT_S 0.3   /* per relaxation-induced neighbourhood (sub-solve) */
-#define RINS_MAX_FREE 60   /* ... fruits freed in one, at most */
-#define RINS_CALL_S 1.0    /* ... time for the neighbourhoods at one master point */
-#define SR_MAX 512          /* subset-row cuts at most (milp_srcuts.h), all made at the root */
-#define SR_PER_ROUND 64     /* cuts added per separation round */
-#define SR_PER_FRUIT 4      /* new cuts per fruit per round: spreads them over the row */
-#define REGION_AFTER_NODES 16 /* tree nodes before the first regional bound (SOLVER.md) */
-#define REGION_SHARE 0.5      /* ... of the time left, at most, for each */
-#define REGION_EPS_MS 1e-3    /* ... proved above what the incumbent needs */
-#define REGION_KICKS 20       /* local-search kicks on the plan a stretch's solution gives */
-#define REGION_GROW 12        /* stops a stretch grows by on either side when short */
-#define SR_MIN_VIOL 0.05    /* a cut enters when the master point violates it by this */
-#define COUNT_MIN_SCORE 0.05 /* a count this far from an integer is branched on first */
-#define IV_MIN_FRAC 0.1     /* interval branching: the least fractional count considered */
-#define IV_GAP_WEIGHT 0.01  /* ... the weight of the empty stops around the interval */
-#define IV_EDGE_GAP 1000u   /* ... the empty run counted beyond an end of the row */
-#define IV_PC_FLOOR_MS 1e-3 /* ... the least estimated rise of a child (iv_pseudocost) */
-#define TAIL_ROUNDS 10      /* tailing off: rounds without a fall of the master value */
-#define TAIL_FALL_MS 1e-3   /* ... that counts as one */
-#define BIND_MIN_WEIGHT 1e-3 /* binding_splits: the weight of a fruit whose arm never binds */
-#define STALL_ITERS_PER_ROW 10 /* primal simplex iterations per master row before a call
-                                  counts as stalled (a normal round takes ~40 in all) */
 #define BP_MAX_PLUGINS 16
 
 typedef struct pattern {

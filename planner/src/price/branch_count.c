@@ -26,7 +26,7 @@ static int bp_stop_has_mass(const double *m, size_t p)
  * master mass and its count is at least IV_MIN_FRAC from an integer; among those the score
  * q + IV_GAP_WEIGHT * g prefers the most fractional count q, then the interval with the
  * widest run g of empty stops on its sides: a cluster of stops the LP mixes, isolated from
- * the rest (SOLVER.md: of the rules tried, this one proved the most instances). With
+ * the rest (SOLVER.md's history: of the rules tried, this one proved the most instances). With
  * opt->iv_pseudocost, once both kinds of count child have been solved somewhere, that
  * score is multiplied, per child, by the rise its interval's pseudocost predicts at this
  * count over the rise of an average interval's: the same intervals come back in many

@@ -77,7 +77,7 @@ static hv_status_t bp_choose_split(bp_t *b, const double *x, split_t *best)
         }
         /* opt->binding_splits: a fruit whose arm has slack wherever the point puts it can
          * usually move at no cost (alpha 4: the left fruits at stops where the right arm
-         * binds), so a split of it rarely raises the bound (SOLVER.md) */
+         * binds), so a split of it rarely raises the bound (SOLVER.md's history) */
         double w_binds = b->opt->binding_splits ? fmax(tot_binds / tot, BIND_MIN_WEIGHT) : 1.0;
         double cum = 0.0;
         double pc_lo = b->opt->pseudocost ? bp_pseudocost(b, m[i].fruit, 0) : 0.0;

@@ -58,7 +58,7 @@ void bp_compact_centre(bp_t *b, double limit_s)
  * fruit rows, from zero duals: a step prices every stop (about 2 ms at alpha 4, against
  * about 8 ms for a round of the master LP), so `steps` steps bring the bound near the root
  * LP's before the master's first solve, and the column generation only has to finish
- * from there (SOLVER.md). Polyak steps towards the incumbent along the subgradient
+ * from there (SOLVER.md's history). Polyak steps towards the incumbent along the subgradient
  * deflected by ASCENT_DEFLECT of the last direction (it zig-zags less), halved after 4
  * steps without a better bound; the duals stay >= 0, so every step's value is a valid
  * bound. The best pattern of every stop in the second half of the steps joins the master. */

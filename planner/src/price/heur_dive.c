@@ -54,7 +54,7 @@ static hv_status_t bp_column_dive(bp_t *b, int32_t from)
 }
 
 /* BP_AFTER_ROOT, first: the root's plan may be far from optimal, and a column-fixing dive
- * finds better ones than the branch dive (SOLVER.md); opt->column_dive says when. */
+ * finds better ones than the branch dive (SOLVER.md's history); opt->column_dive says when. */
 static hv_status_t dive_exec(bp_t *b, const bp_plugin_t *self, bp_call_t *call)
 {
     (void)self;

@@ -136,7 +136,7 @@ static hv_status_t bp_rins_at(bp_t *b, const double *x, int ncol)
 
 /* BP_NODE_LP, after the rounding: every opt->rins_every nodes once the plan is near the
  * root's bound, and at the root while it is far: there alpha 4 seed 4 found its optimum
- * 2-3 s sooner (SOLVER.md). */
+ * 2-3 s sooner (SOLVER.md's history). */
 static hv_status_t rins_exec(bp_t *b, const bp_plugin_t *self, bp_call_t *call)
 {
     (void)self;

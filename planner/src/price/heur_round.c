@@ -102,7 +102,7 @@ static hv_status_t bp_round_skip(bp_t *b, const double *x)
 }
 
 /* BP_NODE_LP: the rounding pays near the root, and at every node while the plan is far
- * above the root's bound: alpha 2.5 seed 4 found its optimal plan only so (SOLVER.md);
+ * above the root's bound: alpha 2.5 seed 4 found its optimal plan only so (SOLVER.md's history);
  * else every `frequency` nodes. hv_price_bound's plans may leave fruits out: its own
  * rounding, at every node. */
 static hv_status_t round_exec(bp_t *b, const bp_plugin_t *self, bp_call_t *call)

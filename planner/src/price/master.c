@@ -162,7 +162,6 @@ hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_options_t 
         !bp_hash_rebuild(b, 1024)) {
         return HV_ERR_PLAN_NOMEM;
     }
-    b->cuts.src.cross_sides = opt->sr_cross;
     b->whole_ms = fabs(b->tau_ms - round(b->tau_ms)) < 1e-6 && opt->ms_granularity;
     for (size_t k = 0; k < inst->n_pairs; ++k) {
         b->m.stop_begin[inst->pairs[k].stop + 1]++;

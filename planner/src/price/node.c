@@ -44,7 +44,7 @@ hv_status_t bp_node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp)
      * branched on as it is; the children start from that bound, which is valid at any
      * round. With opt->tail_off_open, so is a stalled master that the incumbent does not
      * prune, however far that bound lies below: the node's LP value is at most the
-     * master's, so no bound its column generation could reach would prune it (SOLVER.md:
+     * master's, so no bound its column generation could reach would prune it (SOLVER.md's history:
      * such nodes priced one degenerate column a round for hundreds of rounds). When that
      * point cannot be branched on (integral, or no fractional count or fruit), the column
      * generation goes on to convergence, so nothing is closed on it. */
@@ -83,7 +83,7 @@ hv_status_t bp_node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp)
         }
         b->stats.cg_iters++;
         if ((st = bp_give_if_hungry(b)) != HV_OK) {
-            return st; /* an idle worker waited out whole nodes of 0.3-1 s (SOLVER.md) */
+            return st; /* an idle worker waited out whole nodes of 0.3-1 s (SOLVER.md's history) */
         }
         if (lag > b->tree.nodes[k].lb_ms) {
             b->tree.nodes[k].lb_ms = lag;

@@ -236,7 +236,7 @@ int bp_add_assignment_columns(bp_t *b, const uint32_t *stop_of)
 }
 
 /* Each fruit alone at its cheapest stop as a starting column: the first duals then stay
- * near pick costs instead of the artificials' big cost (SOLVER.md). */
+ * near pick costs instead of the artificials' big cost (SOLVER.md's history). */
 int bp_add_start_columns(bp_t *b)
 {
     const hv_instance_t *in = b->inst;

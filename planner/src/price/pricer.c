@@ -20,9 +20,9 @@
  * centre; the weight of the centre for the next round falls by SMOOTH_STEP in the first
  * case and rises by SMOOTH_STEP of what is left to 1 in the other. A child starts again
  * from SMOOTHING. Traced at alpha 2.5, a child's fixed weight of 0.8 held its bound far
- * below its master's value for 15 rounds (SOLVER.md). A weight of 0 adapts too: kept at 0,
- * a stalled master above the incumbent was priced at its own degenerate duals for up to
- * 1,400 rounds at alpha 4 seed 4 (SOLVER.md). */
+ * below its master's value for 15 rounds (SOLVER.md's history). A weight of 0 adapts too:
+ * kept at 0, a stalled master above the incumbent was priced at its own degenerate duals
+ * for up to 1,400 rounds at alpha 4 seed 4. */
 static void bp_smooth_adapt(bp_t *b, double alpha)
 {
     double dot = 0.0;

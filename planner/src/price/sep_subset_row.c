@@ -114,7 +114,7 @@ static hv_status_t bp_drop_cuts(bp_t *b)
 
 /* Deletes the cut rows that are slack at the solved root (basic, a zero dual in the
  * master and in the centre): they cut nothing there, while every cut row makes each
- * master solve dearer in the tree (SOLVER.md). The centre and its bound stay as they are,
+ * master solve dearer in the tree (SOLVER.md's history). The centre and its bound stay as they are,
  * the basis stays valid (only basic rows go). *n_dropped: how many went. */
 static hv_status_t bp_purge_slack_cuts(bp_t *b, size_t *n_dropped)
 {
@@ -173,7 +173,7 @@ static hv_status_t sep_exec(bp_t *b, const bp_plugin_t *self, bp_call_t *call)
             b->m.lp_dual_next = 1; /* the point violates the new rows: repair by the dual */
             /* the centre stays valid (its cut duals 0) while the new duals of the cuts
              * can be extreme: priced unsmoothed they blew the pricing up (alpha 4 seed
-             * 5: 200,000 frontier points a round, SOLVER.md) */
+             * 5: 200,000 frontier points a round, SOLVER.md's history) */
             b->m.smooth = SMOOTHING;
             call->added = 1;
             return HV_OK;
