@@ -3,11 +3,12 @@
  * The context bp_t is one search's state, in parts: the master LP and its column pool
  * (bp_master_t), the tree (bp_tree_t), the subset-row cuts (bp_cuts_t), the incumbent
  * (bp_incumbent_t), the reduced-cost fixing (bp_fixing_t), the regional bound
- * (bp_region_part_t) and counters (bp_stats_t). The core (master.c, pool.c, node.c,
- * tree.c, incumbent.c, fixing.c, centre.c, workers.c) calls the plugins only through
- * their records (bp_plugin_t, listed in plugins.c), and sub-solves only through the
- * context's callbacks (b->sub, milp_subsolve.h): no file of the core names a plugin, and
- * none names hv_milp_solve. Times are in ms unless a name says otherwise.
+ * (bp_region_part_t) and counters (bp_stats_t). The core (master.c, pool.c, pricing.c,
+ * node.c, tree.c, incumbent.c, fixing.c, centre.c, workers.c) calls the plugins only
+ * through their records (bp_plugin_t), which solve.c registers from plugins.c's list, and
+ * sub-solves only through the context's callbacks (b->sub, milp_subsolve.h): no file of
+ * the core names a plugin, and none names hv_milp_solve. Times are in ms unless a name
+ * says otherwise.
  */
 #ifndef HV_PRICE_BP_H
 #define HV_PRICE_BP_H
@@ -294,7 +295,6 @@ typedef enum bp_timing {
     BP_ROOT_SOLVED, /* the root closed, before the reduced-cost fixing */
     BP_BRANCH,      /* a node's master converged on a fractional point: branching rules */
     BP_NODE_LP,     /* ... then the primal heuristics on that point */
-    BP_NODE_SOLVED, /* a node ended (pruned, integral or branched): what it taught */
     BP_AFTER_ROOT,  /* the root branched */
     BP_BEFORE_NODE  /* the tree loop, before it takes its next node */
 } bp_timing_t;

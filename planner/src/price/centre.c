@@ -96,7 +96,7 @@ hv_status_t bp_ascent_centre(bp_t *b, int steps)
                 g[b->m.sel[q]] -= 1.0;
             }
             int r = 2 * it >= steps ? bp_pattern_add(b, (uint32_t)p, b->m.sel, (uint32_t)n_sel,
-                                                  b->tau_ms + time)
+                                                     b->tau_ms + time)
                                     : 0;
             st = r < 0 ? HV_ERR_PLAN_NOMEM : HV_OK;
             added += r;

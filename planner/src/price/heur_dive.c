@@ -37,7 +37,7 @@ static hv_status_t bp_column_dive(bp_t *b, int32_t from)
             break;
         }
         k = bp_node_new(b, k, KIND_PATTERN, 0, b->m.pat[jbest].stop, b->m.pat[jbest].stop, jbest,
-                     b->tree.nodes[k].lb_ms);
+                        b->tree.nodes[k].lb_ms);
         if (k < 0) {
             return HV_ERR_PLAN_NOMEM;
         }

@@ -26,7 +26,7 @@ static double bp_point_value(const bp_t *b, const double *x, int ncol, size_t k)
  * not in it) and the incumbent disagree (x holds less than all of the fruit at its
  * incumbent stop), in order of their incumbent stop, into ord[]; returns their number. */
 static size_t bp_rins_disagree(const bp_t *b, const double *x, int ncol, double *agree,
-                            uint32_t *ord)
+                               uint32_t *ord)
 {
     memset(agree, 0, b->nf * sizeof *agree);
     for (size_t k = 0; k < b->m.n_pat; ++k) {

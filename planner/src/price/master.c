@@ -145,17 +145,17 @@ hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_options_t 
     if (b->m.stop_v == NULL || b->region.region_pi == NULL || b->region.region_v == NULL ||
         b->m.stop_begin == NULL || b->m.stop_pair == NULL || b->m.row_of_fruit == NULL ||
         b->m.row_of_stop == NULL || b->m.fixed_pat == NULL || b->tree.lo == NULL || b->tree.hi ==
-            NULL ||
+        NULL ||
         b->m.itl == NULL || b->m.itr == NULL || b->m.sel == NULL || b->m.pi_lp == NULL ||
-            b->m.pi_c == NULL ||
+        b->m.pi_c == NULL ||
         b->m.pi_sep == NULL || b->m.cover == NULL || b->m.mu_lp == NULL || b->m.sigma_lp == NULL ||
         b->tree.stop_mass == NULL || b->tree.stop_empty == NULL || b->m.cand == NULL ||
         b->m.warm_pair == NULL || b->m.warm_n == NULL || b->m.pair_at == NULL ||
         b->fix.pair_dead == NULL || b->fix.root_pi == NULL || b->cuts.src_row == NULL ||
         b->cuts.src_hit == NULL || b->cuts.src_bit == NULL || hv_src_init(&b->cuts.src, nf) !=
-            HV_OK ||
+        HV_OK ||
         b->tree.pc.sum[0] == NULL || b->tree.pc.sum[1] == NULL || b->tree.pc.n[0] == NULL ||
-            b->tree.pc.n[1] == NULL ||
+        b->tree.pc.n[1] == NULL ||
         b->tree.ivpc.sum[0] == NULL || b->tree.ivpc.sum[1] == NULL || b->tree.ivpc.n[0] == NULL ||
         b->tree.ivpc.n[1] == NULL ||
         b->m.ind == NULL || b->m.val == NULL || b->inc.best == NULL || b->m.sigma_stop == NULL ||
@@ -237,7 +237,7 @@ size_t bp_n_pi(const bp_t *b)
  * n_pi fruit and cut duals, then n_sg count-row duals; bound lag) joins b->tree.bases, which
  * takes both arrays: returns its index, or -1 (both freed) past the memory cap. */
 int32_t bp_basis_keep(bp_t *b, int nr, int nc, unsigned char *stat, double *duals,
-                          size_t n_pi, size_t n_sg, double lag)
+                      size_t n_pi, size_t n_sg, double lag)
 {
     size_t bytes = (size_t)nr + (size_t)nc + (n_pi + n_sg) * sizeof(double);
     if (b->tree.bases_bytes + bytes > ((size_t)256 << 20) ||
@@ -275,7 +275,7 @@ int32_t bp_basis_save(bp_t *b)
         st[nr + j - 1] = (unsigned char)glp_get_col_stat(b->m.lp, j);
     }
     return bp_basis_keep(b, nr, nc, st, duals, npi, b->m.n_crow,
-                      isfinite(b->m.center_lag) ? b->m.center_lag : -INFINITY);
+                         isfinite(b->m.center_lag) ? b->m.center_lag : -INFINITY);
 }
 
 /* Restore a kept basis: rows made since are basic, columns made since non-basic, so it

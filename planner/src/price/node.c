@@ -93,9 +93,8 @@ hv_status_t bp_node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp)
             *end = NODE_PRUNED;
             return HV_OK;
         }
-        bp_progress(b, b->tree.heap_len ? fmin(b->tree.nodes[k].lb_ms,
-                                               b->tree.nodes[b->tree.heap[0]].lb_ms)
-                                : b->tree.nodes[k].lb_ms, 0);
+        double open_lb = b->tree.heap_len ? b->tree.nodes[b->tree.heap[0]].lb_ms : INFINITY;
+        bp_progress(b, fmin(b->tree.nodes[k].lb_ms, open_lb), 0);
         double master_ms = glp_get_obj_val(b->m.lp) + b->travel_ms;
         if (master_ms < best_master - TAIL_FALL_MS) {
             best_master = master_ms;

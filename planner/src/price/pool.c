@@ -121,7 +121,7 @@ void bp_stop_arms(const bp_t *b, const uint32_t *stop_of, double *arm, unsigned 
 
 /* Stop p's cost (ms) from stop_arms' arrays: tau + its slower arm's time, 0 when unused. */
 double bp_stop_cost_ms(const bp_t *b, const double *arm, const unsigned char *used,
-                           size_t p)
+                       size_t p)
 {
     return used[p] ? b->tau_ms + fmax(arm[2 * p], arm[2 * p + 1]) : 0.0;
 }
@@ -129,7 +129,7 @@ double bp_stop_cost_ms(const bp_t *b, const double *arm, const unsigned char *us
 /* The arms' pick times (ms, indexed by hv_side_t) of the pattern of fruits f[0 .. n) at
  * `stop` into w. Returns 0 when one of the fruits is not reachable from there. */
 int bp_pattern_times(const bp_t *b, uint32_t stop, const uint32_t *f, uint32_t n,
-                         double w[2])
+                     double w[2])
 {
     w[0] = w[1] = 0.0;
     for (uint32_t q = 0; q < n; ++q) {
@@ -250,7 +250,7 @@ int bp_add_start_columns(bp_t *b)
         if (bk != SIZE_MAX) {
             b->m.sel[0] = (uint32_t)f;
             if (bp_pattern_add(b, in->pairs[bk].stop, b->m.sel, 1,
-                            b->tau_ms + 1000.0 * in->pairs[bk].cost_s) < 0) {
+                               b->tau_ms + 1000.0 * in->pairs[bk].cost_s) < 0) {
                 return -1;
             }
         }

@@ -31,7 +31,7 @@ static void bp_sigma_per_stop(const bp_t *b, const double *sg, double *out)
  * positive dual and a pair not fixed out, and when node_only those the current node allows
  * there. Records each fruit's pair at p in pair_at. */
 void bp_stop_items(bp_t *b, size_t p, const double *pi, int node_only, size_t *nl,
-                       size_t *nr)
+                   size_t *nr)
 {
     const hv_instance_t *in = b->inst;
     *nl = *nr = 0;
@@ -117,7 +117,7 @@ const double *bp_cut_bits(bp_t *b, const double *pi, size_t nl, size_t nr, int *
  * added to the master when its reduced cost at the master's own duals (pi_lp, mu_lp,
  * sg_lp) is negative. */
 hv_status_t bp_price_at(bp_t *b, const double *pi, const double *sg, double *lag_ms,
-                            int *added)
+                        int *added)
 {
     const hv_instance_t *in = b->inst;
     double sum = b->travel_ms;

@@ -34,7 +34,7 @@ int bp_prunable(const bp_t *b, double lb_ms)
 }
 
 int bp_node_new(bp_t *b, int32_t parent, node_kind_t kind, uint32_t fruit, uint32_t lo,
-                    uint32_t hi, int32_t rhs, double lb)
+                uint32_t hi, int32_t rhs, double lb)
 {
     if (!hv_grow((void **)&b->tree.nodes, &b->tree.nodes_cap, b->tree.n_nodes + 1,
                  sizeof *b->tree.nodes)) {
@@ -153,7 +153,7 @@ hv_status_t bp_search(bp_t *b, double *root_lb, long *nodes_done)
 {
     /* a centre set before the root is a proven bound already */
     int32_t root = bp_node_new(b, -1, KIND_ROOT, 0, 0, 0, 0,
-                            b->m.root_centre ? b->m.center_lag : -INFINITY);
+                               b->m.root_centre ? b->m.center_lag : -INFINITY);
     if (root != 0 || !bp_heap_push(b, root)) { /* node 0: the root of shared paths too */
         return HV_ERR_PLAN_NOMEM;
     }
@@ -291,7 +291,7 @@ void bp_pseudocost_record(bp_t *b, int32_t k)
     if (c->kind == KIND_COUNT_LE || c->kind == KIND_COUNT_GE) {
         if (c->hi - c->lo < b->tree.ivpc_w) {
             bp_pc_add(&b->tree.ivpc, (size_t)c->lo * b->tree.ivpc_w + (c->hi - c->lo),
-                   c->kind == KIND_COUNT_GE, g);
+                      c->kind == KIND_COUNT_GE, g);
         }
     } else if (c->kind == KIND_FRUIT) {
         int d = c->rhs == 1; /* the "> stop" child */

@@ -173,7 +173,7 @@ static int bp_warm_patterns(bp_t *b, const hv_share_node_t *m, size_t *at, int32
  * here) over this worker's master of nr rows and nc columns, rows first, into st, and its
  * count rows' duals into sg (by count row here). Returns 1 when they make a basis here. */
 static int bp_warm_statuses(bp_t *b, const hv_share_node_t *m, const warm_head_t *h,
-                         const int32_t *pat, int nr, int nc, unsigned char *st, double *sg)
+                            const int32_t *pat, int nr, int nc, unsigned char *st, double *sg)
 {
     memset(st, GLP_BS, (size_t)nr); /* rows not named: basic; columns: at 0 */
     memset(st + nr, GLP_NL, (size_t)nc);
@@ -304,7 +304,7 @@ static int bp_import_shared(bp_t *b, int32_t *k)
     for (size_t i = 0; i < m->n && q >= 0; ++i) {
         const hv_share_step_t *st = &m->path[i];
         q = bp_node_new(b, q, (node_kind_t)st->kind, st->fruit, st->lo, st->hi, st->rhs,
-                     m->lb_ms);
+                        m->lb_ms);
     }
     int32_t bi = -1;
     if (q < 0 || bp_warm_unpack(b, m, &bi) != HV_OK) {
