@@ -39,9 +39,6 @@ for variant in \
     "$c --set glpk_cuts=15" \
     "$c --set glpk_cuts_phase2=0" \
     "$c --set pcost_branching=1" \
-    "$c --set branch_stops_first=1" \
-    "$c --set side_bounds=1" \
-    "$c --set count_branching=1" \
     "$c --set backtracking=2"; do
     echo "== variant: ${variant:-default}"
     # shellcheck disable=SC2086

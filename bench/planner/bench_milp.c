@@ -34,44 +34,8 @@ static void usage(FILE *f)
             "  --time-limit S       MILP limit per instance, s (default 10: DESIGN's max is 7 s)\n"
             "  --plain-seeds N      seeds per alpha also solved by the plain model (default 2)\n"
             "  --plain-limit S      its limit, s (default 10)\n"
-            "  --set KEY=VALUE      an hv_milp_options_t field of the MILP run (repeatable):\n"
-            "                       link_disaggregated, heuristic_incumbent, branch_stops_first,\n"
-            "                       side_bounds, ms_granularity, decompose, glpk_cuts,\n"
-            "                       glpk_cuts_phase2,\n"
-            "                       pcost_branching, pattern_cuts (depth, -1 off),\n"
-            "                       count_branching, block_stops, backtracking,\n"
-            "                       polish_work, algorithm (0 compact, 1 price),\n"
-            "                       column_dive (0 off, 1 root gap > 0.2 %% below 9000\n"
-            "                       pairs, 2 always),\n"
-            "                       window_width (stops per re-planned window, 0 off),\n"
-            "                       helper_thread (1: windows on a second thread),\n"
-            "                       sr_cuts (rounds of subset-row cuts at the root, 0 off),\n"
-            "                       sr_cuts_large (the same from 9000 pairs),\n"
-            "                       sr_purge (1: the root's slack cuts deleted),\n"
-            "                       sr_keep_gain (the root gain that keeps them, 0: always),\n"
-            "                       cover_rows (fruit rows: 1 >= 1, 0 = 1,\n"
-            "                       2 >= 1 from 9000 pairs),\n"
-            "                       sr_cross (1: cut triples over both sides, 0: one side),\n"
-            "                       pseudocost (1: fruit splits by pseudocosts, 0: balanced),\n"
-            "                       binding_splits (1: split scores weighted by the mass\n"
-            "                       where the fruit's arm binds, 0: unweighted),\n"
-            "                       interval_branching (widest stop interval counted, 0 off),\n"
-            "                       iv_pseudocost (1: interval counts weighted by their\n"
-            "                       children's bound rises, 0: by fractionality alone),\n"
-            "                       tail_off_ms (tailing-off branching margin, ms, 0 off),\n"
-            "                       tail_off_open (1: a stalled master the incumbent does\n"
-            "                       not prune is branched on too, 0: only within the margin),\n"
-            "                       warm_transfer (1: a node passed between the tree workers\n"
-            "                       carries its parent's basis, 0: its path only),\n"
-            "                       tree_threads (2: a second tree worker, 1: one),\n"
-            "                       balance_workers (1: a worker far above the other's\n"
-            "                       bound takes its best node, 0: only when idle),\n"
-            "                       ascent_steps (subgradient steps before the root, 0 off),\n"
-            "                       auto_smoothing (1: the smoothing weight adapts, 0: 0.8),\n"
-            "                       rins_every (nodes between relaxation-induced\n"
-            "                       neighbourhoods of the plan, 0 off),\n"
-            "                       region_stops (longest stretch of a regional bound,\n"
-            "                       0 off)\n"
+            "  --set KEY=VALUE      an option of the MILP run (repeatable): a row of the\n"
+            "                       table harvest-plan --help-params prints\n"
             "  --no-baselines       skip FOV and Serial\n"
             "  --given-plan         also solve each instance again from the plan its MILP run\n"
             "                       found, and print that time: what the proof alone takes\n"
@@ -81,77 +45,13 @@ static void usage(FILE *f)
             HV_BENCH_DEFAULT_CONFIG);
 }
 
-static int set_option(hv_milp_options_t *o, const char *kv)
-{
-    const char *eq = strchr(kv, '=');
-    if (eq == NULL) {
-        return -1;
-    }
-    char *end;
-    if ((size_t)(eq - kv) == strlen("sr_keep_gain") && strncmp(kv, "sr_keep_gain", 12) == 0) {
-        o->sr_keep_gain = strtod(eq + 1, &end); /* the one fraction among the options */
-        return *end == '\0' && end != eq + 1 && o->sr_keep_gain >= 0.0 ? 0 : -1;
-    }
-    long v = strtol(eq + 1, &end, 10);
-    if (*end != '\0' || end == eq + 1) {
-        return -1;
-    }
-    size_t n = (size_t)(eq - kv);
-    struct { const char *k; int *f; } keys[] = {
-        {"link_disaggregated", &o->link_disaggregated},
-        {"heuristic_incumbent", &o->heuristic_incumbent},
-        {"branch_stops_first", &o->branch_stops_first},
-        {"side_bounds", &o->side_bounds},
-        {"ms_granularity", &o->ms_granularity},
-        {"decompose", &o->decompose},
-        {"glpk_cuts", &o->glpk_cuts},
-        {"glpk_cuts_phase2", &o->glpk_cuts_phase2},
-        {"pcost_branching", &o->pcost_branching},
-        {"pattern_cuts", &o->pattern_cuts},
-        {"count_branching", &o->count_branching},
-        {"block_stops", &o->block_stops},
-        {"backtracking", &o->backtracking},
-        {"polish_work", &o->polish_work},
-        {"algorithm", &o->algorithm},
-        {"column_dive", &o->column_dive},
-        {"sr_cuts", &o->sr_cuts},
-        {"sr_cuts_large", &o->sr_cuts_large},
-        {"sr_purge", &o->sr_purge},
-        {"cover_rows", &o->cover_rows},
-        {"sr_cross", &o->sr_cross},
-        {"pseudocost", &o->pseudocost},
-        {"binding_splits", &o->binding_splits},
-        {"interval_branching", &o->interval_branching},
-        {"iv_pseudocost", &o->iv_pseudocost},
-        {"tail_off_ms", &o->tail_off_ms},
-        {"tail_off_open", &o->tail_off_open},
-        {"warm_transfer", &o->warm_transfer},
-        {"tree_threads", &o->tree_threads},
-        {"balance_workers", &o->balance_workers},
-        {"ascent_steps", &o->ascent_steps},
-        {"auto_smoothing", &o->auto_smoothing},
-        {"window_width", &o->window_width},
-        {"helper_thread", &o->helper_thread},
-        {"rins_every", &o->rins_every},
-        {"region_stops", &o->region_stops},
-    };
-    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; ++i) {
-        if (strlen(keys[i].k) == n && strncmp(kv, keys[i].k, n) == 0) {
-            *keys[i].f = (int)v;
-            return 0;
-        }
-    }
-    return -1;
-}
-
-/* The model as the paper writes it, nothing of SOLVER.md: the reference in the same run. */
+/* The model as the paper writes it, none of the solver's choices: the reference in the
+ * same run. */
 static void plain_options(hv_milp_options_t *o, double limit_s)
 {
     hv_milp_options_default(o);
     o->time_limit_s = limit_s;
     o->heuristic_incumbent = 0;
-    o->branch_stops_first = 0;
-    o->side_bounds = 0;
     o->ms_granularity = 0;
     o->decompose = 0;
     o->glpk_cuts = HV_MILP_CUT_GMI | HV_MILP_CUT_MIR | HV_MILP_CUT_COVER | HV_MILP_CUT_CLIQUE;
@@ -159,7 +59,6 @@ static void plain_options(hv_milp_options_t *o, double limit_s)
     o->link_disaggregated = 0;
     o->pattern_cuts = -1;
     o->polish_work = 0;
-    o->count_branching = 0;
     o->algorithm = HV_MILP_ALG_COMPACT;
 }
 
@@ -270,8 +169,8 @@ int main(int argc, char **argv)
             *(a[2] == 't' ? &mo.time_limit_s : &plain_limit) = s;
             ++i;
         } else if (strcmp(a, "--set") == 0) {
-            if (set_option(&mo, v) != 0) {
-                fprintf(stderr, "bench_milp: --set: unknown KEY=INT '%s'\n", v);
+            if (hv_milp_option_set(&mo, v) != HV_OK) {
+                fprintf(stderr, "bench_milp: --set: not an option or out of its range: '%s'\n", v);
                 return 2;
             }
             ++i;
@@ -291,16 +190,16 @@ int main(int argc, char **argv)
     if (bench_model_init(&cfg, &pm) != 0) {
         return 1;
     }
-    printf("# MILP options: algorithm=%s disaggregated=%d heuristic=%d stops_first=%d "
-           "side_bounds=%d ms=%d decompose=%d cuts=%d pcost=%d limit=%.0fs; price: "
-           "sr_cuts=%d/%d sr_purge=%d sr_cross=%d cover_rows=%d pseudocost=%d tree_threads=%d "
+    printf("# MILP options: algorithm=%s disaggregated=%d heuristic=%d "
+           "ms=%d decompose=%d cuts=%d pcost=%d limit=%.0fs; price: "
+           "sr_cuts=%d/%d sr_purge=%d cover_rows=%d pseudocost=%d tree_threads=%d "
            "helper_thread=%d ascent_steps=%d auto_smoothing=%d interval_branching=%d "
            "iv_pseudocost=%d tail_off_ms=%d tail_off_open=%d binding_splits=%d "
            "balance_workers=%d warm_transfer=%d rins_every=%d region_stops=%d\n",
            mo.algorithm == HV_MILP_ALG_PRICE ? "price" : "compact", mo.link_disaggregated,
-           mo.heuristic_incumbent, mo.branch_stops_first, mo.side_bounds, mo.ms_granularity,
+           mo.heuristic_incumbent, mo.ms_granularity,
            mo.decompose, mo.glpk_cuts, mo.pcost_branching, mo.time_limit_s, mo.sr_cuts,
-           mo.sr_cuts_large, mo.sr_purge, mo.sr_cross, mo.cover_rows, mo.pseudocost,
+           mo.sr_cuts_large, mo.sr_purge, mo.cover_rows, mo.pseudocost,
            mo.tree_threads, mo.helper_thread, mo.ascent_steps, mo.auto_smoothing,
            mo.interval_branching, mo.iv_pseudocost, mo.tail_off_ms, mo.tail_off_open,
            mo.binding_splits, mo.balance_workers, mo.warm_transfer, mo.rins_every, mo.region_stops);

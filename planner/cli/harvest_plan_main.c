@@ -58,6 +58,7 @@ static const char k_usage[] =
     "                   compact (GLPK's branch-and-cut on the paper's model); both exact\n"
     "  --quiet          no progress lines on stderr (errors are still printed)\n"
     "  --help           this text\n"
+    "  --help-params    the solver's parameter table (options and constants, Markdown)\n"
     "\n"
     "check: re-reads the fruit map, tables and config (paths default to the plan's inputs,\n"
     "relative ones taken from the plan file's folder) and verifies the plan: exit 0 if it\n"
@@ -214,6 +215,10 @@ static int parse_args(int argc, char **argv, args_t *a)
         const char *f = argv[i];
         if (strcmp(f, "--help") == 0 || strcmp(f, "-h") == 0) {
             fputs(k_usage, stdout);
+            return 1;
+        }
+        if (strcmp(f, "--help-params") == 0) {
+            hv_milp_params_write(stdout);
             return 1;
         }
         if (strcmp(f, "--quiet") == 0) {

@@ -3,7 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "hv/baselines.h"
+#include "hv/fov.h"
 #include "hv/plan_eval.h"
 #include "hv/plan_status.h"
 

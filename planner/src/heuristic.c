@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "hv/baselines.h"
+#include "hv/fov.h"
 #include "hv/milp.h"
 #include "hv/milp_local_search.h"
 #include "hv/plan_status.h"

@@ -1,5 +1,4 @@
 /* The stop-and-harvest MILP on GLPK (milp.h): incumbent, model, branch-and-cut, result. */
-#define HV_CUT_MAX_ROUNDS 8 /* pattern-cut separation rounds over the whole tree */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -15,54 +14,7 @@
 #include "hv/milp_status.h"
 #include "hv/plan_eval.h"
 #include "hv/plan_status.h"
-
-void hv_milp_options_default(hv_milp_options_t *opt)
-{
-    memset(opt, 0, sizeof *opt);
-    opt->time_limit_s = 60.0;
-    opt->rel_gap = 1e-6;
-    opt->verbose = 0;
-    opt->export_lp_path = NULL;
-    opt->link_disaggregated = 1;
-    opt->heuristic_incumbent = 1;
-    opt->branch_stops_first = 0;
-    opt->side_bounds = 0;
-    opt->ms_granularity = 1;
-    opt->decompose = 1;
-    opt->glpk_cuts = 0;
-    opt->pcost_branching = 0;
-    opt->pattern_cuts = 0;
-    opt->algorithm = HV_MILP_ALG_PRICE;
-    opt->count_branching = 0;
-    opt->block_stops = 10;
-    opt->polish_work = 150000;
-    opt->column_dive = 1;
-    opt->sr_cuts = 1;
-    opt->sr_cuts_large = 2;
-    opt->sr_purge = 1;
-    opt->sr_keep_gain = 0.0;
-    opt->cover_rows = 2;
-    opt->sr_cross = 0;
-    opt->pseudocost = 1;
-    opt->binding_splits = 1;
-    opt->iv_pseudocost = 1;
-    opt->balance_workers = 1;
-    opt->interval_branching = 30;
-    opt->tail_off_ms = 20;
-    opt->tail_off_open = 1;
-    opt->warm_transfer = 1;
-    opt->tree_threads = 2;
-    opt->rins_every = 8;
-    opt->region_stops = 100;
-    opt->ascent_steps = 100;
-    opt->auto_smoothing = 1;
-    opt->window_width = 4;
-    opt->helper_thread = 1;
-    opt->stop = NULL;
-    opt->stop_ctx = NULL;
-    opt->glpk_cuts_phase2 = HV_MILP_CUT_GMI | HV_MILP_CUT_MIR | HV_MILP_CUT_COVER |
-                            HV_MILP_CUT_CLIQUE;
-}
+#include "milp_tunables.h"
 
 /* What the GLPK callback needs. */
 typedef struct cb_ctx {
@@ -126,55 +78,6 @@ static void callback(glp_tree *tree, void *info)
             /* each round re-solves a bigger LP: a few rounds give most of the bound */
             c->cut_rounds++;
             hv_cut_separate(c->cuts, tree);
-        }
-        break;
-    case GLP_IBRANCH:
-        if (c->opt->count_branching) {
-            /* how many stops in all, then per block: the LP spreads fractional b_p over
-             * neighbouring stops, a count branch cuts all those splits at once */
-            glp_prob *lp = glp_ios_get_prob(tree);
-            int best_j = 0;
-            if (c->model->col_total != 0 && glp_ios_can_branch(tree, c->model->col_total)) {
-                best_j = c->model->col_total;
-            }
-            double best_frac = -1.0;
-            for (size_t bl = 0; best_j == 0 && bl < c->model->n_blocks; ++bl) {
-                int j = c->model->col_block[bl];
-                if (!glp_ios_can_branch(tree, j)) {
-                    continue;
-                }
-                double v = glp_get_col_prim(lp, j);
-                double frac = 0.5 - fabs(v - floor(v) - 0.5);
-                if (frac > best_frac) {
-                    best_frac = frac;
-                    best_j = j;
-                }
-            }
-            if (best_j != 0) {
-                glp_ios_branch_upon(tree, best_j, GLP_NO_BRNCH);
-                break;
-            }
-        }
-        if (c->opt->branch_stops_first) {
-            /* the stop decision first: once the stops are fixed the rest is near-integral */
-            glp_prob *lp = glp_ios_get_prob(tree);
-            int best_j = 0;
-            double best_frac = -1.0;
-            for (size_t p = 0; p < c->inst->n_stops; ++p) {
-                int j = c->model->col_b[p];
-                if (j == 0 || !glp_ios_can_branch(tree, j)) {
-                    continue;
-                }
-                double v = glp_get_col_prim(lp, j);
-                double frac = 0.5 - fabs(v - 0.5); /* most fractional */
-                if (frac > best_frac) {
-                    best_frac = frac;
-                    best_j = j;
-                }
-            }
-            if (best_j != 0) {
-                glp_ios_branch_upon(tree, best_j, GLP_UP_BRNCH);
-            }
         }
         break;
     case GLP_ISELECT:
@@ -358,63 +261,14 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
     int price = opt->algorithm == HV_MILP_ALG_PRICE;
     if (price && opt->export_lp_path == NULL) {
         res->incumbent_taken = inc != NULL;
-        return hv_price_solve(inst, opt, inc, inc_t, t_deadline, out, res);
+        return hv_price_solve(inst, opt, hv_milp_default_subsolver(), inc, inc_t, t_deadline,
+                              out, res);
     }
     hv_milp_model_opts_t mo;
     memset(&mo, 0, sizeof mo);
     mo.link_disaggregated = opt->link_disaggregated == 1;
-    mo.count_columns = opt->count_branching != 0;
-    mo.block_stops = opt->count_branching ? opt->block_stops : 0;
-    hv_status_t st = HV_OK;
-
-    if (opt->side_bounds && !price) {
-        /* each side alone (easy: no max coupling): its optimum bounds the whole plan */
-        for (int sd = 0; sd < 2 && st == HV_OK; ++sd) {
-            unsigned char *keep = calloc(inst->n_fruits + 1, 1);
-            size_t n_side = 0;
-            if (keep == NULL) {
-                return HV_ERR_PLAN_NOMEM;
-            }
-            for (size_t f = 0; f < inst->n_fruits; ++f) {
-                keep[f] = inst->fruits[f].side == (sd ? HV_SIDE_RIGHT : HV_SIDE_LEFT);
-                n_side += keep[f];
-            }
-            if (n_side == 0 || n_side == inst->n_fruits) {
-                free(keep);
-                continue; /* one side only: the floor is the problem itself */
-            }
-            hv_instance_t sub;
-            st = hv_instance_subset(inst, 0, inst->n_stops, keep, 1, &sub, NULL);
-            free(keep);
-            if (st != HV_OK) {
-                return st;
-            }
-            hv_milp_options_t so = *opt;
-            so.side_bounds = 0;
-            so.export_lp_path = NULL;
-            so.verbose = opt->verbose >= 2 ? 2 : 0;
-            so.time_limit_s = fmax(0.01, t_deadline - hv_milp_now_s());
-            hv_assignment_t sa;
-            st = hv_assignment_alloc(&sa, sub.n_fruits);
-            hv_milp_result_t sr;
-            if (st == HV_OK) {
-                st = hv_milp_solve(&sub, &so, NULL, &sa, &sr);
-            }
-            if (st == HV_OK && sr.status != HV_SOLVE_ERROR && isfinite(sr.bound_s)) {
-                mo.side_floor_s[sd] = sr.bound_s - sub.travel_time_s;
-                res->nodes += sr.nodes;
-                res->worker_nodes += sr.worker_nodes;
-            }
-            hv_assignment_free(&sa);
-            hv_instance_free(&sub);
-        }
-        if (st != HV_OK) {
-            return st;
-        }
-    }
-
     hv_milp_model_t m;
-    st = hv_milp_model_build(inst, &mo, opt->export_lp_path != NULL, &m);
+    hv_status_t st = hv_milp_model_build(inst, &mo, opt->export_lp_path != NULL, &m);
     if (st != HV_OK) {
         return st;
     }
@@ -425,7 +279,8 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
     if (price) { /* the paper's model was wanted for the file only */
         hv_milp_model_free(&m);
         res->incumbent_taken = inc != NULL;
-        return hv_price_solve(inst, opt, inc, inc_t, t_deadline, out, res);
+        return hv_price_solve(inst, opt, hv_milp_default_subsolver(), inc, inc_t, t_deadline,
+                              out, res);
     }
     double *x = malloc(((size_t)m.n_cols + 1) * sizeof *x);
     if (x == NULL) {
@@ -490,7 +345,7 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
         c.bound = res->root_bound_s;
         /* Phase 1 bounded to a share of the limit when the root gap is wide; if it does not
          * prove optimality, the local search polishes the best plan (the tree rarely
-         * improves it there, SOLVER.md) and phase 2 restarts the tree from it. */
+         * improves it there, SOLVER.md's history) and phase 2 restarts the tree from it. */
         int two_phase = have && opt->polish_work > 0 &&
                         (best_t - res->root_bound_s) / best_t > 2e-3;
         for (int phase = 0; phase < 2; ++phase) {
@@ -503,7 +358,7 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
             glp_iocp ip;
             set_iocp(&ip, opt, &c, inst, best_t);
             if (phase == 1) {
-                /* hard instance: GLPK's cuts raise the bound there (SOLVER.md), while on
+                /* hard instance: GLPK's cuts raise the bound there (SOLVER.md's history), while on
                  * easy ones they only cost time, so they join in phase 2 only */
                 int cuts = opt->glpk_cuts | opt->glpk_cuts_phase2;
                 ip.gmi_cuts = (cuts & HV_MILP_CUT_GMI) ? GLP_ON : GLP_OFF;
@@ -832,4 +687,28 @@ hv_status_t hv_milp_solve(const hv_instance_t *inst, const hv_milp_options_t *op
                 res->bound_s, res->gap, res->runtime_s);
     }
     return st;
+}
+
+/* The sub-solver handed down to the branch-and-price's plugins (milp_subsolve.h). */
+static hv_status_t subsolver_solve(const hv_milp_subsolver_t *self, const hv_instance_t *inst,
+                                   const hv_milp_options_t *opt, const hv_assignment_t *inc,
+                                   hv_assignment_t *out, hv_milp_result_t *res)
+{
+    (void)self;
+    return hv_milp_solve(inst, opt, inc, out, res);
+}
+
+static hv_status_t subsolver_bound(const hv_milp_subsolver_t *self, const hv_instance_t *inst,
+                                   const hv_milp_options_t *opt, const double *skip_ms,
+                                   double cutoff_ms, double t_deadline_s, uint32_t *plan,
+                                   hv_price_bound_result_t *res)
+{
+    return hv_price_bound(inst, opt, self, skip_ms, cutoff_ms, t_deadline_s, plan, res);
+}
+
+static const hv_milp_subsolver_t subsolver = {subsolver_solve, subsolver_bound};
+
+const hv_milp_subsolver_t *hv_milp_default_subsolver(void)
+{
+    return &subsolver;
 }

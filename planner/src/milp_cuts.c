@@ -5,9 +5,8 @@
 
 #include "hv/milp_cuts.h"
 #include "hv/plan_status.h"
+#include "milp_tunables.h"
 
-#define CUT_MIN_VIOLATION_S 1e-3 /* s: smaller violations are not worth a row */
-#define CUT_MIN_VALUE 1e-6       /* a_ip below this is treated as 0 */
 
 hv_status_t hv_cut_sep_init(hv_cut_sep_t *s, const hv_instance_t *inst,
                             const hv_milp_model_t *model)

@@ -8,20 +8,16 @@
 #include "hv/milp_helper.h"
 #include "hv/milp_local_search.h"
 #include "hv/plan_status.h"
+#include "milp_tunables.h"
 
-#define HELPER_WINDOW_LIMIT_S 0.5 /* per window sub-solve */
-#define HELPER_KICKS 200          /* local-search kicks after a round of widths found nothing */
-#define HELPER_KICKS_CHUNK 20     /* ... run this many at a time (~10-30 ms) */
-#define POLISH_CHUNK 50           /* the first polish's kicks between two looks at the clock */
-#define HELPER_MEMO 1024          /* windows remembered as solved without gain (5-20 a pass) */
-
-/* 5 first: within a window's 0.5 s it leaves local optima of 4 (SOLVER.md, the widths' row) */
+/* 5 first: within a window's 0.5 s it leaves local optima of 4 (SOLVER.md's history) */
 static const unsigned widths[] = {5, 4, 3, 6, 2};
 #define N_WIDTHS (sizeof widths / sizeof widths[0])
 
 struct hv_helper {
     const hv_instance_t *inst;
     hv_milp_options_t opt; /* for the window sub-solves: polls stop_requested() */
+    const hv_milp_subsolver_t *sub;
     double t_deadline;
     unsigned polish_kicks;
     pthread_t thread;
@@ -107,7 +103,7 @@ static void *helper_main(void *arg)
         double t = h->best_t, t0 = t;
         pthread_mutex_unlock(&h->mu);
         hv_window_stats_t ws;
-        st = hv_window_improve(h->inst, &h->opt, widths[round++ % N_WIDTHS],
+        st = hv_window_improve(h->inst, &h->opt, h->sub, widths[round++ % N_WIDTHS],
                                HELPER_WINDOW_LIMIT_S, h->t_deadline, &a, &t, &ws, &memo,
                                publish_window, h);
         h->stats.windows += ws.windows; /* only this thread writes the counts */
@@ -144,6 +140,7 @@ static void *helper_main(void *arg)
 }
 
 hv_status_t hv_helper_start(const hv_instance_t *inst, const hv_milp_options_t *opt,
+                            const hv_milp_subsolver_t *sub,
                             const hv_assignment_t *plan, double t_s, double t_deadline_s,
                             unsigned polish_kicks, hv_helper_t **out)
 {
@@ -160,6 +157,7 @@ hv_status_t hv_helper_start(const hv_instance_t *inst, const hv_milp_options_t *
     h->best_t = t_s;
     h->inst = inst;
     h->opt = *opt;
+    h->sub = sub;
     h->opt.verbose = 0;
     h->opt.stop = stop_requested;
     h->opt.stop_ctx = h;

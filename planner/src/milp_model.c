@@ -21,7 +21,6 @@ void hv_milp_model_free(hv_milp_model_t *m)
     }
     free(m->col_b);
     free(m->col_c);
-    free(m->col_block);
     free(m->ia);
     free(m->ja);
     free(m->ar);
@@ -176,72 +175,7 @@ hv_status_t hv_milp_model_build(const hv_instance_t *inst, const hv_milp_model_o
         }
         free(row_link);
     }
-    /* sum_p C_p + tau sum_p b_p >= a side's own optimum (without T_travel): valid because
-     * C_p >= C^side_p and every stop that side uses is a used stop */
-    for (int sd = 0; sd < 2; ++sd) {
-        if (!(mo->side_floor_s[sd] > 0)) {
-            continue;
-        }
-        int i = add_row(lp, GLP_LO, mo->side_floor_s[sd], 0.0);
-        if (names) {
-            glp_set_row_name(lp, i, sd ? "floor_right" : "floor_left");
-        }
-        for (size_t p = 0; p < ns; ++p) {
-            if (m->col_b[p] != 0) {
-                put(m, i, m->col_c[p], 1.0);
-                put(m, i, m->col_b[p], inst->stop_penalty_s);
-            }
-        }
-    }
-    /* stop counts as integer columns (the optimum is unchanged: they are sums of binaries):
-     * n_all = sum_p b_p and n_blk = sum_{p in block} b_p over blocks of block_stops stops,
-     * so the search can branch on "how many stops here" instead of on one of many
-     * near-identical b_p the LP spreads fractionally over neighbours */
-    if (mo->count_columns) {
-        m->col_total = glp_add_cols(lp, 1);
-        glp_set_col_kind(lp, m->col_total, GLP_IV);
-        glp_set_col_bnds(lp, m->col_total, GLP_DB, 0.0, (double)ns);
-        glp_set_col_name(lp, m->col_total, "n_stops");
-        int i = add_row(lp, GLP_FX, 0.0, 0.0);
-        glp_set_row_name(lp, i, "count_all");
-        put(m, i, m->col_total, -1.0);
-        for (size_t p = 0; p < ns; ++p) {
-            if (m->col_b[p] != 0) {
-                put(m, i, m->col_b[p], 1.0);
-            }
-        }
-    }
-    if (mo->block_stops > 0) {
-        size_t w = (size_t)mo->block_stops;
-        m->n_blocks = (ns + w - 1) / w;
-        m->block_w = w;
-        m->col_block = calloc(m->n_blocks + 1, sizeof *m->col_block);
-        if (m->col_block == NULL) {
-            free(per_stop);
-            hv_milp_model_free(m);
-            return HV_ERR_PLAN_NOMEM;
-        }
-        for (size_t bl = 0; bl < m->n_blocks; ++bl) {
-            int j = glp_add_cols(lp, 1), i = add_row(lp, GLP_FX, 0.0, 0.0), any = 0;
-            m->col_block[bl] = j;
-            glp_set_col_kind(lp, j, GLP_IV);
-            glp_set_col_bnds(lp, j, GLP_DB, 0.0, (double)w);
-            snprintf(name, sizeof name, "n_block_%zu", bl);
-            glp_set_col_name(lp, j, name);
-            snprintf(name, sizeof name, "count_block_%zu", bl);
-            glp_set_row_name(lp, i, name);
-            put(m, i, j, -1.0);
-            for (size_t p = bl * w; p < ns && p < (bl + 1) * w; ++p) {
-                if (m->col_b[p] != 0) {
-                    put(m, i, m->col_b[p], 1.0);
-                    any = 1;
-                }
-            }
-            if (!any) {
-                glp_set_col_bnds(lp, j, GLP_FX, 0.0, 0.0);
-            }
-        }
-    }
+
     m->n_cols = glp_get_num_cols(lp);
     free(per_stop);
     glp_load_matrix(lp, (int)m->ne, m->ia, m->ja, m->ar);
@@ -275,19 +209,6 @@ hv_status_t hv_milp_model_point(const hv_instance_t *inst, const hv_milp_model_t
         }
     }
     x[m->col_travel] = inst->travel_time_s;
-    if (m->col_total != 0 || m->n_blocks > 0) {
-        size_t w = m->block_w;
-        for (size_t p = 0; p < ns; ++p) {
-            if (m->col_b[p] != 0 && x[m->col_b[p]] > 0.5) {
-                if (m->col_total != 0) {
-                    x[m->col_total] += 1.0;
-                }
-                if (m->n_blocks > 0) {
-                    x[m->col_block[p / w]] += 1.0;
-                }
-            }
-        }
-    }
     free(load);
     return HV_OK;
 }

@@ -9,8 +9,8 @@
 #include "hv/milp_pricing.h"
 #include "hv/milp_status.h"
 #include "hv/weighted_select.h"
+#include "milp_tunables.h"
 
-#define CLOCK_EVERY_POINTS 4096u /* points made between two readings of the clock */
 
 void hv_pricer_init(hv_pricer_t *pr)
 {
@@ -195,7 +195,7 @@ static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
             }
             /* a point holding cuts once may still pay them: it dominates later points only
              * by its profit less those penalties (an exact pairwise check cost more time
-             * than the points it saved: SOLVER.md) */
+             * than the points it saved: SOLVER.md's history) */
             double p_safe = one != 0 ? p - cut_penalty(pen, one) : p;
             last_p = p_safe > last_p ? p_safe : last_p;
             if (c0 - p >= thr || c_mid + lam * w - p >= thr || c1 + w - p >= thr) {

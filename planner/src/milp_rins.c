@@ -125,7 +125,8 @@ static hv_status_t sub_build(const hv_instance_t *in, const unsigned char *free_
 }
 
 hv_status_t hv_rins_improve(const hv_instance_t *inst, const hv_milp_options_t *opt,
-                            const unsigned char *free_fruit, const unsigned char *pair_open,
+                            const hv_milp_subsolver_t *sub, const unsigned char *free_fruit,
+                            const unsigned char *pair_open,
                             double limit_s, hv_assignment_t *plan, double *t_s, int *better,
                             hv_milp_result_t *res_out)
 {
@@ -159,7 +160,7 @@ hv_status_t hv_rins_improve(const hv_instance_t *inst, const hv_milp_options_t *
     hv_milp_options_t so;
     hv_milp_subsolve_options(opt, limit_s, &so);
     hv_milp_result_t res;
-    st = hv_milp_solve(&s.inst, &so, &inc, &out, &res);
+    st = sub->solve(sub, &s.inst, &so, &inc, &out, &res);
     double t;
     if (st == HV_OK && hv_assignment_makespan(&s.inst, &out, &t) == HV_OK && t < *t_s - 1e-4) {
         /* the sub's makespan is the plan's; re-evaluated on the whole instance all the same,

@@ -12,8 +12,8 @@
 #include "hv/grow_array.h"
 #include "hv/milp_share.h"
 #include "hv/plan_status.h"
+#include "milp_tunables.h"
 
-#define WAIT_SLICE_NS 20000000L /* a waiting worker looks at its clock this often */
 
 typedef struct queued {
     double lb_ms;

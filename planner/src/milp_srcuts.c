@@ -6,8 +6,8 @@
 #include "hv/grow_array.h"
 #include "hv/milp_srcuts.h"
 #include "hv/plan_status.h"
+#include "milp_tunables.h"
 
-#define FRAC_EPS 1e-6 /* a column this close to 0 or 1 is not fractional */
 
 hv_status_t hv_src_init(hv_src_t *s, size_t n_fruits)
 {
@@ -85,7 +85,6 @@ hv_status_t hv_src_copy(hv_src_t *dst, const hv_src_t *src)
         memcpy(dst->tri, src->tri, src->n * sizeof *dst->tri);
     }
     dst->n = src->n;
-    dst->cross_sides = src->cross_sides;
     return index_cuts(dst) ? HV_OK : HV_ERR_PLAN_NOMEM;
 }
 
@@ -223,7 +222,7 @@ hv_status_t hv_src_separate(hv_src_t *s, const hv_instance_t *inst, const hv_src
             cbeg[fa + 1]++;
             for (uint32_t b = 0; b < cols[c].n; ++b) {
                 uint32_t fb = cols[c].fruit[b];
-                if (b != a && (s->cross_sides || inst->fruits[fa].side == inst->fruits[fb].side)) {
+                if (b != a && inst->fruits[fa].side == inst->fruits[fb].side) {
                     pw[n_pw++] = (pair_w_t){fa, fb, cols[c].x};
                 }
             }

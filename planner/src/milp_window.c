@@ -90,6 +90,7 @@ static uint64_t key_mix(uint64_t h, uint32_t w)
  * used[i - 1] and used[i + width]. *better = 1 when the plan was improved (and updated).
  * Skipped when the memo holds the window; recorded there when solved without gain. */
 static hv_status_t window_once(const hv_instance_t *inst, const hv_milp_options_t *so,
+                               const hv_milp_subsolver_t *solver,
                                const uint32_t *used, size_t k, size_t i, unsigned width,
                                unsigned char *keep, uint32_t *back, hv_assignment_t *plan,
                                int *better, hv_window_stats_t *stats, hv_window_memo_t *memo,
@@ -132,7 +133,7 @@ static hv_status_t window_once(const hv_instance_t *inst, const hv_milp_options_
     hv_milp_result_t res;
     st = hv_assignment_makespan(&sub, &inc, &cur);
     if (st == HV_OK) {
-        st = hv_milp_solve(&sub, so, &inc, &out, &res);
+        st = solver->solve(solver, &sub, so, &inc, &out, &res);
     }
     if (st == HV_OK) {
         stats->windows++;
@@ -158,7 +159,7 @@ static hv_status_t window_once(const hv_instance_t *inst, const hv_milp_options_
 /* The order of a pass: the windows' starts (advancing by half the width, so each stop is
  * re-planned twice a pass), the cheapest sub-problem first (candidate stops times fruits): a
  * window at alpha 2.5-4 takes 0.02-0.5 s, and the dear ones often run out their limit
- * without a gain (SOLVER.md). Returns the number of windows. */
+ * without a gain (SOLVER.md's history). Returns the number of windows. */
 static size_t pass_order(const hv_instance_t *inst, const uint32_t *count,
                          const uint32_t *used, size_t k, unsigned width, uint32_t *order,
                          double *cost)
@@ -187,7 +188,8 @@ static size_t pass_order(const hv_instance_t *inst, const uint32_t *count,
 }
 
 hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t *opt,
-                              unsigned width, double window_limit_s, double t_deadline_s,
+                              const hv_milp_subsolver_t *sub, unsigned width,
+                              double window_limit_s, double t_deadline_s,
                               hv_assignment_t *plan, double *t_s, hv_window_stats_t *stats,
                               hv_window_memo_t *memo, hv_window_better_fn better_fn,
                               void *better_ctx)
@@ -197,7 +199,7 @@ hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t
         stats = &dummy;
     }
     memset(stats, 0, sizeof *stats);
-    if (inst == NULL || opt == NULL || plan == NULL || t_s == NULL || width == 0) {
+    if (inst == NULL || opt == NULL || sub == NULL || plan == NULL || t_s == NULL || width == 0) {
         return HV_ERR_ARG;
     }
     size_t ns = inst->n_stops + 1;
@@ -238,8 +240,8 @@ hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t
                 memcpy(saved.fruit_stop, plan->fruit_stop,
                        inst->n_fruits * sizeof *saved.fruit_stop);
                 int better;
-                st = window_once(inst, &so, used, k, order[w], width, keep, back, plan, &better,
-                                 stats, memo, full_limit);
+                st = window_once(inst, &so, sub, used, k, order[w], width, keep, back, plan,
+                                 &better, stats, memo, full_limit);
                 double t;
                 if (st == HV_OK && better && hv_assignment_makespan(inst, plan, &t) == HV_OK &&
                     t < *t_s) {

@@ -95,12 +95,8 @@ static void test_matches_brute_force(void **state)
         expect_optimal(&in, &o, best);
         hv_milp_options_default(&o);
         o.algorithm = HV_MILP_ALG_COMPACT;
-        o.branch_stops_first = 1;
-        o.side_bounds = 1;
         o.pcost_branching = 1;
         o.glpk_cuts = HV_MILP_CUT_GMI | HV_MILP_CUT_MIR | HV_MILP_CUT_COVER | HV_MILP_CUT_CLIQUE;
-        o.count_branching = 1;
-        o.block_stops = 3;
         o.pattern_cuts = 5;
         o.backtracking = 1;
         expect_optimal(&in, &o, best);
@@ -404,7 +400,7 @@ static void test_interval_pseudocosts(void **state)
  * every stalled node below the root is branched on early, and so narrow (1 ms) that the
  * stalled masters the incumbent does not prune tail off only by the open rule. (Closing such a node on an integral point before
  * its master is optimal could lose the optimum; on these instances a solver that did so
- * still found it, so that rule rests on its reasoning in milp_price.c.) */
+ * still found it, so that rule rests on its reasoning in price/node.c.) */
 static void test_interval_branching_and_tail(void **state)
 {
     (void)state;
@@ -509,7 +505,8 @@ static void test_window_improve(void **state)
         hv_window_stats_t ws;
         t = t0;
         window_reports_t rep = {&in, t0, 0, 0};
-        assert_int_equal(hv_window_improve(&in, &o, 2, 5.0, 1e12, &a, &t, &ws, NULL,
+        assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 2, 5.0, 1e12,
+                                           &a, &t, &ws, NULL,
                                            record_window, &rep), HV_OK);
         assert_int_equal(hv_assignment_makespan(&in, &a, &check), HV_OK);
         assert_true(fabs(check - t) < 1e-9);
@@ -525,7 +522,8 @@ static void test_window_improve(void **state)
         assert_int_equal(res.status, HV_SOLVE_OPTIMAL);
         assert_true(t >= res.objective_s - 1e-6);
         /* a window as wide as the plan is the whole problem: nothing to do */
-        assert_int_equal(hv_window_improve(&in, &o, 1000, 5.0, 1e12, &a, &t, &ws, NULL, NULL,
+        assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 1000, 5.0, 1e12,
+                                           &a, &t, &ws, NULL, NULL,
                                            NULL),
                          HV_OK);
         assert_int_equal(ws.windows, 0);
@@ -555,13 +553,15 @@ static void test_window_memo(void **state)
         double t1, t2, t3;
         plan_at_end_stops(&in, &a, 1);
         assert_int_equal(hv_assignment_makespan(&in, &a, &t1), HV_OK);
-        assert_int_equal(hv_window_improve(&in, &o, 3, 5.0, 1e12, &a, &t1, &ws, &memo, NULL,
+        assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 3, 5.0, 1e12,
+                                           &a, &t1, &ws, &memo, NULL,
                                            NULL),
                          HV_OK);
         assert_true(ws.windows > ws.improved);
         assert_int_equal(ws.proven, ws.windows); /* tiny windows: all proven */
         t2 = t1;
-        assert_int_equal(hv_window_improve(&in, &o, 3, 5.0, 1e12, &a, &t2, &ws2, &memo, NULL,
+        assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 3, 5.0, 1e12,
+                                           &a, &t2, &ws2, &memo, NULL,
                                            NULL),
                          HV_OK);
         assert_int_equal(ws2.windows, 0);
@@ -570,7 +570,8 @@ static void test_window_memo(void **state)
         assert_true(t2 == t1);
         plan_at_end_stops(&in, &a, 1);
         assert_int_equal(hv_assignment_makespan(&in, &a, &t3), HV_OK);
-        assert_int_equal(hv_window_improve(&in, &o, 3, 5.0, 1e12, &a, &t3, &ws2, &memo, NULL,
+        assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 3, 5.0, 1e12,
+                                           &a, &t3, &ws2, &memo, NULL,
                                            NULL),
                          HV_OK);
         assert_true(fabs(t3 - t1) < 1e-9);
@@ -581,7 +582,8 @@ static void test_window_memo(void **state)
         assert_int_equal(hv_window_memo_init(&memo, 1), HV_OK);
         for (int call = 0; call < 2; ++call) {
             t2 = t1;
-            assert_int_equal(hv_window_improve(&in, &o, 3, 5.0, 1e12, &a, &t2, &ws2, &memo,
+            assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 3, 5.0,
+                                               1e12, &a, &t2, &ws2, &memo,
                                                NULL, NULL),
                              HV_OK);
             assert_int_equal(ws2.repeats, call == 1 && pass == 1);
@@ -653,14 +655,16 @@ static void test_rins_improve(void **state)
         /* nothing freed: the plan as it was */
         memcpy(a.fruit_stop, poor.fruit_stop, nf * sizeof *a.fruit_stop);
         t = t0;
-        assert_int_equal(hv_rins_improve(&in, &o, freed, NULL, 30.0, &a, &t, &better, &res),
+        assert_int_equal(hv_rins_improve(&in, &o, hv_milp_default_subsolver(), freed, NULL, 30.0,
+                                         &a, &t, &better, &res),
                          HV_OK);
         assert_int_equal(better, 0);
         assert_true(t == t0);
         assert_memory_equal(a.fruit_stop, poor.fruit_stop, nf * sizeof *a.fruit_stop);
 
         /* no time, or a kept fruit at a stop that cannot reach it: refused, plan untouched */
-        assert_int_equal(hv_rins_improve(&in, &o, freed, NULL, 0.0, &a, &t, &better, &res),
+        assert_int_equal(hv_rins_improve(&in, &o, hv_milp_default_subsolver(), freed, NULL, 0.0,
+                                         &a, &t, &better, &res),
                          HV_ERR_ARG);
         for (uint32_t p = 0; p < in.n_stops; ++p) {
             if (hv_instance_pair_index(&in, 0, p) == SIZE_MAX) {
@@ -668,7 +672,8 @@ static void test_rins_improve(void **state)
                 break;
             }
         }
-        assert_int_equal(hv_rins_improve(&in, &o, freed, NULL, 30.0, &a, &t, &better, &res),
+        assert_int_equal(hv_rins_improve(&in, &o, hv_milp_default_subsolver(), freed, NULL, 30.0,
+                                         &a, &t, &better, &res),
                          HV_ERR_ARG);
         assert_int_equal(better, 0);
         assert_true(t == t0);
@@ -676,7 +681,8 @@ static void test_rins_improve(void **state)
 
         /* every fruit freed over every pair: the whole problem */
         memset(freed, 1, nf);
-        assert_int_equal(hv_rins_improve(&in, &o, freed, NULL, 30.0, &a, &t, &better, &res),
+        assert_int_equal(hv_rins_improve(&in, &o, hv_milp_default_subsolver(), freed, NULL, 30.0,
+                                         &a, &t, &better, &res),
                          HV_OK);
         assert_int_equal(res.status, HV_SOLVE_OPTIMAL);
         assert_true(fabs(t - t_opt) < 1e-6);
@@ -700,7 +706,8 @@ static void test_rins_improve(void **state)
         memcpy(a.fruit_stop, poor.fruit_stop, nf * sizeof *a.fruit_stop);
         double want = neighbourhood_best(&in, freed, open, &a, 0);
         t = t0;
-        assert_int_equal(hv_rins_improve(&in, &o, freed, open, 30.0, &a, &t, &better, &res),
+        assert_int_equal(hv_rins_improve(&in, &o, hv_milp_default_subsolver(), freed, open, 30.0,
+                                         &a, &t, &better, &res),
                          HV_OK);
         assert_int_equal(res.status, HV_SOLVE_OPTIMAL);
         if (fabs(t - want) > 1e-6) {
@@ -757,7 +764,8 @@ static void test_helper_thread(void **state)
     for (unsigned polish = 0; polish <= 300; polish += 300) {
         hv_helper_t *h;
         double t = INFINITY, check;
-        assert_int_equal(hv_helper_start(&in, &o, &a, t0, mono_s() + 60.0, polish, &h), HV_OK);
+        assert_int_equal(hv_helper_start(&in, &o, hv_milp_default_subsolver(), &a, t0, mono_s() +
+                                         60.0, polish, &h), HV_OK);
         int taken = 0;
         for (double until = mono_s() + 20.0; !taken && mono_s() < until;) {
             taken = hv_helper_take(h, t0, &got, &t);

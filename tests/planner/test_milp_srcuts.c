@@ -91,12 +91,6 @@ static void test_no_cut_where_none_holds(void **state)
     hv_src_col_t mixed[] = {{m1, 2, 0.5}, {m2, 2, 0.5}, {m3, 2, 0.5}};
     assert_int_equal(hv_src_separate(s, in, mixed, 3, 10, 10, 0.05, &added), HV_OK);
     assert_int_equal(added, 0);
-    s->cross_sides = 1; /* ... unless triples may cross the sides */
-    assert_int_equal(hv_src_separate(s, in, mixed, 3, 10, 10, 0.05, &added), HV_OK);
-    assert_int_equal(added, 1);
-    assert_true(s->tri[0][0] == 3 && s->tri[0][1] == 4 && s->tri[0][2] == 5);
-    hv_src_clear(s);
-    s->cross_sides = 0;
     /* a violation of 0.5 is not above min_viol 0.5; columns at 1 never form one */
     static const uint32_t o1[] = {0, 1}, o2[] = {1, 2}, o3[] = {0, 2};
     hv_src_col_t odd[] = {{o1, 2, 0.5}, {o2, 2, 0.5}, {o3, 2, 0.5}};

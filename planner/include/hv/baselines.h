@@ -22,26 +22,13 @@
 
 #include <stddef.h>
 
+#include "hv/fov.h"
 #include "hv/milp.h"
 #include "hv/plan_instance.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-#define HV_FOV_DEFAULT_WIDTH_M 0.25
-
-typedef struct hv_fov_stats {
-    size_t windows;          /* windows from the first to the last reachable fruit */
-    size_t stops;            /* used stops */
-    size_t moved;            /* fruits picked at another window's stop */
-    size_t extra_stops;      /* stops added for fruits no window stop reaches */
-} hv_fov_stats_t;
-
-/* FOV plan on `inst` into `out` (allocated by the caller for inst->n_fruits). `stats` may
- * be NULL. Errors: HV_ERR_ARG (width <= 0 or not finite), HV_ERR_PLAN_NOMEM. */
-hv_status_t hv_fov_solve(const hv_instance_t *inst, double fov_width_m, hv_assignment_t *out,
-                         hv_fov_stats_t *stats);
 
 typedef struct hv_serial_result {
     hv_milp_result_t side[2]; /* per pass: [HV_SIDE_LEFT], [HV_SIDE_RIGHT] */

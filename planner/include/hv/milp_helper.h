@@ -11,7 +11,8 @@
 #ifndef HV_MILP_HELPER_H
 #define HV_MILP_HELPER_H
 
-#include "hv/milp.h"
+#include "hv/milp_options.h"
+#include "hv/milp_subsolve.h"
 #include "hv/milp_window.h"
 #include "hv/plan_instance.h"
 
@@ -23,9 +24,11 @@ typedef struct hv_helper hv_helper_t;
 
 /* Start the helper from `plan` (makespan t_s) of `inst`, which must outlive it; it works
  * until hv_helper_stop or the clock (CLOCK_MONOTONIC, s) reaches t_deadline_s, beginning
- * with `polish_kicks` local-search kicks (0: none). `opt` is copied. Returns HV_OK,
- * HV_ERR_PLAN_NOMEM, or HV_ERR_ARG when the thread cannot start. */
+ * with `polish_kicks` local-search kicks (0: none). `opt` is copied; the windows'
+ * sub-solves go through `sub`. Returns HV_OK, HV_ERR_PLAN_NOMEM, or HV_ERR_ARG when the
+ * thread cannot start. */
 hv_status_t hv_helper_start(const hv_instance_t *inst, const hv_milp_options_t *opt,
+                            const hv_milp_subsolver_t *sub,
                             const hv_assignment_t *plan, double t_s, double t_deadline_s,
                             unsigned polish_kicks, hv_helper_t **out);
 

@@ -19,10 +19,6 @@ extern "C" {
 
 typedef struct hv_milp_model_opts {
     int link_disaggregated;
-    double side_floor_s[2]; /* > 0: add sum C_p + tau sum b_p >= this (left, right) */
-    int count_columns;      /* 1: integer column n_stops = sum_p b_p */
-    int block_stops;        /* > 0: integer columns counting the used stops per block of
-                               this many consecutive stops */
 } hv_milp_model_opts_t;
 
 typedef struct hv_milp_model {
@@ -31,10 +27,6 @@ typedef struct hv_milp_model {
     int *col_b; /* per stop: column of b_p, 0 when no fruit can use the stop */
     int *col_c; /* per stop: column of C_p, 0 likewise */
     int col_travel;
-    int col_total;   /* n_stops column, 0 when absent */
-    int *col_block;  /* per block: its count column (n_blocks of them) */
-    size_t n_blocks;
-    size_t block_w;  /* stops per block */
     int *ia, *ja;
     double *ar;
     size_t ne;

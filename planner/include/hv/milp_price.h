@@ -17,7 +17,8 @@
 #ifndef HV_MILP_PRICE_H
 #define HV_MILP_PRICE_H
 
-#include "hv/milp.h"
+#include "hv/milp_options.h"
+#include "hv/milp_subsolve.h"
 #include "hv/plan_instance.h"
 
 #ifdef __cplusplus
@@ -28,18 +29,9 @@ extern "C" {
  * seconds). `inc` (may be NULL) is a feasible assignment costing inc_t seconds; it seeds
  * the columns and the incumbent. Fills `out` and `res` like hv_milp_solve. */
 hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *opt,
-                           const hv_assignment_t *inc, double inc_t, double t_deadline_s,
+                           const hv_milp_subsolver_t *sub, const hv_assignment_t *inc,
+                           double inc_t, double t_deadline_s,
                            hv_assignment_t *out, hv_milp_result_t *res);
-
-/* What hv_price_bound found. */
-typedef struct hv_price_bound_result {
-    double lb_ms;      /* min(cutoff, the least open bound): the optimum when finished and a
-                          solution below the cutoff was found */
-    double root_lb_ms; /* the root's bound */
-    long nodes;        /* nodes solved */
-    int finished;      /* every node was closed (not stopped by the deadline) */
-    int has_plan;      /* a solution below the cutoff was found: the best one is in `plan` */
-} hv_price_bound_result_t;
 
 /* A lower bound on the optimum of `inst` with some fruits optional: leaving fruit f
  * uncovered costs skip_ms[f] (INFINITY: f must be covered), and the value of a solution is
@@ -50,7 +42,8 @@ typedef struct hv_price_bound_result {
  * (may be NULL, else n_fruits entries) receives the best solution's stop per fruit,
  * HV_NO_STOP for one left out. */
 hv_status_t hv_price_bound(const hv_instance_t *inst, const hv_milp_options_t *opt,
-                           const double *skip_ms, double cutoff_ms, double t_deadline_s,
+                           const hv_milp_subsolver_t *sub, const double *skip_ms,
+                           double cutoff_ms, double t_deadline_s,
                            uint32_t *plan, hv_price_bound_result_t *res);
 
 #ifdef __cplusplus

@@ -11,7 +11,8 @@
 #ifndef HV_MILP_RINS_H
 #define HV_MILP_RINS_H
 
-#include "hv/milp.h"
+#include "hv/milp_options.h"
+#include "hv/milp_subsolve.h"
 #include "hv/plan_instance.h"
 
 #ifdef __cplusplus
@@ -21,13 +22,14 @@ extern "C" {
 /* Re-plan the fruits f with free_fruit[f] != 0 of `plan` (a complete plan of `inst`,
  * makespan *t_s), the others staying at their stops, each over its plan's stop and the
  * stops of its pairs k with pair_open[k] != 0 (inst->pairs order; NULL: every pair), by
- * hv_milp_solve with `opt` (copied: quiet, one thread, no windows, polish or
+ * sub->solve with `opt` (copied: quiet, one thread, no windows, polish or
  * neighbourhoods) for at most limit_s. On a better plan, `plan` and *t_s are updated and
  * *better = 1. res_out (may be NULL) receives the sub-solve's result. Returns HV_OK,
  * HV_ERR_ARG (also when a kept fruit's stop does not reach it), HV_ERR_PLAN_NOMEM or the
  * sub-solve's error; the plan stays valid either way. */
 hv_status_t hv_rins_improve(const hv_instance_t *inst, const hv_milp_options_t *opt,
-                            const unsigned char *free_fruit, const unsigned char *pair_open,
+                            const hv_milp_subsolver_t *sub, const unsigned char *free_fruit,
+                            const unsigned char *pair_open,
                             double limit_s, hv_assignment_t *plan, double *t_s, int *better,
                             hv_milp_result_t *res_out);
 

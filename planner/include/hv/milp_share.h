@@ -1,9 +1,10 @@
-/* Work sharing between the tree workers of the branch-and-price (internal; milp_price.c).
+/* Work sharing between the tree workers of the branch-and-price (internal;
+ * planner/src/price/).
  *
  * DESIGN §10 counts 2 cores. When the helper thread (milp_helper.h) is not running, a
  * second worker searches the tree beside the first, each with its own master LP. An open
  * node travels between them as the path of restrictions from the root to it, with a warm
- * start that names its columns by content (opaque here: milp_price.c packs and reads it),
+ * start that names its columns by content (opaque here: price/workers.c packs and reads it),
  * because the two masters number their columns differently once they have split. A worker
  * takes a node when it has none of its own, or when the best
  * bound it holds is well above the other's (so that both search near the best bound); the
@@ -24,7 +25,7 @@
 extern "C" {
 #endif
 
-/* One restriction on the path to a node: milp_price.c's node kind and its fields. */
+/* One restriction on the path to a node: price/bp.h's node kind and its fields. */
 typedef struct hv_share_step {
     int kind;
     uint32_t fruit, lo, hi;

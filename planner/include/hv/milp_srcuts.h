@@ -1,4 +1,4 @@
-/* Subset-row cuts for the branch-and-price master (internal; milp_price.c).
+/* Subset-row cuts for the branch-and-price master (internal; planner/src/price/).
  *
  * For three fruits S = {i, j, k}, at most one pattern of a plan holds two or more of them
  * (each fruit is in exactly one pattern), so
@@ -7,7 +7,8 @@
  * multipliers 1/2. The pattern LP violates it where fractional patterns at neighbouring
  * stops share fruits pairwise (an odd cycle). A cut's dual sigma <= 0 adds -sigma to the
  * reduced cost of every pattern holding two of S, which the pricing carries
- * (milp_pricing.h), also for a triple over both sides (`cross_sides`).
+ * (milp_pricing.h). Triples hold fruits of one side: over both sides their pricing cost
+ * more than their bound gave (SOLVER.md's history).
  */
 #ifndef HV_MILP_SRCUTS_H
 #define HV_MILP_SRCUTS_H
@@ -30,8 +31,6 @@ typedef struct hv_src {
     uint32_t *fcut;
     size_t fcut_cap;
     uint32_t *cnt;      /* per cut: scratch counter, 0 between calls */
-    int cross_sides;    /* 1: separation also takes triples with fruits of both sides
-                           (0 after hv_src_init) */
 } hv_src_t;
 
 /* One master column with a positive value: its fruits (ascending) and that value. */
@@ -48,7 +47,7 @@ void hv_src_free(hv_src_t *s);
 /* Adds up to max_new of the cuts the master point cols[0 .. n) violates by more than
  * min_viol, the most violated first, each fruit in at most per_fruit of them, none twice;
  * their indices are s->n before the call .. s->n after, *added of them. Same-side triples
- * only (`inst` gives the sides) unless s->cross_sides. Returns HV_OK or HV_ERR_PLAN_NOMEM. */
+ * only (`inst` gives the sides). Returns HV_OK or HV_ERR_PLAN_NOMEM. */
 hv_status_t hv_src_separate(hv_src_t *s, const hv_instance_t *inst, const hv_src_col_t *cols,
                             size_t n, size_t max_new, size_t per_fruit, double min_viol,
                             size_t *added);

@@ -17,7 +17,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "hv/milp.h"
+#include "hv/milp_options.h"
+#include "hv/milp_subsolve.h"
 #include "hv/plan_instance.h"
 
 #ifdef __cplusplus
@@ -53,14 +54,15 @@ typedef void (*hv_window_better_fn)(void *ctx, const hv_assignment_t *plan, doub
 /* Improve `plan` (a complete plan of `inst`, makespan *t_s) window by window, `width`
  * stops each, until a pass improves nothing or the clock (CLOCK_MONOTONIC, s) reaches
  * t_deadline_s; each sub-solve gets at most window_limit_s. `opt` is copied for the
- * sub-solves with their own limit, no progress output and no window re-optimisation of
- * their own. *t_s is updated with the plan. `memo` holds the windows to skip and receives
- * those solved without gain (NULL: the call keeps one of its own). stats and better (with
- * its ctx) may be NULL.
+ * sub-solves (through `sub`) with their own limit, no progress output and no window
+ * re-optimisation of their own. *t_s is updated with the plan. `memo` holds the windows to
+ * skip and receives those solved without gain (NULL: the call keeps one of its own). stats
+ * and better (with its ctx) may be NULL.
  * Returns HV_OK, or the first error of a sub-solve (HV_ERR_PLAN_NOMEM, GLPK failure);
  * the plan is left valid either way. */
 hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t *opt,
-                              unsigned width, double window_limit_s, double t_deadline_s,
+                              const hv_milp_subsolver_t *sub, unsigned width,
+                              double window_limit_s, double t_deadline_s,
                               hv_assignment_t *plan, double *t_s, hv_window_stats_t *stats,
                               hv_window_memo_t *memo, hv_window_better_fn better,
                               void *better_ctx);

@@ -13,7 +13,7 @@ extern "C" {
  * that the weights of the pairs with key <= k sum to at least `need` (> 0), or INFINITY
  * when all of them sum to less. Reorders the pairs. Expected time linear in n (a
  * quickselect on three-way partitions): the pricing calls it once per stop priced, where
- * sorting the pairs cost 3 % of a solve (SOLVER.md). */
+ * sorting the pairs cost 3 % of a solve (SOLVER.md's history). */
 double hv_weighted_select(double *pairs, size_t n, double need);
 
 #ifdef __cplusplus
