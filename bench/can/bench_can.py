@@ -20,7 +20,6 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-sys.path.insert(0, os.path.join(ROOT, "host"))
 
 from harvest.canbus.buses import open_bus  # noqa: E402
 from harvest.canbus.guest import guest_or_skip, in_guest, local_vcan, run_in_guest, skip_reason  # noqa: E402,F401
@@ -31,7 +30,6 @@ PING_ID, REPLY_ID = 0x7F0, 0x7F1
 # A python-can echo: every frame on PING_ID comes back on REPLY_ID (own frames filtered).
 ECHO = f"""
 import sys, can
-sys.path.insert(0, {os.path.join(ROOT, 'host')!r})
 from harvest.canbus.buses import open_bus
 bus = open_bus(sys.argv[1], can_filters=[{{"can_id": {PING_ID}, "can_mask": 0x7FF}}])
 print("ready", flush=True)

@@ -22,7 +22,6 @@ import threading
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SOURCE = os.environ.get("HV_SOURCE_DIR", os.path.dirname(os.path.dirname(HERE)))
-sys.path.insert(0, os.path.join(SOURCE, "host"))
 sys.path.insert(0, os.path.join(SOURCE, "tests", "executor"))
 
 import exec_hil as H  # noqa: E402

@@ -1,6 +1,7 @@
 /* harvest-plan: plan a row (MILP, FOV or Serial) and write a checked plan file, or check
  * an existing plan file against its inputs. `harvest-plan --help`. */
 #define _POSIX_C_SOURCE 200809L
+#include <getopt.h>
 #include <math.h>
 #include <signal.h>
 #include <stdatomic.h>
@@ -145,39 +146,44 @@ static double now_s(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* getopt_long's verdict on argv[optind - 1] when it returned ':' or '?'. */
+static int option_error(int opt, char **argv)
+{
+    return usage_error(opt == ':' ? "option needs a value" : "unknown option", argv[optind - 1]);
+}
+
 static int run_check(int argc, char **argv)
 {
+    enum { OPT_CONFIG = 256, OPT_LEFT, OPT_RIGHT, OPT_FRUITS, OPT_QUIET };
+    static const struct option longopts[] = {
+        {"config", required_argument, NULL, OPT_CONFIG},
+        {"left", required_argument, NULL, OPT_LEFT},
+        {"right", required_argument, NULL, OPT_RIGHT},
+        {"fruits", required_argument, NULL, OPT_FRUITS},
+        {"quiet", no_argument, NULL, OPT_QUIET},
+        {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0},
+    };
     const char *plan_path = NULL, *config = NULL, *left = NULL, *right = NULL, *fruits = NULL;
-    int quiet = 0;
-    for (int i = 2; i < argc; ++i) {
-        const char *a = argv[i];
-        const char **dst = NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            fputs(k_usage, stdout);
-            return 0;
-        } else if (strcmp(a, "--quiet") == 0) {
-            quiet = 1;
-            continue;
-        } else if (strcmp(a, "--config") == 0) {
-            dst = &config;
-        } else if (strcmp(a, "--left") == 0) {
-            dst = &left;
-        } else if (strcmp(a, "--right") == 0) {
-            dst = &right;
-        } else if (strcmp(a, "--fruits") == 0) {
-            dst = &fruits;
-        } else if (a[0] == '-' ) {
-            return usage_error("unknown option", a);
-        } else if (plan_path == NULL) {
-            plan_path = a;
-            continue;
-        } else {
-            return usage_error("more than one plan file", a);
+    int quiet = 0, opt;
+    opterr = 0;
+    optind = 2; /* after "check" */
+    while ((opt = getopt_long(argc, argv, ":h", longopts, NULL)) != -1) {
+        switch (opt) {
+        case 'h': fputs(k_usage, stdout); return 0;
+        case OPT_QUIET: quiet = 1; break;
+        case OPT_CONFIG: config = optarg; break;
+        case OPT_LEFT: left = optarg; break;
+        case OPT_RIGHT: right = optarg; break;
+        case OPT_FRUITS: fruits = optarg; break;
+        default: return option_error(opt, argv);
         }
-        if (i + 1 >= argc) {
-            return usage_error("option needs a value", a);
-        }
-        *dst = argv[++i];
+    }
+    if (optind < argc) {
+        plan_path = argv[optind++];
+    }
+    if (optind < argc) {
+        return usage_error("more than one plan file", argv[optind]);
     }
     if (plan_path == NULL) {
         return usage_error("check needs a PLAN.json", NULL);
@@ -207,77 +213,91 @@ static int run_check(int argc, char **argv)
 
 static int parse_args(int argc, char **argv, args_t *a)
 {
+    enum { OPT_CONFIG = 256, OPT_LEFT, OPT_RIGHT, OPT_FRUITS, OPT_METHOD, OPT_OUT,
+           OPT_EXPORT_LP, OPT_TIME_LIMIT, OPT_GAP, OPT_FOV_WIDTH, OPT_HORIZON, OPT_COMMIT,
+           OPT_ROW_LENGTH, OPT_ALGORITHM, OPT_THREADS, OPT_QUIET, OPT_COMPARE_SINGLE,
+           OPT_HELP_PARAMS };
+    static const struct option longopts[] = {
+        {"config", required_argument, NULL, OPT_CONFIG},
+        {"left", required_argument, NULL, OPT_LEFT},
+        {"right", required_argument, NULL, OPT_RIGHT},
+        {"fruits", required_argument, NULL, OPT_FRUITS},
+        {"method", required_argument, NULL, OPT_METHOD},
+        {"out", required_argument, NULL, OPT_OUT},
+        {"export-lp", required_argument, NULL, OPT_EXPORT_LP},
+        {"time-limit", required_argument, NULL, OPT_TIME_LIMIT},
+        {"gap", required_argument, NULL, OPT_GAP},
+        {"fov-width", required_argument, NULL, OPT_FOV_WIDTH},
+        {"horizon", required_argument, NULL, OPT_HORIZON},
+        {"commit", required_argument, NULL, OPT_COMMIT},
+        {"row-length", required_argument, NULL, OPT_ROW_LENGTH},
+        {"algorithm", required_argument, NULL, OPT_ALGORITHM},
+        {"threads", required_argument, NULL, OPT_THREADS},
+        {"quiet", no_argument, NULL, OPT_QUIET},
+        {"compare-single", no_argument, NULL, OPT_COMPARE_SINGLE},
+        {"help-params", no_argument, NULL, OPT_HELP_PARAMS},
+        {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0},
+    };
     memset(a, 0, sizeof *a);
     a->time_limit_s = 60.0;
     a->gap = 1e-6;
     a->fov_width_m = HV_FOV_DEFAULT_WIDTH_M;
-    for (int i = 1; i < argc; ++i) {
-        const char *f = argv[i];
-        if (strcmp(f, "--help") == 0 || strcmp(f, "-h") == 0) {
-            fputs(k_usage, stdout);
-            return 1;
-        }
-        if (strcmp(f, "--help-params") == 0) {
-            hv_milp_params_write(stdout);
-            return 1;
-        }
-        if (strcmp(f, "--quiet") == 0) {
-            a->quiet = 1;
-            continue;
-        }
-        if (strcmp(f, "--compare-single") == 0) {
-            a->compare_single = 1;
-            continue;
-        }
-        static const char *const valued[] = {
-            "--config", "--left", "--right", "--fruits", "--method", "--out", "--export-lp",
-            "--time-limit", "--gap", "--fov-width", "--horizon", "--commit", "--row-length",
-            "--algorithm", "--threads", NULL};
-        int known = 0;
-        for (const char *const *k = valued; *k != NULL; ++k) {
-            known |= strcmp(*k, f) == 0;
-        }
-        if (!known) {
-            return usage_error(f[0] == '-' ? "unknown option" : "unexpected argument", f);
-        }
-        if (i + 1 >= argc) {
-            return usage_error("option needs a value", f);
-        }
-        const char *v = argv[++i];
-        if (strcmp(f, "--config") == 0) a->config = v;
-        else if (strcmp(f, "--left") == 0) a->left = v;
-        else if (strcmp(f, "--right") == 0) a->right = v;
-        else if (strcmp(f, "--fruits") == 0) a->fruits = v;
-        else if (strcmp(f, "--method") == 0) a->method = v;
-        else if (strcmp(f, "--out") == 0) a->out = v;
-        else if (strcmp(f, "--export-lp") == 0) a->export_lp = v;
-        else if (strcmp(f, "--algorithm") == 0) a->algorithm = v;
-        else if (strcmp(f, "--threads") == 0) {
+    opterr = 0;
+    int opt, idx = 0;
+    while ((opt = getopt_long(argc, argv, ":h", longopts, &idx)) != -1) {
+        const char *v = optarg;
+        /* the option as given, for messages: --name even when written --name=value */
+        char f[32];
+        snprintf(f, sizeof f, "--%s", opt >= OPT_CONFIG ? longopts[idx].name : "");
+        switch (opt) {
+        case 'h': fputs(k_usage, stdout); return 1;
+        case OPT_HELP_PARAMS: hv_milp_params_write(stdout); return 1;
+        case OPT_QUIET: a->quiet = 1; break;
+        case OPT_COMPARE_SINGLE: a->compare_single = 1; break;
+        case OPT_CONFIG: a->config = v; break;
+        case OPT_LEFT: a->left = v; break;
+        case OPT_RIGHT: a->right = v; break;
+        case OPT_FRUITS: a->fruits = v; break;
+        case OPT_METHOD: a->method = v; break;
+        case OPT_OUT: a->out = v; break;
+        case OPT_EXPORT_LP: a->export_lp = v; break;
+        case OPT_ALGORITHM: a->algorithm = v; break;
+        case OPT_THREADS:
             if (strcmp(v, "1") != 0 && strcmp(v, "2") != 0) {
                 return usage_error("--threads must be 1 or 2, not", v);
             }
             a->threads = v[0] - '0';
-        }
-        else if (strcmp(f, "--time-limit") == 0) {
+            break;
+        case OPT_TIME_LIMIT:
             if (parse_pos(f, v, &a->time_limit_s)) return EXIT_USAGE;
-        } else if (strcmp(f, "--gap") == 0) {
+            break;
+        case OPT_GAP: {
             char *end = NULL;
             a->gap = strtod(v, &end);
             if (end == v || *end != '\0' || !isfinite(a->gap) || a->gap < 0 || a->gap >= 1) {
                 fprintf(stderr, "harvest-plan: --gap: expected a number in [0, 1), got \"%s\"\n", v);
                 return EXIT_USAGE;
             }
-        } else if (strcmp(f, "--fov-width") == 0) {
-            if (parse_pos(f, v, &a->fov_width_m)) return EXIT_USAGE;
-        } else if (strcmp(f, "--horizon") == 0) {
-            if (parse_pos(f, v, &a->horizon_m)) return EXIT_USAGE;
-        } else if (strcmp(f, "--commit") == 0) {
-            if (parse_pos(f, v, &a->commit_m)) return EXIT_USAGE;
-        } else if (strcmp(f, "--row-length") == 0) {
-            if (parse_pos(f, v, &a->row_length_m)) return EXIT_USAGE;
-        } else {
-            return usage_error("unknown option", f);
+            break;
         }
+        case OPT_FOV_WIDTH:
+            if (parse_pos(f, v, &a->fov_width_m)) return EXIT_USAGE;
+            break;
+        case OPT_HORIZON:
+            if (parse_pos(f, v, &a->horizon_m)) return EXIT_USAGE;
+            break;
+        case OPT_COMMIT:
+            if (parse_pos(f, v, &a->commit_m)) return EXIT_USAGE;
+            break;
+        case OPT_ROW_LENGTH:
+            if (parse_pos(f, v, &a->row_length_m)) return EXIT_USAGE;
+            break;
+        default: return option_error(opt, argv);
+        }
+    }
+    if (optind < argc) {
+        return usage_error("unexpected argument", argv[optind]);
     }
     const char *missing = !a->config ? "--config" : !a->fruits ? "--fruits"
                         : !a->method ? "--method" : !a->out ? "--out" : NULL;

@@ -5,7 +5,6 @@ draws its picks from the same (fruit, stop) pairs."""
 import json
 import os
 import subprocess
-import sys
 
 import pytest
 
@@ -15,7 +14,6 @@ BUILD = os.environ.get("HV_BUILD_DIR", os.path.join(SRC, "build"))
 PLAN = os.path.join(BUILD, "planner", "harvest-plan")
 EXEC = os.path.join(BUILD, "executor", "harvest-exec")
 CONFIG = os.path.join(SRC, "config", "harvest.cfg")
-sys.path.insert(0, os.path.join(SRC, "host"))
 from harvest.scenario import fruit_map, generate  # noqa: E402
 from harvest.scenario.config import Config, Row  # noqa: E402
 
