@@ -166,7 +166,8 @@ typedef struct bp_tree {
     struct worker *worker; /* the second worker, NULL none */
     int is_worker;         /* this is the second worker: no progress lines */
     long nodes_done;       /* the second worker's nodes */
-    long given, taken;     /* nodes passed to and taken from the other worker */
+    long given, taken;     /* nodes passed to and taken from the other worker (after the
+                            * join, the main worker's `given` counts both workers' gives) */
     long taken_warm;       /* of `taken`, those whose warm start made a basis here */
     hv_share_node_t msg;   /* scratch: a node passed between the workers */
     uint32_t *col_pat;     /* scratch (warm_pack): the pattern of each column, the count

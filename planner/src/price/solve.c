@@ -92,7 +92,7 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
                     inst->n_pairs, b.stats.t_fix, b.cuts.src.n, b.cuts.sr_rounds, b.cuts.sr_dropped,
                     (double)b.cuts.src_bits / (double)(b.cuts.src_stops ? b.cuts.src_stops : 1),
                     b.cuts.src_overflow, b.stats.iv_branches, b.stats.tailed, b.tree.nodes_done,
-                    b.tree.given + b.tree.taken, b.tree.taken_warm);
+                    b.tree.given, b.tree.taken_warm);
         }
         if (opt->verbose >= 1) {
             fprintf(stderr, "price: %ld relaxation-induced neighbourhoods (%ld better, %.1f "
@@ -108,7 +108,7 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
         res->columns = (long)b.m.n_pat;
         res->interval_branches = b.stats.iv_branches;
         res->tailed_nodes = b.stats.tailed;
-        res->passed_nodes = b.tree.given + b.tree.taken;
+        res->passed_nodes = b.tree.given;
         res->passed_warm = b.tree.taken_warm;
         res->cuts = (long)b.cuts.src.n;
         res->root_bound_s = root_lb / 1000.0;

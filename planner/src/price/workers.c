@@ -426,7 +426,7 @@ struct worker {
     hv_status_t st_copy; /* the copy's status */
     /* written by the worker before it ends, read after the join */
     hv_status_t st;
-    long nodes, iv_branches, tailed, taken_warm;
+    long nodes, iv_branches, tailed, given, taken_warm;
     rins_stats_t rins;
     int inexact;
     double open_lb; /* of its nodes still open (INFINITY none), n_open of them */
@@ -467,6 +467,7 @@ static void *bp_worker_main(void *arg)
         wk->iv_branches = w.stats.iv_branches;
         wk->tailed = w.stats.tailed;
         wk->rins = w.stats.rins;
+        wk->given = w.tree.given;
         wk->taken_warm = w.tree.taken_warm;
         wk->inexact = w.tree.inexact;
     }
@@ -547,6 +548,9 @@ hv_status_t bp_worker_join(bp_t *b, int failed, double *open_lb, size_t *n_open)
     b->stats.rins.better += wk->rins.better;
     b->stats.rins.freed += wk->rins.freed;
     b->stats.rins.t_s += wk->rins.t_s;
+    /* both workers take from one queue, so either may take back a node it gave: what
+     * passed is what was given, by either, and of it what was taken warm, by either */
+    b->tree.given += wk->given;
     b->tree.taken_warm += wk->taken_warm;
     hv_status_t st = wk->st;
     b->tree.share = NULL;
