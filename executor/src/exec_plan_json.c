@@ -1,6 +1,6 @@
 /* Plan file -> hv_exec_plan_t (see exec_plan_json.h).
  *
- * The JSON is read by the planner's strict plan reader (hv_plan_io, no GLPK); this file
+ * The JSON is read by plan/'s strict plan reader (hv_plan, no GLPK); this file
  * only maps its result onto the executor's static plan and checks what the executor
  * needs beyond the format: its capacity, one pick per fruit and side, and totals that
  * agree with the stops. Fruit ids and the stops' driving order are the reader's checks. */
@@ -11,7 +11,7 @@
 
 #include "hv/exec_status.h"
 #include "hv/plan_io.h"
-#include "hv/plan_status.h"
+#include "hv/plan_file_status.h"
 
 static hv_status_t plan_err(char *err, size_t errlen, const char *name, hv_status_t code,
                             const char *field, const char *msg)

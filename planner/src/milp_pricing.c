@@ -8,6 +8,7 @@
 #include "hv/milp_clock.h"
 #include "hv/milp_pricing.h"
 #include "hv/milp_status.h"
+#include "hv/plan_status.h"
 #include "hv/weighted_select.h"
 #include "milp_tunables.h"
 

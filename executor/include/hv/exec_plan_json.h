@@ -1,6 +1,6 @@
 /* Reading a plan file (docs/PLAN_FORMAT.md) into the executor's plan tables.
  *
- * The JSON goes through the planner's strict reader (library hv_plan_io, no GLPK), which
+ * The JSON goes through the strict plan reader of plan/ (library hv_plan, no GLPK), which
  * also checks fruit ids against the id set and stops for driving order; this maps it onto
  * the executor's fixed tables and checks what the executor needs beyond the format: its
  * capacity, one pick per fruit and side, stops on the plan's course, totals that agree

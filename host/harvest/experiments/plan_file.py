@@ -4,7 +4,7 @@ import math
 import os
 
 
-PLAN_VERSION = 2  # planner/include/hv/plan.h HV_PLAN_FORMAT_VERSION
+PLAN_VERSION = 2  # plan/include/hv/plan.h HV_PLAN_FORMAT_VERSION
 
 
 class PlanError(ValueError):

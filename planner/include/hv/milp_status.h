@@ -2,7 +2,7 @@
 #ifndef HV_MILP_STATUS_H
 #define HV_MILP_STATUS_H
 
-#include "hv/plan_status.h"
+#include "hv/status.h"
 
 /* Defined as hv_status_t values, like plan_status.h's, so they compare and return without
  * casts. */

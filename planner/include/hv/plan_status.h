@@ -1,11 +1,13 @@
-/* Status codes of the planner (range -100..-149; the MILP uses -150..-199).
+/* Status codes of the planner (range -100..-149; the MILP uses -150..-199; the plan file
+ * library's, -110 and -120..-129, are in plan/ plan_file_status.h, included here).
  *
  * Planner functions return these through hv_status_t (core/include/hv/status.h);
- * hv_plan_status_name() names them (and core codes, through hv_status_name()).
+ * hv_plan_status_name() names them, the MILP's and the plan library's (and core codes).
  */
 #ifndef HV_PLAN_STATUS_H
 #define HV_PLAN_STATUS_H
 
+#include "hv/plan_file_status.h"
 #include "hv/status.h"
 
 #ifdef __cplusplus
@@ -25,17 +27,10 @@ extern "C" {
 #define HV_ERR_PLAN_MAP_ID ((hv_status_t)-107)        /* id outside the id set (hv/fruit_id.h) */
 
     /* instance and solutions */
-#define HV_ERR_PLAN_NOMEM ((hv_status_t)-110)         /* malloc failed */
 #define HV_ERR_PLAN_UNASSIGNED ((hv_status_t)-111)    /* a reachable fruit has no stop in an assignment */
 #define HV_ERR_PLAN_BAD_PAIR ((hv_status_t)-112)      /* an assignment uses a (fruit, stop) pair not reachable */
 #define HV_ERR_PLAN_NO_SOLUTION ((hv_status_t)-113)   /* the solver returned no assignment */
 #define HV_ERR_PLAN_PARAMS ((hv_status_t)-114)        /* row / step / tau parameters invalid */
-
-    /* plan file (JSON) */
-#define HV_ERR_PLAN_JSON ((hv_status_t)-120)          /* not well-formed JSON */
-#define HV_ERR_PLAN_FORMAT ((hv_status_t)-121)        /* JSON, but not the plan format (field missing/wrong) */
-#define HV_ERR_PLAN_ID ((hv_status_t)-122)            /* a fruit id outside the id set (hv/fruit_id.h) */
-#define HV_ERR_PLAN_ORDER ((hv_status_t)-123)         /* stops not by pass, then increasing y_m */
 
     /* independent checker: the plan contradicts the inputs */
 #define HV_ERR_PLAN_CHECK_DUPLICATE ((hv_status_t)-130)   /* a fruit picked twice or listed twice */

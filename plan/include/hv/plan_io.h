@@ -1,7 +1,8 @@
-/* Plan files (JSON, docs/PLAN_FORMAT.md): writer and strict reader (library hv_plan_io).
+/* Plan files (JSON, docs/PLAN_FORMAT.md): writer and strict reader (library hv_plan, the
+ * contract between planner and executor; it knows no solver).
  *
- * The reader is a strict recursive-descent JSON parser (RFC 8259: no comments, no trailing
- * commas, no duplicate keys) followed by a schema check: every field of the format must be
+ * The reader is jansson's strict JSON parser (RFC 8259: no comments, no trailing commas,
+ * no duplicate keys) followed by a schema check: every field of the format must be
  * present with its type, unknown fields are rejected, so a plan is either read whole or
  * refused with a one-line message naming the file and the field.
  */
@@ -11,7 +12,7 @@
 #include <stddef.h>
 
 #include "hv/plan.h"
-#include "hv/plan_status.h"
+#include "hv/plan_file_status.h"
 
 #ifdef __cplusplus
 extern "C" {

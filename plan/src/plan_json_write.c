@@ -234,7 +234,7 @@ hv_status_t hv_plan_save(const char *path, const hv_plan_t *plan, char *err, siz
     if (st != HV_OK) {
         if (err != NULL && errlen > 0) {
             snprintf(err, errlen, "%s: plan: cannot serialise (%s)", path ? path : "(null)",
-                     hv_plan_status_name(st));
+                     hv_plan_file_status_name(st));
         }
         return st;
     }

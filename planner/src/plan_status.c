@@ -1,4 +1,4 @@
-/* Names of the planner's status codes (plan_status.h). */
+/* Names of the planner's status codes (plan_status.h) and the MILP's (milp_status.h). */
 #include "hv/milp_status.h"
 #include "hv/plan_status.h"
 
@@ -13,15 +13,10 @@ const char *hv_plan_status_name(int status)
     case HV_ERR_PLAN_MAP_NAN: return "HV_ERR_PLAN_MAP_NAN";
     case HV_ERR_PLAN_MAP_RANGE: return "HV_ERR_PLAN_MAP_RANGE";
     case HV_ERR_PLAN_MAP_ID: return "HV_ERR_PLAN_MAP_ID";
-    case HV_ERR_PLAN_NOMEM: return "HV_ERR_PLAN_NOMEM";
     case HV_ERR_PLAN_UNASSIGNED: return "HV_ERR_PLAN_UNASSIGNED";
     case HV_ERR_PLAN_BAD_PAIR: return "HV_ERR_PLAN_BAD_PAIR";
     case HV_ERR_PLAN_NO_SOLUTION: return "HV_ERR_PLAN_NO_SOLUTION";
     case HV_ERR_PLAN_PARAMS: return "HV_ERR_PLAN_PARAMS";
-    case HV_ERR_PLAN_JSON: return "HV_ERR_PLAN_JSON";
-    case HV_ERR_PLAN_FORMAT: return "HV_ERR_PLAN_FORMAT";
-    case HV_ERR_PLAN_ID: return "HV_ERR_PLAN_ID";
-    case HV_ERR_PLAN_ORDER: return "HV_ERR_PLAN_ORDER";
     case HV_ERR_PLAN_CHECK_DUPLICATE: return "HV_ERR_PLAN_CHECK_DUPLICATE";
     case HV_ERR_PLAN_CHECK_MISSING: return "HV_ERR_PLAN_CHECK_MISSING";
     case HV_ERR_PLAN_CHECK_UNKNOWN: return "HV_ERR_PLAN_CHECK_UNKNOWN";
@@ -36,6 +31,6 @@ const char *hv_plan_status_name(int status)
     case HV_ERR_MILP_EXPORT: return "HV_ERR_MILP_EXPORT";
     case HV_ERR_MILP_INCUMBENT: return "HV_ERR_MILP_INCUMBENT";
     case HV_ERR_MILP_DEADLINE: return "HV_ERR_MILP_DEADLINE";
-    default: return hv_status_name(status);
+    default: return hv_plan_file_status_name(status);
     }
 }

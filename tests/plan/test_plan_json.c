@@ -249,7 +249,7 @@ static void test_rejects(void **state)
         hv_status_t st = hv_plan_parse(mod, strlen(mod), "mem", &b, err, sizeof err);
         if (st != edits[i].code || strstr(err, edits[i].in_msg) == NULL) {
             print_error("edit %zu: got %s \"%s\", want %s containing \"%s\"\n", i,
-                        hv_plan_status_name(st), err, hv_plan_status_name(edits[i].code),
+                        hv_plan_file_status_name(st), err, hv_plan_file_status_name(edits[i].code),
                         edits[i].in_msg);
             fail();
         }
