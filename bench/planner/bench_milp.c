@@ -2,6 +2,7 @@
  * baselines, with the plain model measured in the same run as the reference.
  * Run `bench_milp --help`.
  */
+#include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -112,24 +113,33 @@ int main(int argc, char **argv)
     hv_milp_options_t mo;
     hv_milp_options_default(&mo);
     mo.time_limit_s = 10.0;
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            usage(stdout);
-            return 0;
-        } else if (strcmp(a, "-v") == 0) {
-            mo.verbose = mo.verbose + 1;
-        } else if (strcmp(a, "--no-baselines") == 0) {
-            baselines = 0;
-        } else if (strcmp(a, "--given-plan") == 0) {
-            given_plan = 1;
-        } else if (v == NULL) {
-            fprintf(stderr, "bench_milp: %s needs a value or is unknown (see --help)\n", a);
-            return 2;
-        } else if (strcmp(a, "--config") == 0) {
-            cfg_path = v, ++i;
-        } else if (strcmp(a, "--alphas") == 0) {
+    enum { O_NO_BASELINES = 256, O_GIVEN_PLAN, O_CONFIG, O_ALPHAS, O_SEEDS, O_PLAIN_SEEDS,
+           O_FIRST_SEED, O_TIME_LIMIT, O_PLAIN_LIMIT, O_SET };
+    static const struct option longopts[] = {
+        {"no-baselines", no_argument, NULL, O_NO_BASELINES},
+        {"given-plan", no_argument, NULL, O_GIVEN_PLAN},
+        {"config", required_argument, NULL, O_CONFIG},
+        {"alphas", required_argument, NULL, O_ALPHAS},
+        {"seeds", required_argument, NULL, O_SEEDS},
+        {"plain-seeds", required_argument, NULL, O_PLAIN_SEEDS},
+        {"first-seed", required_argument, NULL, O_FIRST_SEED},
+        {"time-limit", required_argument, NULL, O_TIME_LIMIT},
+        {"plain-limit", required_argument, NULL, O_PLAIN_LIMIT},
+        {"set", required_argument, NULL, O_SET},
+        {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0},
+    };
+    opterr = 0;
+    int opt, idx = 0;
+    while ((opt = getopt_long(argc, argv, ":hv", longopts, &idx)) != -1) {
+        const char *v = optarg, *a = opt >= O_NO_BASELINES ? longopts[idx].name : "";
+        switch (opt) {
+        case 'h': usage(stdout); return 0;
+        case 'v': mo.verbose = mo.verbose + 1; break;
+        case O_NO_BASELINES: baselines = 0; break;
+        case O_GIVEN_PLAN: given_plan = 1; break;
+        case O_CONFIG: cfg_path = v; break;
+        case O_ALPHAS: {
             n_alpha = 0;
             char buf[256];
             snprintf(buf, sizeof buf, "%s", v);
@@ -142,16 +152,19 @@ int main(int argc, char **argv)
                 }
                 n_alpha++;
             }
-            ++i;
-        } else if (strcmp(a, "--seeds") == 0 || strcmp(a, "--plain-seeds") == 0) {
+            break;
+        }
+        case O_SEEDS:
+        case O_PLAIN_SEEDS: {
             long n = strtol(v, NULL, 10);
             if (n < 0 || n > MAX_SEEDS) {
-                fprintf(stderr, "bench_milp: %s: 0..%d\n", a, MAX_SEEDS);
+                fprintf(stderr, "bench_milp: --%s: 0..%d\n", a, MAX_SEEDS);
                 return 2;
             }
-            *(a[2] == 's' ? &n_seeds : &plain_seeds) = (size_t)n;
-            ++i;
-        } else if (strcmp(a, "--first-seed") == 0) {
+            *(opt == O_SEEDS ? &n_seeds : &plain_seeds) = (size_t)n;
+            break;
+        }
+        case O_FIRST_SEED: {
             char *end;
             long n = strtol(v, &end, 10);
             if (*end != '\0' || n < 1) {
@@ -159,25 +172,33 @@ int main(int argc, char **argv)
                 return 2;
             }
             first_seed = (size_t)n;
-            ++i;
-        } else if (strcmp(a, "--time-limit") == 0 || strcmp(a, "--plain-limit") == 0) {
-            double s = strtod(v, NULL);
-            if (!(s > 0)) {
-                fprintf(stderr, "bench_milp: %s: must be > 0\n", a);
+            break;
+        }
+        case O_TIME_LIMIT:
+        case O_PLAIN_LIMIT: {
+            double t = strtod(v, NULL);
+            if (!(t > 0)) {
+                fprintf(stderr, "bench_milp: --%s: must be > 0\n", a);
                 return 2;
             }
-            *(a[2] == 't' ? &mo.time_limit_s : &plain_limit) = s;
-            ++i;
-        } else if (strcmp(a, "--set") == 0) {
+            *(opt == O_TIME_LIMIT ? &mo.time_limit_s : &plain_limit) = t;
+            break;
+        }
+        case O_SET:
             if (hv_milp_option_set(&mo, v) != HV_OK) {
                 fprintf(stderr, "bench_milp: --set: not an option or out of its range: '%s'\n", v);
                 return 2;
             }
-            ++i;
-        } else {
-            fprintf(stderr, "bench_milp: unknown option %s (see --help)\n", a);
+            break;
+        default:
+            fprintf(stderr, "bench_milp: %s %s (see --help)\n",
+                    opt == ':' ? "a value is needed for" : "unknown option", argv[optind - 1]);
             return 2;
         }
+    }
+    if (optind < argc) {
+        fprintf(stderr, "bench_milp: unexpected argument %s (see --help)\n", argv[optind]);
+        return 2;
     }
 
     hv_config_t cfg;

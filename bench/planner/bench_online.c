@@ -12,6 +12,7 @@
  * had shown it what it planned with. A vehicle with no committed stop to go to waits.
  */
 #define _POSIX_C_SOURCE 200809L
+#include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -334,44 +335,63 @@ int main(int argc, char **argv)
     unsigned long long seed = 1;
     hv_online_options_t oo;
     hv_online_options_default(&oo);
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+    enum { O_CONFIG = 256, O_ALPHAS, O_LENGTH, O_SEED, O_WINDOW, O_COMMIT, O_WINDOW_LIMIT,
+           O_TIME_LIMIT };
+    static const struct option longopts[] = {
+        {"config", required_argument, NULL, O_CONFIG},
+        {"alphas", required_argument, NULL, O_ALPHAS},
+        {"length", required_argument, NULL, O_LENGTH},
+        {"seed", required_argument, NULL, O_SEED},
+        {"window", required_argument, NULL, O_WINDOW},
+        {"commit", required_argument, NULL, O_COMMIT},
+        {"window-limit", required_argument, NULL, O_WINDOW_LIMIT},
+        {"time-limit", required_argument, NULL, O_TIME_LIMIT},
+        {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0},
+    };
+    opterr = 0;
+    int opt, idx = 0;
+    while ((opt = getopt_long(argc, argv, ":h", longopts, &idx)) != -1) {
+        const char *v = optarg;
+        if (opt == 'h') {
             usage(stdout);
             return 0;
         }
-        if (i + 1 >= argc) {
-            fprintf(stderr, "bench_online: %s needs a value (see --help)\n", a);
+        if (opt == ':' || opt == '?') {
+            fprintf(stderr, "bench_online: %s %s (see --help)\n",
+                    opt == ':' ? "a value is needed for" : "unknown option", argv[optind - 1]);
             return 2;
         }
-        const char *v = argv[++i];
-        char *end = NULL;
-        double x = strtod(v, &end);
-        int num_ok = end != v && *end == '\0' && isfinite(x) && x > 0;
-        if (strcmp(a, "--config") == 0) {
+        if (opt == O_CONFIG) {
             cfg_path = v;
             continue;
-        } else if (strcmp(a, "--alphas") == 0) {
+        }
+        if (opt == O_ALPHAS) {
             if (parse_alphas(v, alphas, &n_alphas) != 0) {
                 fprintf(stderr, "bench_online: --alphas: bad list \"%s\"\n", v);
                 return 2;
             }
             continue;
         }
-        if (!num_ok) {
-            fprintf(stderr, "bench_online: %s: expected a positive number, got \"%s\"\n", a, v);
+        char *end = NULL;
+        double x = strtod(v, &end);
+        if (end == v || *end != '\0' || !isfinite(x) || x <= 0) {
+            fprintf(stderr, "bench_online: --%s: expected a positive number, got \"%s\"\n",
+                    longopts[idx].name, v);
             return 2;
         }
-        if (strcmp(a, "--length") == 0) length = x;
-        else if (strcmp(a, "--seed") == 0) seed = (unsigned long long)x;
-        else if (strcmp(a, "--window") == 0) oo.window_m = x;
-        else if (strcmp(a, "--commit") == 0) oo.commit_m = x;
-        else if (strcmp(a, "--window-limit") == 0) oo.milp.time_limit_s = x;
-        else if (strcmp(a, "--time-limit") == 0) time_limit = x;
-        else {
-            fprintf(stderr, "bench_online: unknown option %s (see --help)\n", a);
-            return 2;
+        switch (opt) {
+        case O_LENGTH: length = x; break;
+        case O_SEED: seed = (unsigned long long)x; break;
+        case O_WINDOW: oo.window_m = x; break;
+        case O_COMMIT: oo.commit_m = x; break;
+        case O_WINDOW_LIMIT: oo.milp.time_limit_s = x; break;
+        default: time_limit = x; break; /* O_TIME_LIMIT */
         }
+    }
+    if (optind < argc) {
+        fprintf(stderr, "bench_online: unexpected argument %s (see --help)\n", argv[optind]);
+        return 2;
     }
     if (oo.commit_m > oo.window_m) {
         fprintf(stderr, "bench_online: --commit must not exceed --window\n");
