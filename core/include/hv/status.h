@@ -6,6 +6,7 @@
  *   -100..-199  planner
  *   -200..-299  executor
  *   -300..-399  CAN protocol and transports
+ *   -400..-499  firmware (board, UART, SLCAN; firmware/fw_status.h)
  */
 #ifndef HV_STATUS_H
 #define HV_STATUS_H

@@ -28,8 +28,13 @@
 extern "C" {
 #endif
 
+/* Capacities of the tables; a build may set smaller ones for all its code (firmware/). */
+#ifndef HV_EXEC_MAX_STOPS
 #define HV_EXEC_MAX_STOPS 256u
+#endif
+#ifndef HV_EXEC_MAX_PICKS
 #define HV_EXEC_MAX_PICKS 1024u /* both arms together */
+#endif
 #define HV_EXEC_ID_LEN 32u       /* fruit id incl. its NUL */
 
 typedef struct hv_exec_pick {
