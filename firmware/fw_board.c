@@ -18,12 +18,30 @@
 #define UART_DATA (UART0_BASE + 0x00u)
 #define UART_STATE (UART0_BASE + 0x04u)
 #define UART_CTRL (UART0_BASE + 0x08u)
+#define UART_INTCLEAR (UART0_BASE + 0x0Cu)
 #define UART_BAUDDIV (UART0_BASE + 0x10u)
 #define UART_STATE_TX_FULL 0x1u
 #define UART_STATE_RX_FULL 0x2u
 #define UART_STATE_RX_OVERRUN 0x8u /* write 1 to clear */
 #define UART_CTRL_TX_EN 0x1u
 #define UART_CTRL_RX_EN 0x2u
+#define UART_CTRL_RX_IRQ 0x8u
+#define UART_INT_RX 0x2u
+
+/* CMSDK APB timer 0: the idle loop's wake-up every millisecond */
+#define TIMER0_BASE 0x40000000u
+#define TIMER_CTRL (TIMER0_BASE + 0x00u)
+#define TIMER_VALUE (TIMER0_BASE + 0x04u)
+#define TIMER_RELOAD (TIMER0_BASE + 0x08u)
+#define TIMER_INTCLEAR (TIMER0_BASE + 0x0Cu)
+#define TIMER_CTRL_EN 0x1u
+#define TIMER_CTRL_IRQ 0x8u
+#define WAKE_HZ 1000u
+
+/* NVIC: the AN386's interrupt numbers (QEMU hw/arm/mps2.c) */
+#define NVIC_ISER0 0xE000E100u
+#define IRQ_UART0_RX 0u
+#define IRQ_TIMER0 8u
 
 void hv_fw_clock_init(hv_fw_clock_t *c)
 {
@@ -53,7 +71,31 @@ void hv_fw_uart_init(void)
     HV_FW_REG(UART_CTRL) = 0u;
     HV_FW_REG(UART_BAUDDIV) = HV_FW_SYSCLK_HZ / HV_FW_UART_BAUD;
     HV_FW_REG(UART_STATE) = UART_STATE_RX_OVERRUN;
-    HV_FW_REG(UART_CTRL) = UART_CTRL_TX_EN | UART_CTRL_RX_EN;
+    HV_FW_REG(UART_CTRL) = UART_CTRL_TX_EN | UART_CTRL_RX_EN | UART_CTRL_RX_IRQ;
+}
+
+void hv_fw_wake_init(void)
+{
+    HV_FW_REG(TIMER_CTRL) = 0u;
+    HV_FW_REG(TIMER_RELOAD) = HV_FW_SYSCLK_HZ / WAKE_HZ;
+    HV_FW_REG(TIMER_VALUE) = HV_FW_SYSCLK_HZ / WAKE_HZ;
+    HV_FW_REG(TIMER_CTRL) = TIMER_CTRL_EN | TIMER_CTRL_IRQ;
+    HV_FW_REG(NVIC_ISER0) = (1u << IRQ_UART0_RX) | (1u << IRQ_TIMER0);
+}
+
+void hv_fw_idle(void)
+{
+    __asm__ volatile("wfi" ::: "memory");
+}
+
+void hv_fw_irq_uart_rx(void)
+{
+    HV_FW_REG(UART_INTCLEAR) = UART_INT_RX;
+}
+
+void hv_fw_irq_timer(void)
+{
+    HV_FW_REG(TIMER_INTCLEAR) = 1u;
 }
 
 void hv_fw_uart_write(const char *s, size_t n)

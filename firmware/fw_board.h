@@ -1,6 +1,10 @@
 /* Board support of QEMU's mps2-an386 (Arm AN386, Cortex-M4 at SYSCLK 25 MHz; QEMU
  * hw/arm/mps2.c): the SysTick as the clock, UART0 (CMSDK APB UART at 0x40004000, QEMU's
- * first -serial), a panic line. Polled, no interrupts: the main loop is the only thread. */
+ * first -serial), a panic line. The main loop is the only thread and polls; interrupts
+ * only wake it from its idle WFI (a received byte, timer 0 every millisecond) and keep no
+ * state: their handlers just clear the source. Idling matters in QEMU too: a loop that
+ * polls device registers without pause starves QEMU's I/O thread, and the serial line's
+ * bytes then arrive late. */
 #ifndef HV_FW_BOARD_H
 #define HV_FW_BOARD_H
 
@@ -33,6 +37,14 @@ void hv_fw_uart_puts(const char *s);
  * UART lost a byte since the last call (the byte in *b is the one after the loss; the
  * caller drops the line it was in). */
 int hv_fw_uart_getc(uint8_t *b);
+
+/* Timer 0 at 1 kHz and the UART's RX interrupt as wake-up sources (NVIC). */
+void hv_fw_wake_init(void);
+/* Sleep until an interrupt (at most 1 ms). */
+void hv_fw_idle(void);
+/* the interrupt handlers (startup.c's vector table) */
+void hv_fw_irq_uart_rx(void);
+void hv_fw_irq_timer(void);
 
 /* Report `what` on the UART and stop (interrupts off, wait forever). */
 void hv_fw_board_panic(const char *what) __attribute__((noreturn));

@@ -145,13 +145,15 @@ static void on_line(hv_fw_t *fw, uint64_t now)
     hv_fw_uart_puts("\r");
 }
 
-static void poll_uart(hv_fw_t *fw, uint64_t now)
+/* Returns the number of bytes taken. */
+static int poll_uart(hv_fw_t *fw, uint64_t now)
 {
-    for (int k = 0; k < 64; k++) {
+    int k;
+    for (k = 0; k < 64; k++) {
         uint8_t b;
         int r = hv_fw_uart_getc(&b);
         if (r == 1)
-            return;
+            break;
         if (r == HV_ERR_FW_UART_OVERRUN) {
             /* the line under way lost a byte: drop it whole, never act on half a line */
             fw->overruns++;
@@ -167,6 +169,7 @@ static void poll_uart(hv_fw_t *fw, uint64_t now)
             report_error(r);
         }
     }
+    return k;
 }
 
 void hv_fw_main(void)
@@ -176,10 +179,11 @@ void hv_fw_main(void)
     static hv_fw_t fw;
     hv_fw_uart_init();
     hv_fw_clock_init(&fw.clock);
+    hv_fw_wake_init();
     hv_fw_uart_puts("harvest-fw: mps2-an386 cortex-m4f, SLCAN on UART0, waiting for a plan\r");
     for (;;) {
         uint64_t now = hv_fw_clock_ns(&fw.clock);
-        poll_uart(&fw, now);
+        int busy = poll_uart(&fw, now);
         if (fw.running && now >= fw.next_tick_ns) {
             hv_exec_event_t tick;
             memset(&tick, 0, sizeof tick);
@@ -191,5 +195,7 @@ void hv_fw_main(void)
             report(&fw, now);
             fw.next_report_ns = now + REPORT_NS;
         }
+        if (!busy)
+            hv_fw_idle();
     }
 }

@@ -1,6 +1,9 @@
 /* Names of the firmware's status codes (fw_status.h). */
 #include "fw_status.h"
 
+/* the codes below -34 are cast to hv_status_t: it must hold them (status.h) */
+typedef char hv_fw_status_holds_int[sizeof(hv_status_t) == sizeof(int) ? 1 : -1];
+
 const char *hv_fw_status_name(int status)
 {
     switch (status) {

@@ -35,12 +35,21 @@ void hv_fw_fault(void)
 }
 
 /* Initial SP, reset, then NMI, HardFault, MemManage, BusFault, UsageFault, 4 reserved,
- * SVCall, DebugMonitor, reserved, PendSV, SysTick: no interrupt is enabled, so only the
- * faults can ever be taken. */
-__attribute__((section(".vectors"), used)) static void (*const vectors[16])(void) = {
+ * SVCall, DebugMonitor, reserved, PendSV, SysTick (its interrupt stays off), then the
+ * AN386's interrupts 0..15: only UART0 RX (0) and timer 0 (8) are enabled. */
+#define HV_FW_VECTORS (16 + 16)
+__attribute__((section(".vectors"), used)) static void (*const vectors[HV_FW_VECTORS])(void) = {
     (void (*)(void))(uintptr_t)hv_fw_stack_top,
     hv_fw_reset,
     hv_fw_fault, hv_fw_fault, hv_fw_fault, hv_fw_fault, hv_fw_fault,
     0, 0, 0, 0,
     hv_fw_fault, hv_fw_fault, 0, hv_fw_fault, hv_fw_fault,
+    [16 + 0] = hv_fw_irq_uart_rx,
+    [16 + 1] = hv_fw_fault, [16 + 2] = hv_fw_fault, [16 + 3] = hv_fw_fault,
+    [16 + 4] = hv_fw_fault, [16 + 5] = hv_fw_fault, [16 + 6] = hv_fw_fault,
+    [16 + 7] = hv_fw_fault,
+    [16 + 8] = hv_fw_irq_timer,
+    [16 + 9] = hv_fw_fault, [16 + 10] = hv_fw_fault, [16 + 11] = hv_fw_fault,
+    [16 + 12] = hv_fw_fault, [16 + 13] = hv_fw_fault, [16 + 14] = hv_fw_fault,
+    [16 + 15] = hv_fw_fault,
 };
