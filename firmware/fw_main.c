@@ -12,6 +12,7 @@
 #include "hv/exec_can.h"
 #include "hv/exec_sm.h"
 #include "hv/exec_status.h"
+#include "fw_upload.h"
 #include "slcan.h"
 
 #define TICK_NS 10000000u    /* the state machine's timer tick, like harvest-exec's */
@@ -20,6 +21,8 @@
 typedef struct hv_fw {
     hv_fw_clock_t clock;
     hv_exec_plan_t plan;
+    hv_exec_params_t prm;
+    hv_fw_upload_t upload;
     hv_exec_sm_t sm;
     hv_exec_actions_t out;
     hv_exec_can_tx_t tx;
@@ -27,7 +30,7 @@ typedef struct hv_fw {
     hv_slcan_rx_t rx;
     int open;        /* SLCAN channel opened by the host (O) */
     int running;     /* a plan is loaded and the state machine runs */
-    uint64_t next_tick_ns, next_report_ns;
+    uint64_t next_tick_ns, next_report_ns, next_upload_status_ns;
     uint64_t steps, step_cycles_max;
     uint32_t frames_rx, frames_tx, bad_lines, overruns;
 } hv_fw_t;
@@ -110,10 +113,43 @@ static void step(hv_fw_t *fw, const hv_exec_event_t *ev, uint64_t now)
     carry_out(fw);
 }
 
+static void send_upload_status(hv_fw_t *fw, uint64_t now)
+{
+    hv_can_frame_t f;
+    hv_fw_upload_status(&fw->upload, &f);
+    send_frame(fw, &f);
+    fw->next_upload_status_ns = now + REPORT_NS;
+}
+
+/* A whole plan arrived: run it, or refuse it when the state machine does (parameters). */
+static void start_plan(hv_fw_t *fw, uint64_t now)
+{
+    hv_status_t st = hv_exec_init(&fw->sm, &fw->plan, &fw->prm, NULL);
+    if (st != HV_OK) {
+        fw->upload.state = HV_UPLOAD_REFUSED;
+        fw->upload.error = st;
+        return;
+    }
+    fw->upload.state = HV_UPLOAD_RUNNING;
+    fw->running = 1;
+    fw->next_tick_ns = now;
+}
+
 static void on_frame(hv_fw_t *fw, const hv_can_frame_t *f, uint64_t now)
 {
     hv_exec_event_t ev;
+    int answer = 0;
     fw->frames_rx++;
+    if (hv_fw_upload_frame(&fw->upload, f, &fw->plan, &fw->prm, &answer)) {
+        if (fw->upload.state == HV_UPLOAD_ACCEPTED)
+            start_plan(fw, now);
+        if (answer) {
+            if (fw->upload.error != HV_OK)
+                report_error(fw->upload.error);
+            send_upload_status(fw, now);
+        }
+        return;
+    }
     if (fw->running && hv_exec_can_decode(f, &ev, fw->samples) == HV_RX_EVENT)
         step(fw, &ev, now);
 }
@@ -137,9 +173,10 @@ static void on_line(hv_fw_t *fw, uint64_t now)
     case HV_SLCAN_SERIAL: hv_fw_uart_puts("NHVFW"); break;
     case HV_SLCAN_FLAGS: hv_fw_uart_puts("F00"); break;
     case HV_SLCAN_FRAME:
-        hv_fw_uart_puts((f.flags & HV_CAN_FLAG_EXT) ? "Z" : "z");
+        /* the reply first: frames the step sends must start lines of their own */
+        hv_fw_uart_puts((f.flags & HV_CAN_FLAG_EXT) ? "Z\r" : "z\r");
         on_frame(fw, &f, now);
-        break;
+        return;
     default: break;
     }
     hv_fw_uart_puts("\r");
@@ -191,6 +228,8 @@ void hv_fw_main(void)
             step(&fw, &tick, now);
             fw.next_tick_ns = now + TICK_NS;
         }
+        if (!fw.running && fw.open && now >= fw.next_upload_status_ns)
+            send_upload_status(&fw, now);
         if (now >= fw.next_report_ns) {
             report(&fw, now);
             fw.next_report_ns = now + REPORT_NS;

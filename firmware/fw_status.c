@@ -13,6 +13,12 @@ const char *hv_fw_status_name(int status)
     case HV_ERR_SLCAN_LENGTH: return "HV_ERR_SLCAN_LENGTH";
     case HV_ERR_SLCAN_COMMAND: return "HV_ERR_SLCAN_COMMAND";
     case HV_ERR_SLCAN_CLOSED: return "HV_ERR_SLCAN_CLOSED";
+    case HV_ERR_FW_UPLOAD_ORDER: return "HV_ERR_FW_UPLOAD_ORDER";
+    case HV_ERR_FW_UPLOAD_LENGTH: return "HV_ERR_FW_UPLOAD_LENGTH";
+    case HV_ERR_FW_UPLOAD_FORMAT: return "HV_ERR_FW_UPLOAD_FORMAT";
+    case HV_ERR_FW_UPLOAD_CRC: return "HV_ERR_FW_UPLOAD_CRC";
+    case HV_ERR_FW_UPLOAD_BUSY: return "HV_ERR_FW_UPLOAD_BUSY";
+    case HV_ERR_FW_UPLOAD_TRUNCATED: return "HV_ERR_FW_UPLOAD_TRUNCATED";
     default: return hv_status_name(status);
     }
 }

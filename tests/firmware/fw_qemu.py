@@ -27,10 +27,12 @@ def enter_netns():
         pytest.skip(f"SKIPPED: no private network namespace: {e}")
 
 
-def qemu_argv(image, port, extra=()):
-    """QEMU waits for the client before the firmware starts (wait=on): nothing is lost."""
+def qemu_argv(image, port, uart_log, extra=()):
+    """QEMU waits for the client before the firmware starts (wait=on): nothing is lost.
+    Everything the firmware writes to UART0 is also kept in uart_log."""
     return ["qemu-system-arm", "-M", "mps2-an386", "-nographic", "-monitor", "none",
-            "-serial", f"tcp:127.0.0.1:{port},server=on,wait=on", "-kernel", image] + list(extra)
+            "-chardev", f"socket,id=uart0,host=127.0.0.1,port={port},server=on,wait=on,"
+            f"logfile={uart_log}", "-serial", "chardev:uart0", "-kernel", image] + list(extra)
 
 
 class Qemu:
@@ -40,7 +42,8 @@ class Qemu:
         self.image = fw_build.require_image()
         self.port = port
         self.log = open(os.path.join(workdir, "qemu.log"), "w")
-        self.proc = subprocess.Popen(qemu_argv(self.image, port, extra), stdout=self.log,
+        self.uart_log = os.path.join(workdir, "uart0.log")
+        self.proc = subprocess.Popen(qemu_argv(self.image, port, self.uart_log, extra), stdout=self.log,
                                      stderr=subprocess.STDOUT)
         self.sock = None
         self.buf = b""
@@ -91,14 +94,26 @@ class Qemu:
     def stop(self):
         if self.sock:
             self.sock.close()
-        if self.proc.poll() is None:
-            self.proc.terminate()
-            try:
-                self.proc.wait(timeout=10)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait()
+        stop_process(self.proc)
         self.log.close()
+
+
+def stop_process(proc):
+    """SIGTERM, and SIGKILL when that was not enough within 10 s."""
+    if proc.poll() is None:
+        proc.terminate()
+        try:
+            proc.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+
+
+def uart_lines(path):
+    """The firmware's text lines in a UART log (SLCAN frames and replies left out)."""
+    with open(path, "rb") as f:
+        data = f.read().decode("ascii", "replace")
+    return [ln.lstrip("\a") for ln in data.split("\r") if "harvest-fw:" in ln]
 
 
 def status_fields(line):
