@@ -9,6 +9,7 @@ import sys
 import time
 
 import fw_qemu
+from harvest.firmware import rig
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                                 "executor"))
@@ -39,29 +40,12 @@ def plan_image(workdir, plan_path, time_scale):
         return f.read()
 
 
-class Bridge:
-    """python -m can.bridge between the firmware's serial line (slcan) and the udp bus."""
-
-    def __init__(self, workdir, port):
-        self.log = open(os.path.join(workdir, "bridge.log"), "w")
-        argv = [sys.executable, "-m", "can.bridge",
-                "--bus1-interface", "slcan", "--bus1-channel", f"socket://127.0.0.1:{port}",
-                "--bus2-interface", "udp_multicast", "--bus2-channel", H.GROUP,
-                "--bus2-bus-kwargs", "hop_limit=0"]
-        self.proc = subprocess.Popen(argv, stdout=self.log, stderr=subprocess.STDOUT,
-                                     env=H.env())
-
-    def stop(self):
-        fw_qemu.stop_process(self.proc)
-        self.log.close()
-
-
 class Rig:
     """QEMU (serial on TCP, waiting for the bridge), the bridge, the simulator."""
 
     def __init__(self, workdir, time_scale, faults=(), sim=True):
         self.qemu = fw_qemu.Qemu(str(workdir))
-        self.bridge = Bridge(str(workdir), self.qemu.port)
+        self.bridge = rig.Bridge(str(workdir), self.qemu.port, H.GROUP, H.env())
         self.sim = H.Sim(str(workdir), time_scale, faults) if sim else None
 
     def stop(self):
