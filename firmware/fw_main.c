@@ -68,6 +68,12 @@ static void report(const hv_fw_t *fw, uint64_t now)
     put_field(" journal=", fw->board.journal_records);
     hv_fw_uart_puts(" phase=");
     hv_fw_uart_puts(fw->running ? hv_exec_phase_name(fw->sm.phase) : "NO_PLAN");
+    if (fw->running && fw->sm.phase == HV_PH_SAFE) {
+        hv_fw_uart_puts(" safe_reason=");
+        hv_fw_uart_puts(hv_exec_safe_reason_name(fw->sm.safe_reason));
+        hv_fw_uart_puts(" safe_node=");
+        hv_fw_uart_puts(hv_exec_node_name(fw->sm.safe_node));
+    }
     hv_fw_uart_puts("\r");
 }
 

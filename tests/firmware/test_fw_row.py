@@ -84,6 +84,8 @@ def test_estop_on_the_bus_brings_the_firmware_to_safe(tmp_path, rig_factory):
                 health = hb.decode(m.data, decode_choices=False)["Health"]
     assert health == 3, "the firmware's heartbeat never said ESTOP"
     assert fw_hil.wait_until(lambda: "safe" in uart_phases(rig), 10), uart_phases(rig)
+    # the reason on its status line: a node reported the e-stop
+    assert fw_qemu.last_status(rig.qemu.uart_log)["safe_reason"] == "estop"
     # its own Estop frames, repeated (the one the test sent had counter 200)
     assert fw_hil.wait_until(lambda: len([e for e in rig.sim.events("estop_frame")
                                           if e["counter"] != 200]) >= 3, 10)

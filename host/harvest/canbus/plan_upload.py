@@ -63,12 +63,19 @@ def wait_status(bus, want, timeout):
     raise UploadError(f"no ExecutorPlanStatus {'/'.join(want)} within {timeout} s (last: {last})")
 
 
-def upload(bus, image, timeout=30.0, pace_s=0.0005):
+def upload(bus, image, timeout=30.0, pace_s=0.0005, attempts=3):
     """Wait for the executor's status (it sends one a second while it has no plan), send
-    `image` and wait until the executor runs it; returns its last status."""
+    `image` and wait until the executor runs it; returns its last status. A refused upload
+    (a frame lost on a busy bus: HV_ERR_FW_UPLOAD_ORDER) is sent again, `attempts` times
+    in all, each a fresh ExecutorPlanBegin."""
     wait_status(bus, ("IDLE",), timeout)
-    send(bus, image, pace_s)
-    return wait_status(bus, ("RUNNING",), timeout)
+    for attempt in range(1, attempts + 1):
+        send(bus, image, pace_s)
+        try:
+            return wait_status(bus, ("RUNNING",), timeout)
+        except UploadError:
+            if attempt == attempts:
+                raise
 
 
 def main(argv=None):

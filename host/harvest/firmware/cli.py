@@ -34,6 +34,8 @@ def summarize(record_path, plan, image, uart_log, icount=True):
     cycles = int(st.get("worst_step_cycles", 0))
     return {
         "phase": st.get("phase", "unknown"),
+        "safe_reason": st.get("safe_reason"),
+        "safe_node": st.get("safe_node"),
         "fruits_planned": sum(len(s["left"]) + len(s["right"]) for s in plan["stops"]),
         "picked": sum(1 for e in events if e["event"] == "pick"),
         "faults": sum(1 for e in events if e["event"] == "fault_injected"),
