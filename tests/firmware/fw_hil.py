@@ -45,6 +45,7 @@ class Rig:
 
     def __init__(self, workdir, time_scale, faults=(), sim=True):
         self.qemu = fw_qemu.Qemu(str(workdir))
+        self.qemu.wait_listening()
         self.bridge = rig.Bridge(str(workdir), self.qemu.port, H.GROUP, H.env())
         self.sim = H.Sim(str(workdir), time_scale, faults) if sim else None
 

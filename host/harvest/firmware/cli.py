@@ -61,6 +61,7 @@ def run(a):
     p = plan["params"]
     record = os.path.join(a.out, "sim.jsonl")
     qemu = rig.Qemu(a.image, a.out, icount=a.icount)
+    qemu.wait_listening()
     bridge = rig.Bridge(a.out, qemu.port)
     # the simulator's frame rate in wall time stays that of time scale 1: the serial line
     # carries every frame of the bus

@@ -53,6 +53,26 @@ class Qemu:
         self.sock = None
         self.buf = b""
 
+    def wait_listening(self, timeout=20.0):
+        """Wait until QEMU listens on its port, without connecting (the first client is
+        the one QEMU serves): a bridge started earlier fails to connect and exits."""
+        want = f":{self.port:04X} "
+        end = time.monotonic() + timeout
+        while time.monotonic() < end:
+            for table in ("/proc/self/net/tcp", "/proc/self/net/tcp6"):
+                try:
+                    with open(table) as f:
+                        rows = f.read().splitlines()[1:]
+                except OSError:
+                    continue
+                # local address column, state 0A = LISTEN
+                if any(want in r.split()[1] + " " and r.split()[3] == "0A" for r in rows):
+                    return
+            if self.proc.poll() is not None:
+                raise RuntimeError(f"QEMU exited {self.proc.returncode}")
+            time.sleep(0.05)
+        raise TimeoutError(f"QEMU does not listen on port {self.port} after {timeout} s")
+
     def connect(self, timeout=20.0):
         end = time.monotonic() + timeout
         while True:
@@ -109,6 +129,7 @@ class Bridge:
     """python -m can.bridge between the firmware's serial line (slcan) and the udp bus."""
 
     def __init__(self, workdir, port, group=UDP_GROUP, env=None):
+        """Start it once QEMU listens (Qemu.wait_listening)."""
         self.log = open(os.path.join(workdir, "bridge.log"), "w")
         argv = [sys.executable, "-m", "can.bridge",
                 "--bus1-interface", "slcan", "--bus1-channel", f"socket://127.0.0.1:{port}",
