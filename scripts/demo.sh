@@ -1,13 +1,23 @@
 #!/usr/bin/env bash
 # The end-to-end demo: set-up, Release build, cost tables, the installation-pose search,
 # a paper-default scenario, the MILP plan, then the simulator and the executor on one CAN
-# bus with telemetry logged and plotted. Ends with fruits picked, planned vs executed
-# makespan, faults and the paths of the plots.
-# Usage: scripts/demo.sh [--help] [--target linux|firmware] [--out DIR] [--time-scale K]
-#                        [--seed S] [--time-limit S]
-# --target firmware runs the executor as firmware (harvest-fw.elf, firmware/README.md) in
+# bus with telemetry logged and plotted, the bus recorded (BLF) and the telemetry exported to
+# MCAP. Ends with fruits picked, planned vs executed makespan, faults and the files' paths.
+# Usage: scripts/demo.sh [--help] [--out DIR] [--time-scale K] [--seed S] [--time-limit S]
+#        scripts/demo.sh --row M [--alpha A] [--out DIR] [--time-scale K] [--seed S] [--time-limit S]
+#
+# --row M: online mode (DESIGN §5) on an M m row at the paper's density (25 fruits per m on
+# the left, alpha times that on the right: --row 50 is 2500 fruits at alpha 1): the
+# simulator's camera reveals the row ahead of the vehicle, harvest-plan-online plans it
+# horizon by horizon (--time-limit per horizon, default 2 s) while harvest-exec --online
+# works what is committed; both print progress (stops done of known, fruits picked, the
+# robot time committed ahead, the waits for the planner). Default time scale 20 (a 50 m
+# row then takes about 15 min). No telemetry plots in this mode.
+# scripts/demo.sh --target firmware [--out DIR] [--time-scale K] [--seed S] [--time-limit S]
+#
+# --target firmware: the executor as firmware (harvest-fw.elf, firmware/README.md) in
 # QEMU's mps2-an386 on the same bus over SLCAN, the plan uploaded over the bus (time scale
-# 10 unless given), and adds the image's size and its worst step (QEMU icount).
+# 10 unless given); adds the image's size and its worst step (QEMU icount).
 #
 # The bus is CAN carried over UDP multicast (python-can's udp_multicast wire format) on
 # loopback inside a private network namespace (unshare -rn): this machine's kernel has no
@@ -17,22 +27,27 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 out="$root/build/demo"
-time_scale=20
+time_scale=
 seed=0
-time_limit=60
+time_limit=
+row=
+alpha=1
 target=linux
 
 if [[ "${1:-}" == "--inner" ]]; then
   inner=1; shift
+elif [[ "${1:-}" == "--inner-online" ]]; then
+  inner=2; shift
 else
   inner=0
 fi
 while (($#)); do
   case "$1" in
-    -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --row) row=$2; shift 2 ;;
+    --alpha) alpha=$2; shift 2 ;;
     --target) target=$2; shift 2
-              [[ "$target" == linux || "$target" == firmware ]] || { echo "demo: --target: linux or firmware, got '$target'" >&2; exit 2; }
-              [[ "$target" == firmware && $time_scale == 20 ]] && time_scale=10 ;;
+              [[ "$target" == linux || "$target" == firmware ]] || { echo "demo: --target: linux or firmware, got '$target'" >&2; exit 2; } ;;
     --out) out=$2; shift 2 ;;
     --time-scale) time_scale=$2; shift 2 ;;
     --seed) seed=$2; shift 2 ;;
@@ -41,6 +56,13 @@ while (($#)); do
   esac
 done
 
+if [[ -n "$row" ]]; then
+  time_scale=${time_scale:-20}; time_limit=${time_limit:-2}
+elif [[ "$target" == firmware ]]; then
+  time_scale=${time_scale:-10}; time_limit=${time_limit:-60}
+else
+  time_scale=${time_scale:-20}; time_limit=${time_limit:-60}
+fi
 py="$root/.venv/bin/python"
 build="$root/build"
 export PYTHONPATH="$root/host${PYTHONPATH:+:$PYTHONPATH}"
@@ -51,17 +73,53 @@ group=239.74.163.2
 missing() { echo "demo: MISSING PIECE: $*" >&2; exit 1; }
 step() { echo; echo "=== demo: $* ==="; }
 
-# ---- inside the private network namespace: simulator, logger, executor ------------------
-if ((inner)); then
+# Inside the private network namespace: multicast on its loopback, and whatever we start
+# (pids) is stopped when we exit.
+netns_up() {
   ip link set lo up
   ip route add 224.0.0.0/4 dev lo
+  pids=()
+  cleanup() { for p in "${pids[@]}"; do kill -INT "$p" 2>/dev/null || true; done; wait || true; }
+  trap cleanup EXIT
+}
+
+# ---- online mode, inside the private network namespace: simulator + camera, online
+# planner, executor -------------------------------------------------------------------------
+if ((inner == 2)); then
+  netns_up
+  rm -f "$out/run.journal" "$out/planner.json" "$out/plan.json"
+  # The planner runs beside the robot's processes on this machine (2 cores): it gets one
+  # thread at a lower priority, and both ends of the bus 2 s before they call a node lost
+  # (the DBC's 500 ms, as in the HIL tests) and the executor 1 s of wall time more on each
+  # motion timeout (--latency, 0.3 s), so a busy moment is not taken for a fault.
+  "$py" -m harvest sim --interface udp_multicast --channel "$group" --time-scale "$time_scale" \
+        --config "$out/harvest.cfg" --fruits "$out/fruits.csv" --lcm-url "$lcm_url" \
+        --exec-timeout 2 --record "$out/sim.jsonl" >"$out/sim.log" 2>&1 &
+  pids+=($!)
+  nice -n 10 "$build/planner/online/harvest-plan-online" --config "$out/harvest.cfg" \
+      --lcm-url "$lcm_url" --threads 1 --time-limit "$time_limit" --progress 10 \
+      --summary "$out/planner.json" --out "$out/plan.json" \
+      2> >(tee "$out/planner.log" | grep --line-buffered -E "horizon [0-9]*0 \(|: refused: |: end: " >&2) &
+  planner=$!
+  set +e
+  "$build/executor/harvest-exec" --online --lcm-url "$lcm_url" --config "$out/harvest.cfg" \
+      --transport udp --channel "$group" --time-scale "$time_scale" --heartbeat-timeout 2 \
+      --latency 1 \
+      --journal "$out/run.journal" --summary "$out/executor.json" \
+      2> >(tee "$out/executor.log" | grep --line-buffered -E "stop [0-9]*0 of|waiting|row_done|SAFE" >&2)
+  rc=$?
+  wait "$planner"
+  set -e
+  exit $rc
+fi
+
+# ---- inside the private network namespace: simulator, logger, executor ------------------
+if ((inner == 1)); then
+  netns_up
   if [[ "$target" == firmware ]]; then
     exec "$py" -m harvest firmware run --image "$root/build-fw/firmware/harvest-fw.elf" \
         --plan "$out/plan.json" --plan-image "$out/plan.img" --time-scale "$time_scale" --out "$out/firmware"
   fi
-  pids=()
-  cleanup() { for p in "${pids[@]}"; do kill -INT "$p" 2>/dev/null || true; done; wait || true; }
-  trap cleanup EXIT
   # the vehicle waits at the start of its course (docs/PLAN_FORMAT.md: row start - stop margin)
   vstart=$("$py" -c "import json, sys; p = json.load(open(sys.argv[1]))['params']; print(p['row_start_m'] - p['stop_margin_m'])" "$out/plan.json")
   "$py" -m harvest sim --interface udp_multicast --channel "$group" --time-scale "$time_scale" --vehicle-start "$vstart" \
@@ -71,6 +129,13 @@ if ((inner)); then
   "$py" -m harvest telemetry log --url "$lcm_url" --out "$out/telemetry.lcmlog" --until-done \
         --grace 1 --ready-file "$out/logger.ready" >"$out/logger.log" 2>&1 &
   logger=$!
+  # the bus as python-can's BLF log: replay with `python -m can.player`, decode with the DBC.
+  # Started as a job (set -m): a plain background command ignores SIGINT, and only SIGINT
+  # makes the logger close the file properly.
+  set -m
+  "$py" -m can.logger -i udp_multicast -c "$group" -f "$out/bus.blf" >"$out/can_logger.log" 2>&1 &
+  pids+=($!)
+  set +m
   for _ in $(seq 100); do [[ -f "$out/logger.ready" ]] && break; sleep 0.1; done
   [[ -f "$out/logger.ready" ]] || { echo "demo: the telemetry logger did not start (see $out/logger.log)" >&2; exit 1; }
   set +e
@@ -102,6 +167,42 @@ cmake --build "$build" -j2
 "$py" -c "import harvest.sim.cli" 2>/dev/null || missing "the simulator (host/harvest/sim) cannot be imported"
 "$py" -c "import harvest.scenario.cli" 2>/dev/null || missing "the scenario generator (host/harvest/scenario) cannot be imported"
 [[ -f "$build/lcm_types/python/harvest/plan_t.py" ]] || missing "the generated LCM Python types ($build/lcm_types/python)"
+
+if [[ -n "$row" ]]; then
+  [[ -x "$build/planner/online/harvest-plan-online" ]] || missing "harvest-plan-online (planner/online, needs GLPK and LCM)"
+  step "online mode: a ${row} m row at the paper's density (alpha $alpha, seed $seed)"
+  "$py" -m harvest scenario --distribution long --length "$row" --alpha "$alpha" --seed "$seed" \
+      --out "$out/fruits.csv" --config-out "$out/harvest.cfg"
+  step "simulator + camera, online planner, executor on CAN over UDP multicast and LCM in a private network namespace (time scale $time_scale, ${time_limit} s per horizon)"
+  command -v unshare >/dev/null || missing "unshare (util-linux) for the private network namespace"
+  set +e
+  unshare -rn bash "$0" --inner-online --row "$row" --out "$out" --time-scale "$time_scale" --time-limit "$time_limit"
+  exec_rc=$?
+  set -e
+  step "result"
+  "$py" - "$out" "$exec_rc" <<'PY'
+import json, os, sys
+out, rc = sys.argv[1], int(sys.argv[2])
+s = json.load(open(os.path.join(out, "executor.json")))
+p = json.load(open(os.path.join(out, "planner.json")))
+d = p["detections"]
+print(f"row: {d['accepted'] + d['unreachable']} fruits seen by the camera ({d['unreachable']} unreachable); "
+      f"refused: {d['outside_row']} outside_row, {d['duplicate']} duplicate, {d['late']} late, {d['bad_id']} bad_id")
+print(f"planner: {p['horizons']} horizons ({p['horizons_optimal']} proven optimal), wall time per horizon "
+      f"median {p['horizon_s_median']:.2f} s, max {p['horizon_s_max']:.2f} s; {p['stops']} stops committed")
+print(f"executor ended in: {s['phase']}" + (f" ({s['safe_reason']})" if s['phase'] == 'safe' else ""))
+print(f"fruits picked: {s['picked']} of {p['fruits_committed']} committed "
+      f"(failed {s['failed']}, skipped {s['skipped']}, remaining {s['remaining']})")
+print(f"waited for the planner: {s['plan_wait_first_s']:.1f} s before the first stop, "
+      f"{s['plan_wait_row_s']:.1f} s in the row ({s['plan_waits']} times), simulated time")
+print(f"makespan: expected by the executor {s['expected_makespan_s']:.1f} s; executed "
+      f"{s['executed_makespan_s']:.1f} s ({(s['executed_makespan_s'] / s['expected_makespan_s'] - 1) * 100:+.2f} %)"
+      + ("" if rc == 0 else f"; executor exit {rc}"))
+for f in ("plan.json", "planner.log", "executor.log", "run.journal", "sim.jsonl"):
+    print(f"  {os.path.join(out, f)}")
+PY
+  exit "$exec_rc"
+fi
 
 step "cost tables (costgen)"
 mkdir -p "$out/tables"
@@ -168,8 +269,9 @@ unshare -rn bash "$0" --inner --out "$out" --time-scale "$time_scale"
 exec_rc=$?
 set -e
 
-step "telemetry plots"
+step "telemetry plots and the run in MCAP"
 "$py" -m harvest telemetry gantt "$out/telemetry.lcmlog" --out "$out/gantt.png" --out "$out/gantt.svg"
+"$py" -m harvest telemetry mcap "$out/telemetry.lcmlog" --out "$out/telemetry.mcap"
 
 step "result"
 "$py" - "$out" "$exec_rc" <<'PY'
@@ -193,7 +295,8 @@ print(f"faults: {s['faults']} recoverable arm faults" + ("" if rc == 0 else f", 
 # its work follows the simulated clock: at time scale K the run is K times faster than real time
 print(f"executor CPU {s['cpu_s'] / s['wall_s'] * 100:.2f} % of a core at time scale {s['time_scale']:g}, "
       f"peak memory {s['peak_rss_kb']} KiB")
-for f in ("gantt.png", "gantt.svg", "telemetry.lcmlog", "run.journal", "sim.jsonl", "mountopt.json"):
+for f in ("gantt.png", "gantt.svg", "telemetry.lcmlog", "telemetry.mcap", "bus.blf", "run.journal",
+          "sim.jsonl", "mountopt.json"):
     print(f"  {os.path.join(out, f)}")
 PY
 exit "$exec_rc"

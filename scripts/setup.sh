@@ -14,7 +14,9 @@ apt_pkgs=(
   build-essential cmake ninja-build pkg-config   # C/C++ toolchain and build
   libeigen3-dev                                  # tools/: cost table generator, mount search
   libglpk-dev glpk-utils                         # planner/: the MILP (C API; glpsol to cross-check)
+  libjansson-dev                                 # plan files: the JSON reader
   libcmocka-dev                                  # C unit tests
+  clang libclang-rt-14-dev                       # fuzz/: clang, its libFuzzer + ASan/UBSan runtimes (HV_FUZZ)
   liblcm-dev liblcm-bin                          # telemetry: LCM library and lcm-gen
   libmsgpack-dev                                 # CAN over UDP, python-can's udp_multicast format
   python3 python3-venv python3-dev               # host/ package and pytest

@@ -85,7 +85,7 @@ int main(int argc, char **argv)
     memset(&status, 0, sizeof status);
     status.kind = HV_EV_ARM_STATUS;
     status.node = HV_EXEC_LEFT;
-    status.u.arm.state = HV_NODE_MOVING;
+    status.u.arm.state = HV_CAN_STATE_MOVING;
     status.u.arm.sp_seq = start->arm[0].sp_seq; /* the awaited setpoint, not reached yet */
     status.u.arm.cmd_seq = start->node[HV_EXEC_LEFT].cmd_seq;
     status.u.arm.homed = 1;

@@ -28,13 +28,13 @@ static double uniform(uint64_t *s, double lo, double hi)
     return lo + (hi - lo) * ((double)(z >> 11) * 0x1.0p-53);
 }
 
-int bench_instance_make(const hv_config_t *cfg, const bench_model_t *m, size_t n_left,
-                        size_t n_right, uint64_t seed, hv_instance_t *inst)
+hv_fruit_t *bench_fruits_make(const hv_config_t *cfg, size_t n_left, size_t n_right,
+                              uint64_t seed)
 {
     size_t n = n_left + n_right;
     hv_fruit_t *fr = calloc(n + 1, sizeof *fr);
     if (fr == NULL) {
-        return -1;
+        return NULL;
     }
     uint64_t s = seed * 1000003u + 17u;
     double x0 = cfg->aisle_width_m / 2, x1 = x0 + cfg->canopy_depth_m;
@@ -48,6 +48,17 @@ int bench_instance_make(const hv_config_t *cfg, const bench_model_t *m, size_t n
         fr[i].y_m = uniform(&s, 0.0, cfg->row_length_m);
         fr[i].z_m = uniform(&s, z0, z1);
         fr[i].yaw_rad = uniform(&s, -cfg->pick_yaw_max_rad, cfg->pick_yaw_max_rad);
+    }
+    return fr;
+}
+
+int bench_instance_make(const hv_config_t *cfg, const bench_model_t *m, size_t n_left,
+                        size_t n_right, uint64_t seed, hv_instance_t *inst)
+{
+    size_t n = n_left + n_right;
+    hv_fruit_t *fr = bench_fruits_make(cfg, n_left, n_right, seed);
+    if (fr == NULL) {
+        return -1;
     }
     hv_config_t paper = *cfg;
     paper.stops_beyond_ends = 0;

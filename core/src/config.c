@@ -56,6 +56,8 @@ static const key_spec_t keys[] = {
     {"pick.cut_time", F(cut_s), 1, POS, 60.0, K_REAL},
     {"pick.release_time", F(release_s), 1, POS, 60.0, K_REAL},
     {"plan.pick_cycle", F(pick_cycle), 1, 0.0, 1.0, K_BOOL},
+    {"camera.lead", F(camera_lead_m), 1, 0.0, 100.0, K_REAL},
+    {"camera.window", F(camera_window_m), 1, POS, 100.0, K_REAL},
     {"grid.step", F(grid_step_m), 1, 0.001, 1.0, K_REAL},
     {"grid.yaw_step_deg", F(grid_yaw_step_rad), 1, 0.1, 90.0, K_DEG},
     {"grid.y_half_span", F(grid_y_half_span_m), 1, POS, 10.0, K_REAL},

@@ -215,6 +215,27 @@ static int find_pick(replay_t *r, const char *side, const char *id)
     return hv_exec_plan_find(r->j->plan, side[0] == 'L' ? HV_SIDE_LEFT : HV_SIDE_RIGHT, id);
 }
 
+/* The checksum field exactly as written ("%08x": 8 lowercase hex digits, nothing after).
+ * strtoul would also take a sign, spaces, "0x" and upper case, so a damaged field could
+ * still read as the right value and the damage go unseen. */
+static int crc_field(const char *s, uint32_t *out)
+{
+    uint32_t v = 0;
+    for (int i = 0; i < 8; i++) {
+        char ch = s[i];
+        if (ch >= '0' && ch <= '9')
+            v = (v << 4) | (uint32_t)(ch - '0');
+        else if (ch >= 'a' && ch <= 'f')
+            v = (v << 4) | (uint32_t)(ch - 'a' + 10);
+        else
+            return -1;
+    }
+    if (s[8] != '\0')
+        return -1;
+    *out = v;
+    return 0;
+}
+
 /* One complete line (without its newline). */
 static hv_status_t replay_line(replay_t *r, char *line, size_t len)
 {
@@ -226,11 +247,10 @@ static hv_status_t replay_line(replay_t *r, char *line, size_t len)
         }
     if (!star)
         return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "no checksum");
-    char *end;
-    unsigned long want = strtoul(star + 2, &end, 16);
-    if (*end != '\0' || end == star + 2)
+    uint32_t want;
+    if (crc_field(star + 2, &want) != 0)
         return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "bad checksum field");
-    if (hv_crc32(0, line, (size_t)(star - line)) != (uint32_t)want)
+    if (hv_crc32(0, line, (size_t)(star - line)) != want)
         return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "checksum mismatch (corrupt record)");
     *star = '\0';
 

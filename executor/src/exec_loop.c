@@ -26,6 +26,23 @@ static int64_t wall_utime(void)
 
 static void step(hv_exec_loop_t *L, const hv_exec_event_t *ev, uint64_t now);
 
+/* Online, at each stop: stops done of those known, fruits picked, and the planner's lead:
+ * the robot time of the committed stops still ahead, and how long the vehicle waited. */
+static void online_progress(hv_exec_loop_t *L, uint64_t now, double t)
+{
+    const hv_exec_sm_t *sm = L->sm;
+    const hv_exec_plan_t *p = sm->plan;
+    double ahead = 0.0, first, row;
+    for (int s = sm->stop; s < (int)p->n_stops; s++)
+        ahead += p->stops[s].expected_s + (s > sm->stop ? p->stops[s].drive_s : 0.0);
+    hv_exec_plan_wait_s(sm, now, &first, &row);
+    fprintf(L->progress, "harvest-exec: [%8.2f s] stop %d of %u known%s at %.3f m; %u fruits "
+            "picked; committed ahead %.1f s; waited for the planner %.1f s (%u times) after "
+            "%.1f s at the start\n", t, sm->stop + 1, (unsigned)p->n_stops,
+            sm->plan_final ? " (final)" : "", p->stops[sm->stop].y_m, sm->picked, ahead, row,
+            sm->waits, first);
+}
+
 static void report(hv_exec_loop_t *L, const hv_exec_action_t *a, uint64_t now)
 {
     if (!L->progress)
@@ -36,10 +53,16 @@ static void report(hv_exec_loop_t *L, const hv_exec_action_t *a, uint64_t now)
         if (sm->phase == HV_PH_SAFE)
             fprintf(L->progress, "harvest-exec: [%8.2f s] SAFE: %s (node %s)\n", t,
                     hv_exec_safe_reason_name(sm->safe_reason), hv_exec_node_name(sm->safe_node));
+        else if (sm->phase == HV_PH_HARVEST && sm->prm.online)
+            online_progress(L, now, t);
         else if (sm->phase == HV_PH_HARVEST)
             fprintf(L->progress, "harvest-exec: [%8.2f s] stop %d/%u at %.3f m\n", t,
                     sm->stop + 1, (unsigned)sm->plan->n_stops,
                     sm->plan->stops[sm->stop].y_m);
+        else if (sm->phase == HV_PH_WAIT_PLAN)
+            fprintf(L->progress, "harvest-exec: [%8.2f s] waiting for the planner: %d stops "
+                    "done of %u known, %u fruits picked\n", t, sm->stop + 1,
+                    (unsigned)sm->plan->n_stops, sm->picked);
         else
             fprintf(L->progress, "harvest-exec: [%8.2f s] %s\n", t,
                     hv_exec_phase_name(sm->phase));
@@ -206,11 +229,17 @@ hv_status_t hv_exec_loop_run(hv_exec_loop_t *L)
                 break;
         }
         int wait_ms = next_tick > now ? (int)((next_tick - now + 999999u) / 1000000u) : 0;
-        struct pollfd pfd = {hv_can_fd(L->bus), POLLIN, 0};
-        int pr = poll(&pfd, 1, wait_ms);
+        struct pollfd pfd[2] = {{hv_can_fd(L->bus), POLLIN, 0},
+                                {L->feed ? L->feed->fd : -1, POLLIN, 0}};
+        int pr = poll(pfd, L->feed ? 2 : 1, wait_ms);
         if (pr < 0 && errno != EINTR)
             return HV_ERR_IO;
-        if (pr > 0) {
+        if (pr > 0 && L->feed && (pfd[1].revents & POLLIN)) {
+            hv_exec_event_t ev;
+            if (L->feed->take(L->feed->ctx, &ev))
+                step(L, &ev, hv_exec_now_ns());
+        }
+        if (pr > 0 && (pfd[0].revents & POLLIN)) {
             /* drain what is waiting; each frame is one event */
             for (int k = 0; k < 256; k++) {
                 hv_can_frame_t f;

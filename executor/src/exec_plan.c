@@ -94,3 +94,51 @@ int hv_exec_plan_find(const hv_exec_plan_t *plan, hv_side_t side, const char *id
             return i;
     return -1;
 }
+
+hv_status_t hv_exec_plan_append(hv_exec_plan_t *plan, uint32_t plan_index, double y_m,
+                                const hv_exec_pick_t *picks, uint16_t n_left, uint16_t n_right)
+{
+    if (!plan || (!picks && n_left + n_right > 0))
+        return HV_ERR_ARG;
+    unsigned n = (unsigned)n_left + n_right;
+    if (plan->n_stops >= HV_EXEC_MAX_STOPS || plan->n_picks + n > HV_EXEC_MAX_PICKS)
+        return HV_ERR_EXEC_PLAN_CAPACITY;
+    const hv_exec_stop_t *last = plan->n_stops ? &plan->stops[plan->n_stops - 1] : NULL;
+    if (!isfinite(y_m) || y_m < hv_exec_course_start(plan) - 1e-6 ||
+        y_m > hv_exec_course_end(plan) + 1e-6 ||
+        (last && (plan_index <= last->plan_index || y_m <= last->y_m)))
+        return HV_ERR_EXEC_PLAN_RANGE;
+    for (unsigned k = 0; k < n; k++) {
+        hv_side_t side = k < n_left ? HV_SIDE_LEFT : HV_SIDE_RIGHT;
+        if (picks[k].side != side || memchr(picks[k].id, '\0', sizeof picks[k].id) == NULL ||
+            hv_exec_plan_find(plan, side, picks[k].id) >= 0)
+            return HV_ERR_EXEC_PLAN_RANGE;
+        for (unsigned j = 0; j < k; j++)
+            if (picks[j].side == side && strcmp(picks[j].id, picks[k].id) == 0)
+                return HV_ERR_EXEC_PLAN_RANGE;
+    }
+    uint16_t s = plan->n_stops;
+    hv_exec_stop_t *st = &plan->stops[s];
+    memset(st, 0, sizeof *st);
+    st->plan_index = plan_index;
+    st->y_m = y_m;
+    st->first[HV_SIDE_LEFT] = plan->n_picks;
+    st->count[HV_SIDE_LEFT] = n_left;
+    st->first[HV_SIDE_RIGHT] = (uint16_t)(plan->n_picks + n_left);
+    st->count[HV_SIDE_RIGHT] = n_right;
+    for (unsigned k = 0; k < n; k++) {
+        hv_exec_pick_t *pk = &plan->picks[plan->n_picks++];
+        memset(pk, 0, sizeof *pk);
+        memcpy(pk->id, picks[k].id, sizeof pk->id);
+        pk->side = picks[k].side;
+        pk->stop = s;
+        pk->x_m = picks[k].x_m;
+        pk->y_m = picks[k].y_m;
+        pk->z_m = picks[k].z_m;
+        pk->yaw_rad = picks[k].yaw_rad;
+        pk->cost_s = picks[k].cost_s;
+        pk->start_s = picks[k].start_s;
+    }
+    plan->n_stops = (uint16_t)(s + 1);
+    return HV_OK;
+}

@@ -54,7 +54,7 @@ static int params_ok(const hv_exec_params_t *p)
     return p->time_scale >= 0.0 && isfinite(p->time_scale) && p->margin >= 0.0 &&
            isfinite(p->margin) && p->slack_s >= 0.0 && isfinite(p->slack_s) &&
            p->latency_s >= 0.0 && isfinite(p->latency_s) && p->max_retries < 100 &&
-           (p->clear_estop == 0 || p->clear_estop == 1);
+           (p->clear_estop == 0 || p->clear_estop == 1) && (p->online == 0 || p->online == 1);
 }
 
 hv_status_t hv_exec_init(hv_exec_sm_t *sm, const hv_exec_plan_t *plan,
@@ -169,7 +169,7 @@ static void send_heartbeat(ctx_t *c)
 {
     hv_exec_action_t *a = push(c, HV_ACT_HEARTBEAT, -1);
     if (a) {
-        a->u.hb.health = c->sm->phase == HV_PH_SAFE ? HV_HEALTH_ESTOP : HV_HEALTH_OK;
+        a->u.hb.health = c->sm->phase == HV_PH_SAFE ? HV_CAN_HEALTH_ESTOP : HV_CAN_HEALTH_OK;
         a->u.hb.time_scale = c->sm->time_scale;
     }
 }
@@ -325,6 +325,8 @@ static int stop_has_work(ctx_t *c, int p)
     return work;
 }
 
+static void advance(ctx_t *c);
+
 static void next_stop(ctx_t *c)
 {
     hv_exec_sm_t *sm = c->sm;
@@ -337,6 +339,17 @@ static void next_stop(ctx_t *c)
             return;
         }
     }
+    if (sm->prm.online && !sm->plan_final) {
+        /* the committed part is done: wait for the planner's next stops where we are */
+        sm->stop = plan->n_stops - 1;
+        sm->wait_from_ns = c->now;
+        sm->wait_first = sm->t_row_start_ns == 0;
+        sm->waits += !sm->wait_first;
+        sm->advancing = 0;
+        set_phase(c, HV_PH_WAIT_PLAN);
+        advance(c);
+        return;
+    }
     sm->stop = plan->n_stops;
     send_move(c, hv_exec_course_end(plan));
     set_phase(c, HV_PH_FINAL_DRIVE);
@@ -346,6 +359,42 @@ static int vehicle_arrived(const hv_exec_sm_t *sm)
 {
     const hv_exec_node_t *v = &sm->node[HV_EXEC_VEHICLE];
     return v->arrived && v->move_seq == ((v->next_move_seq + 0xFF) & 0xFF);
+}
+
+/* WAIT_PLAN: the planner committed the course further than the vehicle stands and no stop
+ * with work lies there: drive on to the commit line, so the camera sees further. */
+static void advance(ctx_t *c)
+{
+    hv_exec_sm_t *sm = c->sm;
+    if (!sm->advancing && sm->advance_m > sm->node[HV_EXEC_VEHICLE].position_m + 0.005 &&
+        sm->advance_m <= hv_exec_course_end(sm->plan)) {
+        send_move(c, sm->advance_m);
+        sm->advancing = 1;
+    }
+}
+
+/* WAIT_PLAN: go on once the plan has a stop after the current one or is final. */
+static void wait_plan(ctx_t *c)
+{
+    hv_exec_sm_t *sm = c->sm;
+    if (sm->advancing) {
+        if (!vehicle_arrived(sm)) {
+            if (c->now >= sm->deadline_ns)
+                enter_safe(c, HV_SAFE_TIMEOUT, HV_EXEC_VEHICLE);
+            return;
+        }
+        sm->advancing = 0;
+    }
+    if (sm->stop + 1 < (int)sm->plan->n_stops || sm->plan_final) {
+        uint64_t w = c->now - sm->wait_from_ns;
+        if (sm->wait_first)
+            sm->wait_first_ns += w;
+        else
+            sm->wait_row_ns += w;
+        next_stop(c);
+    } else {
+        advance(c);
+    }
 }
 
 /* ---- the pick cycle --------------------------------------------------------------- */
@@ -371,7 +420,7 @@ static void start_release(ctx_t *c, int side)
             0, 0);
     sm->prog.pick[arm->pick] = HV_PROG_RELEASE;
     arm->phase = HV_ARM_RELEASE;
-    send_ee(c, side, HV_EE_RELEASE);
+    send_ee(c, side, HV_CAN_EE_ACTION_RELEASE);
     arm->deadline_ns = motion_deadline(c, sm->prm.release_s);
     fruit_event(c, HV_FE_RELEASE, arm->pick, (int)arm->attempt, 0, 0);
 }
@@ -473,7 +522,7 @@ static void start_recover(ctx_t *c, int side, hv_exec_reason_t why)
     arm->fault_reason = why;
     arm->recover_step = 0;
     /* DISABLE first: whatever the arm was doing, its motion stops */
-    send_command(c, arm_node[side], HV_CMD_DISABLE);
+    send_command(c, arm_node[side], HV_CAN_CMD_DISABLE);
     arm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
 }
 
@@ -485,7 +534,7 @@ static void recover_progress(ctx_t *c, int side)
     const hv_exec_node_t *n = &sm->node[node];
     if (!echoed(sm, node))
         return;
-    if (arm->recover_step >= 2 && n->state == HV_NODE_FAULT) {
+    if (arm->recover_step >= 2 && n->state == HV_CAN_STATE_FAULT) {
         /* faulted again after its fault was cleared: the recovery itself failed */
         enter_safe(c, HV_SAFE_FAULT, node);
         return;
@@ -493,23 +542,23 @@ static void recover_progress(ctx_t *c, int side)
     switch (arm->recover_step) {
     case 0:
         arm->recover_step = 1;
-        send_command(c, node, HV_CMD_CLEAR_FAULT);
+        send_command(c, node, HV_CAN_CMD_CLEAR_FAULT);
         arm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
         break;
     case 1:
         arm->recover_step = 2;
-        send_command(c, node, HV_CMD_ENABLE);
+        send_command(c, node, HV_CAN_CMD_ENABLE);
         arm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
         break;
     case 2:
-        if (n->state != HV_NODE_IDLE)
+        if (n->state != HV_CAN_STATE_IDLE)
             break;
         arm->recover_step = 3;
-        send_command(c, node, HV_CMD_HOME);
+        send_command(c, node, HV_CAN_CMD_HOME);
         arm->deadline_ns = motion_deadline(c, sm->prm.home_max_s);
         break;
     default:
-        if (n->state == HV_NODE_IDLE && n->homed && n->fault_bits == 0) {
+        if (n->state == HV_CAN_STATE_IDLE && n->homed && n->fault_bits == 0) {
             sm->node[node].wait_cmd_seq = -1;
             if (arm->pick < 0) {
                 arm->phase = HV_ARM_DONE;
@@ -527,9 +576,9 @@ static int arm_fault_reason(const hv_exec_node_t *n)
 {
     if (n->fault_bits & HV_ARM_FAULT_REJECTED)
         return HV_RSN_REJECTED;
-    if ((n->fault_bits & HV_ARM_FAULT_EE) || (n->ee_seen && n->ee_state == HV_EE_FAULTED))
+    if ((n->fault_bits & HV_ARM_FAULT_EE) || (n->ee_seen && n->ee_state == HV_CAN_EE_STATE_FAULT))
         return HV_RSN_EE_FAULT;
-    if ((n->fault_bits & HV_ARM_FAULT_JOINTS) || n->state == HV_NODE_FAULT)
+    if ((n->fault_bits & HV_ARM_FAULT_JOINTS) || n->state == HV_CAN_STATE_FAULT)
         return HV_RSN_JOINT_FAULT;
     return 0;
 }
@@ -556,17 +605,17 @@ static void arm_update(ctx_t *c, int side)
             journal(c, HV_JR_CUT, arm->pick, pk->stop, (int)arm->attempt, 0, 0);
             sm->prog.pick[arm->pick] = HV_PROG_CUT;
             arm->phase = HV_ARM_CUT;
-            send_ee(c, side, HV_EE_CUT);
+            send_ee(c, side, HV_CAN_EE_ACTION_CUT);
             arm->deadline_ns = motion_deadline(c, sm->prm.cut_s);
             fruit_event(c, HV_FE_CUT, arm->pick, (int)arm->attempt, 0, 0);
         }
         break;
     case HV_ARM_CUT:
         if (n->ee_seen && n->ee_seq == arm->ee_seq) {
-            if (n->ee_state == HV_EE_DONE) {
+            if (n->ee_state == HV_CAN_EE_STATE_DONE) {
                 arm->cut_confirmed = 1;
                 start_return(c, side);
-            } else if (n->ee_state == HV_EE_FAILED) {
+            } else if (n->ee_state == HV_CAN_EE_STATE_FAILED) {
                 arm->fault_reason = HV_RSN_CUT_FAILED;
                 start_return(c, side);
             }
@@ -584,13 +633,13 @@ static void arm_update(ctx_t *c, int side)
         break;
     case HV_ARM_RELEASE:
         if (n->ee_seen && n->ee_seq == arm->ee_seq) {
-            if (n->ee_state == HV_EE_DONE) {
+            if (n->ee_state == HV_CAN_EE_STATE_DONE) {
                 int resumed = !arm->cut_confirmed;
                 record_outcome(c, arm->pick, (int)arm->attempt, HV_OUT_PICKED,
                                resumed ? HV_RSN_RESUMED : HV_RSN_OK);
                 arm->next++;
                 arm_advance(c, side);
-            } else if (n->ee_state == HV_EE_FAILED) {
+            } else if (n->ee_state == HV_CAN_EE_STATE_FAILED) {
                 start_recover(c, side, HV_RSN_EE_FAULT);
             }
         }
@@ -620,6 +669,8 @@ static int event_ok(const hv_exec_event_t *ev)
     case HV_EV_STOP_REQUEST:
     case HV_EV_JOURNAL_FAILED:
         return 1;
+    case HV_EV_PLAN_GROWN:
+        return (ev->u.plan.final == 0 || ev->u.plan.final == 1) && isfinite(ev->u.plan.advance_m);
     case HV_EV_HEARTBEAT:
         return ev->node >= 0 && ev->node < HV_EXEC_NODES && isfinite(ev->u.hb.time_scale);
     case HV_EV_VEHICLE_STATUS:
@@ -633,6 +684,12 @@ static int event_ok(const hv_exec_event_t *ev)
 
 static void apply_event(hv_exec_sm_t *sm, const hv_exec_event_t *ev, uint64_t now)
 {
+    if (ev->kind == HV_EV_PLAN_GROWN) {
+        sm->plan_final |= ev->u.plan.final;
+        if (ev->u.plan.advance_m > sm->advance_m)
+            sm->advance_m = ev->u.plan.advance_m;
+        return;
+    }
     if (ev->kind == HV_EV_TICK || ev->kind == HV_EV_STOP_REQUEST ||
         ev->kind == HV_EV_JOURNAL_FAILED)
         return;
@@ -698,7 +755,8 @@ static int reports_estop(const hv_exec_sm_t *sm, int i)
 {
     const hv_exec_node_t *n = &sm->node[i];
     int estop_bit = i == HV_EXEC_VEHICLE ? HV_VEH_FAULT_ESTOP : HV_ARM_FAULT_ESTOP;
-    return n->health == HV_HEALTH_ESTOP || n->state == HV_NODE_ESTOP || (n->fault_bits & estop_bit);
+    return n->health == HV_CAN_HEALTH_ESTOP || n->state == HV_CAN_STATE_ESTOP ||
+           (n->fault_bits & estop_bit);
 }
 
 /* A heartbeat and a status of node i arrived after the last CLEAR_ESTOP was echoed. */
@@ -754,7 +812,7 @@ static void global_checks(ctx_t *c)
         }
     }
     const hv_exec_node_t *v = &sm->node[HV_EXEC_VEHICLE];
-    if (sm->phase >= HV_PH_HOMING && (v->state == HV_NODE_FAULT || (v->fault_bits & 0x07)))
+    if (sm->phase >= HV_PH_HOMING && (v->state == HV_CAN_STATE_FAULT || (v->fault_bits & 0x07)))
         enter_safe(c, HV_SAFE_VEHICLE_FAULT, HV_EXEC_VEHICLE);
 }
 
@@ -771,7 +829,7 @@ static int first_pending(const hv_exec_sm_t *sm, unsigned nodes)
 {
     for (int i = 0; i < HV_EXEC_NODES; i++)
         if ((nodes & (1u << i)) &&
-            (!echoed(sm, i) || (sm->sub == HV_EN_ENABLE && sm->node[i].state != HV_NODE_IDLE)))
+            (!echoed(sm, i) || (sm->sub == HV_EN_ENABLE && sm->node[i].state != HV_CAN_STATE_IDLE)))
             return i;
     return -1;
 }
@@ -799,10 +857,10 @@ static void enable_progress(ctx_t *c)
             hv_exec_action_t *a = journal(c, HV_JR_ESTOP_CLEAR, -1, -1, 0, 0, 0);
             if (a)
                 a->u.jr.nodes = sm->latched;
-            send_to(c, sm->latched, HV_CMD_CLEAR_ESTOP);
+            send_to(c, sm->latched, HV_CAN_CMD_CLEAR_ESTOP);
             enable_step(c, HV_EN_CLEAR_ESTOP);
         } else {
-            send_to(c, HV_EXEC_ALL_NODES, HV_CMD_CLEAR_FAULT);
+            send_to(c, HV_EXEC_ALL_NODES, HV_CAN_CMD_CLEAR_FAULT);
             enable_step(c, HV_EN_CLEAR_FAULT);
         }
         return;
@@ -819,25 +877,25 @@ static void enable_progress(ctx_t *c)
         if (waiting >= 0)
             break;
         /* every node spoke after the clear and none reports an e-stop (global_checks) */
-        send_to(c, HV_EXEC_ALL_NODES, HV_CMD_CLEAR_FAULT);
+        send_to(c, HV_EXEC_ALL_NODES, HV_CAN_CMD_CLEAR_FAULT);
         enable_step(c, HV_EN_CLEAR_FAULT);
         return;
     case HV_EN_CLEAR_FAULT:
         if ((waiting = first_pending(sm, HV_EXEC_ALL_NODES)) >= 0)
             break;
-        send_to(c, HV_EXEC_ALL_NODES, HV_CMD_ENABLE);
+        send_to(c, HV_EXEC_ALL_NODES, HV_CAN_CMD_ENABLE);
         enable_step(c, HV_EN_ENABLE);
         return;
     default:
         for (int i = 0; i < HV_EXEC_NODES; i++)
-            if (echoed(sm, i) && sm->node[i].state == HV_NODE_FAULT) {
+            if (echoed(sm, i) && sm->node[i].state == HV_CAN_STATE_FAULT) {
                 enter_safe(c, HV_SAFE_FAULT, i);
                 return;
             }
         if ((waiting = first_pending(sm, HV_EXEC_ALL_NODES)) >= 0)
             break;
         for (int s = 0; s < 2; s++)
-            send_command(c, arm_node[s], HV_CMD_HOME);
+            send_command(c, arm_node[s], HV_CAN_CMD_HOME);
         sm->node[HV_EXEC_VEHICLE].wait_cmd_seq = -1;
         sm->deadline_ns = motion_deadline(c, sm->prm.home_max_s);
         set_phase(c, HV_PH_HOMING);
@@ -881,7 +939,7 @@ static void phase_logic(ctx_t *c, const hv_exec_event_t *ev)
                 n->next_ee_seq = (n->ee_seq + 1) & 0xFF;
                 n->next_move_seq = (n->move_seq + 1) & 0xFF;
             }
-            send_to(c, HV_EXEC_ALL_NODES, HV_CMD_DISABLE);
+            send_to(c, HV_EXEC_ALL_NODES, HV_CAN_CMD_DISABLE);
             enable_step(c, HV_EN_DISABLE);
             set_phase(c, HV_PH_ENABLE);
         } else if (c->now >= sm->deadline_ns) {
@@ -895,11 +953,11 @@ static void phase_logic(ctx_t *c, const hv_exec_event_t *ev)
         int done = 1;
         for (int s = 0; s < 2; s++) {
             const hv_exec_node_t *n = &sm->node[arm_node[s]];
-            if (echoed(sm, arm_node[s]) && (n->state == HV_NODE_FAULT || n->fault_bits)) {
+            if (echoed(sm, arm_node[s]) && (n->state == HV_CAN_STATE_FAULT || n->fault_bits)) {
                 enter_safe(c, HV_SAFE_FAULT, arm_node[s]);
                 return;
             }
-            done &= echoed(sm, arm_node[s]) && n->state == HV_NODE_IDLE && n->homed;
+            done &= echoed(sm, arm_node[s]) && n->state == HV_CAN_STATE_IDLE && n->homed;
         }
         if (done) {
             for (int s = 0; s < 2; s++)
@@ -918,7 +976,7 @@ static void phase_logic(ctx_t *c, const hv_exec_event_t *ev)
                 sm->prog.row_done = 1;
                 sm->t_row_end_ns = c->now;
                 for (int i = 0; i < HV_EXEC_NODES; i++)
-                    send_command(c, i, HV_CMD_DISABLE);
+                    send_command(c, i, HV_CAN_CMD_DISABLE);
                 set_phase(c, HV_PH_ROW_DONE);
                 break;
             }
@@ -935,6 +993,9 @@ static void phase_logic(ctx_t *c, const hv_exec_event_t *ev)
         } else if (c->now >= sm->deadline_ns) {
             enter_safe(c, HV_SAFE_TIMEOUT, HV_EXEC_VEHICLE);
         }
+        break;
+    case HV_PH_WAIT_PLAN:
+        wait_plan(c);
         break;
     case HV_PH_HARVEST:
         for (int s = 0; s < 2 && sm->phase == HV_PH_HARVEST; s++) {
@@ -960,6 +1021,7 @@ hv_status_t hv_exec_step(hv_exec_sm_t *sm, const hv_exec_event_t *ev, uint64_t n
         return HV_ERR_EXEC_EVENT;
     ctx_t c = {sm, now_ns, out, 0};
     if (!sm->started) {
+        sm->advance_m = hv_exec_course_start(sm->plan);
         sm->started = 1;
         sm->t_start_ns = now_ns;
         sm->deadline_ns = now_ns + secs_ns(sm->prm.startup_timeout_s);
@@ -1010,6 +1072,20 @@ double hv_exec_executed_s(const hv_exec_sm_t *sm, uint64_t now_ns)
     return (double)(end - sm->t_row_start_ns) * 1e-9 * sm->time_scale;
 }
 
+void hv_exec_plan_wait_s(const hv_exec_sm_t *sm, uint64_t now_ns, double *first_s,
+                         double *row_s)
+{
+    uint64_t first = sm->wait_first_ns, row = sm->wait_row_ns;
+    if (sm->phase == HV_PH_WAIT_PLAN && now_ns > sm->wait_from_ns) {
+        if (sm->wait_first)
+            first += now_ns - sm->wait_from_ns;
+        else
+            row += now_ns - sm->wait_from_ns;
+    }
+    *first_s = (double)first * 1e-9 * sm->time_scale;
+    *row_s = (double)row * 1e-9 * sm->time_scale;
+}
+
 int hv_exec_finished(const hv_exec_sm_t *sm)
 {
     return sm->phase == HV_PH_ROW_DONE || sm->phase == HV_PH_SAFE;
@@ -1019,7 +1095,7 @@ const char *hv_exec_phase_name(int phase)
 {
     static const char *const names[HV_PH_COUNT] = {"wait_nodes", "enable", "homing",
                                                    "driving", "harvest", "final_drive",
-                                                   "row_done", "safe"};
+                                                   "row_done", "safe", "wait_plan"};
     return phase >= 0 && phase < HV_PH_COUNT ? names[phase] : "unknown";
 }
 

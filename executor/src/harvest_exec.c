@@ -35,6 +35,7 @@ static void usage(FILE *out)
     fprintf(out,
 "usage: harvest-exec --plan PLAN.json --config harvest.cfg --journal FILE [options]\n"
 "       harvest-exec --check-plan --plan PLAN.json --config harvest.cfg [tables]\n"
+"       harvest-exec --online --lcm-url URL --config harvest.cfg --journal FILE [options]\n"
 "\n"
 "Run a harvest plan on the CAN bus: wait for the vehicle drive and both arms, enable and\n"
 "home them, drive to each stop, run both arms' pick cycles, and stop safely (e-stop) on\n"
@@ -54,6 +55,15 @@ static void usage(FILE *out)
 "  --check-plan            only load the plan and solve every pick's IK as a run would:\n"
 "                          print the picks the IK refuses and the expected makespan, open\n"
 "                          no bus and no journal; exit 0 when every pick is accepted\n"
+"  --online                instead of --plan: the plan grows while the row runs, from the\n"
+"                          online planner's committed stops (harvest-plan-online, LCM\n"
+"                          channel HARVEST_PLAN_COMMIT on --lcm-url); with no committed stop\n"
+"                          ahead the vehicle waits (or drives on to the commit line); the\n"
+"                          row ends once the planner's plan is final. Progress lines show\n"
+"                          stops done of those known, fruits picked, the robot time\n"
+"                          committed ahead and the waits. Needs a new journal (a restart of\n"
+"                          an online run is refused: its journal names fruits the empty\n"
+"                          plan of a new start does not have)\n"
 "bus:\n"
 "  --transport T           socketcan | udp (default udp)\n"
 "  --channel C             socketcan: interface (vcan0); udp: multicast group\n"
@@ -98,7 +108,7 @@ static void usage(FILE *out)
 typedef struct opts {
     const char *plan, *config, *table[2], *transport, *channel, *journal, *lcm_url, *summary;
     const char *clear_by; /* --clear-estop, or NULL */
-    int port, quiet, check_only;
+    int port, quiet, check_only, online;
     double time_scale, margin, slack_s, startup_s, hb_timeout_s, latency_s;
     long max_retries;
 } opts_t;
@@ -131,7 +141,7 @@ static int parse_args(int argc, char **argv, opts_t *o)
         {"latency", required_argument, 0, 'a'},
         {"journal", required_argument, 0, 'j'},     {"lcm-url", required_argument, 0, 'l'},
         {"summary", required_argument, 0, 'S'},     {"quiet", no_argument, 0, 'q'},
-        {"check-plan", no_argument, 0, 'K'},
+        {"check-plan", no_argument, 0, 'K'},      {"online", no_argument, 0, 'O'},
         {"clear-estop", required_argument, 0, 'E'},
         {"help", no_argument, 0, 'h'},              {0, 0, 0, 0}};
     memset(o, 0, sizeof *o);
@@ -174,6 +184,7 @@ static int parse_args(int argc, char **argv, opts_t *o)
         case 'S': o->summary = optarg; break;
         case 'q': o->quiet = 1; break;
         case 'K': o->check_only = 1; break;
+        case 'O': o->online = 1; break;
         case 'E':
             if (!hv_exec_journal_operator_ok(optarg)) {
                 fprintf(stderr, "harvest-exec: --clear-estop: expected the operator's name, 1-32 "
@@ -190,7 +201,12 @@ static int parse_args(int argc, char **argv, opts_t *o)
         fprintf(stderr, "harvest-exec: unexpected argument '%s'\n", argv[optind]);
         return -1;
     }
-    const char *missing = !o->plan ? "--plan" : !o->config ? "--config"
+    if (o->online && (o->plan || o->check_only || !o->lcm_url)) {
+        fprintf(stderr, "harvest-exec: --online takes no --plan nor --check-plan, and needs "
+                "--lcm-url (see --help)\n");
+        return -1;
+    }
+    const char *missing = !o->plan && !o->online ? "--plan" : !o->config ? "--config"
                         : !o->journal && !o->check_only ? "--journal" : NULL;
     if (missing) {
         fprintf(stderr, "harvest-exec: %s is required (see --help)\n", missing);
@@ -215,6 +231,8 @@ typedef struct world {
     hv_can_bus_t bus;
     hv_exec_telemetry_t tm;
     hv_exec_loop_t loop;
+    hv_exec_feed_t feed; /* online */
+    hv_exec_feed_stats_t feed_stats;
 } world_t;
 
 static void write_summary(const opts_t *o, const world_t *w, double wall_s, double cpu_s,
@@ -222,7 +240,9 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
 {
     const hv_exec_sm_t *sm = &w->sm;
     const hv_exec_loop_stats_t *st = &w->loop.st;
-    char buf[2048], latched[64];
+    char buf[4096], latched[64];
+    double wait_first = 0.0, wait_row = 0.0;
+    hv_exec_plan_wait_s(sm, hv_exec_now_ns(), &wait_first, &wait_row);
     hv_exec_node_list(sm->latched, latched, sizeof latched);
     unsigned outcome[HV_OUT_COUNT] = {0, 0, 0};
     /* what the transport dropped (datagrams that do not parse, CAN FD), beside the DBC
@@ -247,7 +267,9 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
         "  \"bus_rx_unsupported\": %llu,\n"
         "  \"journal_records\": %llu,\n  \"journal\": \"%s\",\n  \"bus\": \"%s\",\n"
         "  \"estop_latched\": \"%s\",\n  \"estop_cleared\": %s,\n"
-        "  \"safe_node_name\": \"%s\"\n}\n",
+        "  \"safe_node_name\": \"%s\",\n  \"online\": %s,\n  \"plan_stops\": %u,\n"
+        "  \"plan_final\": %s,\n  \"plan_wait_first_s\": %.6f,\n  \"plan_wait_row_s\": %.6f,\n"
+        "  \"plan_waits\": %u,\n  \"plan_messages\": %u,\n  \"plan_refused\": %u\n}\n",
         hv_exec_phase_name(sm->phase), hv_exec_safe_reason_name(sm->safe_reason), sm->safe_node,
         (unsigned)w->plan.n_picks, outcome[HV_OUT_PICKED], outcome[HV_OUT_FAILED],
         outcome[HV_OUT_SKIPPED], hv_exec_remaining(sm), sm->picked, sm->failed, sm->skipped,
@@ -261,7 +283,9 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
         (unsigned long long)cs.rx_unsupported,
         (unsigned long long)st->journal_records, o->journal, hv_can_name(&w->bus),
         latched, sm->latched && sm->prm.clear_estop ? "true" : "false",
-        hv_exec_node_name(sm->safe_node));
+        hv_exec_node_name(sm->safe_node), o->online ? "true" : "false",
+        (unsigned)w->plan.n_stops, sm->plan_final ? "true" : "false", wait_first, wait_row,
+        sm->waits, w->feed_stats.messages, w->feed_stats.refused);
     char err[256];
     if (n < 0 || (size_t)n >= sizeof buf ||
         hv_file_write_atomic(o->summary, buf, (size_t)n, err, sizeof err) != HV_OK)
@@ -318,7 +342,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "harvest-exec: out of memory\n");
         return EXIT_RUNTIME;
     }
-    hv_status_t st = hv_exec_plan_load_json(o.plan, &w->plan, err, sizeof err);
+    /* online: the plan starts empty and grows from the planner's messages */
+    hv_status_t st = o.online ? HV_OK : hv_exec_plan_load_json(o.plan, &w->plan, err, sizeof err);
     if (st != HV_OK) {
         fprintf(stderr, "harvest-exec: %s\n", err);
         free(w);
@@ -390,6 +415,7 @@ int main(int argc, char **argv)
     prm.vehicle_accel_mps2 = cfg.vehicle_accel_mps2;
     prm.max_retries = (unsigned)o.max_retries;
     prm.clear_estop = o.clear_by != NULL;
+    prm.online = o.online;
     double h0 = hv_exec_home_max_s(&arms[0]), h1 = hv_exec_home_max_s(&arms[1]);
     prm.home_max_s = h0 > h1 ? h0 : h1;
     if ((st = hv_exec_init(&w->sm, &w->plan, &prm, &w->prog)) != HV_OK) {
@@ -421,6 +447,24 @@ int main(int argc, char **argv)
     } else {
         hv_exec_telemetry_null(&w->tm);
     }
+    if (o.online) {
+#ifdef HV_WITH_LCM
+        st = hv_exec_feed_lcm_open(&w->feed, o.lcm_url, &w->plan, arms, &timing, margin_m, err,
+                                   sizeof err);
+#else
+        snprintf(err, sizeof err, "--online needs LCM: this build has none (HV_WITH_LCM=OFF)");
+        st = HV_ERR_ARG;
+#endif
+        if (st != HV_OK) {
+            fprintf(stderr, "harvest-exec: %s\n", err);
+            hv_exec_telemetry_close(&w->tm);
+            hv_can_close(&w->bus);
+            hv_exec_journal_close(&w->journal);
+            free(w);
+            return EXIT_RUNTIME;
+        }
+        w->loop.feed = &w->feed;
+    }
 
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
@@ -430,9 +474,13 @@ int main(int argc, char **argv)
 
     struct timespec ts;
     clock_gettime(CLOCK_REALTIME, &ts);
-    hv_exec_tm_plan(&w->tm, &w->plan, o.plan, &prm, o.time_scale,
+    hv_exec_tm_plan(&w->tm, &w->plan, o.plan ? o.plan : "(online)", &prm, o.time_scale,
                     (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000);
-    if (!o.quiet)
+    if (!o.quiet && o.online)
+        fprintf(stderr, "harvest-exec: online on %s: the plan grows from the planner's "
+                "committed stops (HARVEST_PLAN_COMMIT on %s); waiting for the nodes\n",
+                hv_can_name(&w->bus), o.lcm_url);
+    else if (!o.quiet)
         fprintf(stderr, "harvest-exec: %u stops, %u fruits on %s; expected makespan %.1f s "
                 "(plan's objective %.1f s); waiting for the nodes\n",
                 (unsigned)w->plan.n_stops, (unsigned)w->plan.n_picks, hv_can_name(&w->bus),
@@ -459,13 +507,21 @@ int main(int argc, char **argv)
              : w->sm.phase == HV_PH_ROW_DONE             ? EXIT_ROW_DONE
              : w->sm.safe_reason == HV_SAFE_ESTOP_LATCHED ? EXIT_ESTOP_LATCHED
                                                          : EXIT_SAFE;
+    /* an online plan has no objective of its own: the planner's horizons each had one */
+    char objective[96];
+    if (o.online)
+        snprintf(objective, sizeof objective, "online, %u stops committed%s",
+                 (unsigned)w->plan.n_stops, w->sm.plan_final ? ", final" : "");
+    else
+        snprintf(objective, sizeof objective, "plan's objective %.2f s",
+                 w->plan.planned_makespan_s);
     printf("harvest-exec: %s%s%s: picked %u, failed %u, skipped %u this run (%u remaining), "
-           "faults %u; executed %.2f s vs expected %.2f s (plan's objective %.2f s)\n",
+           "faults %u; executed %.2f s vs expected %.2f s (%s)\n",
            hv_exec_phase_name(w->sm.phase), w->sm.phase == HV_PH_SAFE ? " " : "",
            w->sm.phase == HV_PH_SAFE ? hv_exec_safe_reason_name(w->sm.safe_reason) : "",
            w->sm.picked, w->sm.failed, w->sm.skipped, hv_exec_remaining(&w->sm), w->sm.faults,
            hv_exec_executed_s(&w->sm, hv_exec_now_ns()), w->plan.expected_makespan_s,
-           w->plan.planned_makespan_s);
+           objective);
     if (rc == EXIT_ESTOP_LATCHED) {
         char latched[64];
         hv_exec_node_list(w->sm.latched, latched, sizeof latched);
@@ -477,6 +533,16 @@ int main(int argc, char **argv)
         printf("harvest-exec: the nodes hold the e-stop (%s, %s): a restart needs "
                "--clear-estop NAME\n", hv_exec_safe_reason_name(w->sm.safe_reason),
                hv_exec_node_name(w->sm.safe_node));
+#ifdef HV_WITH_LCM
+    if (o.online) {
+        w->feed_stats = *hv_exec_feed_lcm_stats(&w->feed);
+        if (w->feed_stats.refused)
+            fprintf(stderr, "harvest-exec: %u of the planner's %u messages refused, the last "
+                    "for %s\n", w->feed_stats.refused, w->feed_stats.messages,
+                    w->feed_stats.last_refusal);
+        hv_exec_feed_lcm_close(&w->feed);
+    }
+#endif
     if (o.summary)
         write_summary(&o, w, wall_s, cpu_s, peak_rss_kb());
     hv_exec_telemetry_close(&w->tm);

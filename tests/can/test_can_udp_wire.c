@@ -119,6 +119,27 @@ static void decodes_python_can_bytes(void **state)
     msgpack_sbuffer_destroy(&sb);
 }
 
+/* Found by fuzz/fuzz_udp_wire: a timestamp too late for int64 ns (here 4.7e27 s, a
+ * uint64) was converted with undefined behaviour; it is refused as malformed. */
+static void timestamp_beyond_int64_ns_rejected(void **state)
+{
+    const hv_can_frame_t g = {0x64, 0, 0, {0}, 0};
+    const double stamps[] = {9.3e9, 4.7e27};
+    for (int i = 0; i < 2; i++) {
+        uint8_t buf[HV_CAN_UDP_MAX_DATAGRAM];
+        size_t len = 0;
+        hv_can_frame_t f;
+        assert_int_equal(hv_can_udp_wire_encode(&g, stamps[i], buf, sizeof buf, &len), HV_OK);
+        assert_int_equal(decode(state, buf, len, &f), HV_CAN_ERR_MALFORMED);
+    }
+    uint8_t buf[HV_CAN_UDP_MAX_DATAGRAM];
+    size_t len = 0;
+    hv_can_frame_t f;
+    assert_int_equal(hv_can_udp_wire_encode(&g, 9.1e9, buf, sizeof buf, &len), HV_OK);
+    assert_int_equal(decode(state, buf, len, &f), HV_OK);
+    assert_true(f.timestamp_ns == (int64_t)9100000000000000000LL);
+}
+
 static void malformed_datagrams_rejected(void **state)
 {
     hv_can_frame_t f;
@@ -185,6 +206,7 @@ int main(void)
         cmocka_unit_test(round_trip_all_kinds),
         cmocka_unit_test(encode_rejects_bad_frames),
         cmocka_unit_test(decodes_python_can_bytes),
+        cmocka_unit_test(timestamp_beyond_int64_ns_rejected),
         cmocka_unit_test(malformed_datagrams_rejected),
         cmocka_unit_test(every_prefix_and_bit_flip_is_safe),
     };

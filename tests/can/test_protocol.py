@@ -130,3 +130,20 @@ def test_c_pack_rejects_bad_input_lines(tool):
                         "Joint4Position=0 SetpointSeq=0", "Joint1Position=0.6 outside the DBC range")):
         rc, out, err = cc.run_tool(["pack"], stdin=line + "\n")
         assert rc == 2 and what in err and "line 1" in err, (line, rc, err)
+
+
+def test_options_in_both_gnu_forms(tool):
+    """getopt_long: `--opt value` and `--opt=value` alike, anywhere on the line."""
+    import subprocess
+
+    line = "Estop EstopActive=1 Counter=7\n"
+    runs = [[tool, "--timeout-ms", "5", "pack"], [tool, "--timeout-ms=5", "pack"],
+            [tool, "pack", "--timeout-ms=5"]]
+    outs = [subprocess.run(r, input=line, capture_output=True, text=True) for r in runs]
+    assert all(o.returncode == 0 for o in outs), [o.stderr for o in outs]
+    assert len({o.stdout for o in outs}) == 1 and outs[0].stdout.startswith("000#")
+    bad = subprocess.run([tool, "--timeout-ms=x", "pack"], input=line, capture_output=True,
+                         text=True)
+    assert bad.returncode == 2 and "bad value 'x' for --timeout-ms" in bad.stderr
+    unknown = subprocess.run([tool, "--speed=3", "list"], capture_output=True, text=True)
+    assert unknown.returncode == 2 and "unknown option --speed=3" in unknown.stderr

@@ -75,7 +75,7 @@ void fx_start(fx_t *fx, const hv_exec_progress_t *progress)
         fx_node_t *n = &fx->node[i];
         n->alive = 1;
         n->time_scale = 10.0;
-        n->state = HV_NODE_DISABLED;
+        n->state = HV_CAN_STATE_DISABLED;
         n->cmd_seq = 7 * (i + 1); /* whatever a previous run left */
         n->sp_seq = 3;
         n->ee_seq = 11;
@@ -102,7 +102,7 @@ void fx_latch_estop(fx_t *fx, int node)
 {
     fx_node_t *n = &fx->node[node];
     n->estop = 1;
-    n->state = HV_NODE_ESTOP;
+    n->state = HV_CAN_STATE_ESTOP;
     n->fault_bits |= estop_bit(node);
     n->pending = 0;
 }
@@ -176,39 +176,40 @@ static void node_act(fx_t *fx, const hv_exec_action_t *a)
     switch (a->kind) {
     case HV_ACT_COMMAND:
         /* the DBC: only CLEAR_ESTOP releases an e-stop; a refused command is not echoed */
-        if (n->estop && (a->u.cmd.command == HV_CMD_CLEAR_FAULT ||
-                         a->u.cmd.command == HV_CMD_ENABLE || a->u.cmd.command == HV_CMD_HOME))
+        if (n->estop && (a->u.cmd.command == HV_CAN_CMD_CLEAR_FAULT ||
+                         a->u.cmd.command == HV_CAN_CMD_ENABLE ||
+                         a->u.cmd.command == HV_CAN_CMD_HOME))
             break;
         n->cmd_seq = a->u.cmd.seq;
         switch (a->u.cmd.command) {
-        case HV_CMD_CLEAR_ESTOP:
+        case HV_CAN_CMD_CLEAR_ESTOP:
             fx->estop_clears[a->node]++;
             n->estop = 0;
             n->fault_bits &= ~estop_bit(a->node);
-            if (n->state == HV_NODE_ESTOP)
-                n->state = n->fault_bits ? HV_NODE_FAULT : HV_NODE_DISABLED;
+            if (n->state == HV_CAN_STATE_ESTOP)
+                n->state = n->fault_bits ? HV_CAN_STATE_FAULT : HV_CAN_STATE_DISABLED;
             break;
-        case HV_CMD_CLEAR_FAULT:
+        case HV_CAN_CMD_CLEAR_FAULT:
             n->fault_bits = 0;
-            n->state = HV_NODE_DISABLED;
+            n->state = HV_CAN_STATE_DISABLED;
             break;
-        case HV_CMD_ENABLE:
-            if (n->state == HV_NODE_DISABLED)
-                n->state = HV_NODE_IDLE;
+        case HV_CAN_CMD_ENABLE:
+            if (n->state == HV_CAN_STATE_DISABLED)
+                n->state = HV_CAN_STATE_IDLE;
             break;
-        case HV_CMD_DISABLE:
+        case HV_CAN_CMD_DISABLE:
             if (!n->estop)
-                n->state = HV_NODE_DISABLED;
+                n->state = HV_CAN_STATE_DISABLED;
             n->pending = 0;
             break;
-        case HV_CMD_HOME:
+        case HV_CAN_CMD_HOME:
             if (a->node != HV_EXEC_VEHICLE && fx->f.home_faults[side]) {
-                n->state = HV_NODE_FAULT;
+                n->state = HV_CAN_STATE_FAULT;
                 n->fault_bits |= 0x01; /* joint 1 limit */
             } else if (a->node != HV_EXEC_VEHICLE && fx->f.home_never[side])
-                n->state = HV_NODE_HOMING;
+                n->state = HV_CAN_STATE_HOMING;
             else {
-                n->state = HV_NODE_HOMING;
+                n->state = HV_CAN_STATE_HOMING;
                 n->pending = 4;
                 n->busy_until_ns = fx->now_ns + fx->motion_ns;
             }
@@ -225,17 +226,17 @@ static void node_act(fx_t *fx, const hv_exec_action_t *a)
         if (approach && fx->f.reject_setpoints[side] > 0) {
             fx->f.reject_setpoints[side]--;
             n->fault_bits |= HV_ARM_FAULT_REJECTED;
-            n->state = HV_NODE_FAULT;
+            n->state = HV_CAN_STATE_FAULT;
             break;
         }
         n->sp_seq = a->u.sp.seq;
         n->reached = 0;
         if (approach && (fx->f.joint_fault_every[side] || fx->f.joint_fault_at[side] == k)) {
             n->fault_bits |= 0x10; /* joint 1 following error */
-            n->state = HV_NODE_FAULT;
+            n->state = HV_CAN_STATE_FAULT;
             break;
         }
-        n->state = HV_NODE_MOVING;
+        n->state = HV_CAN_STATE_MOVING;
         if (!fx->f.stall[side]) {
             n->pending = 1;
             n->busy_until_ns = fx->now_ns + fx->motion_ns;
@@ -249,11 +250,11 @@ static void node_act(fx_t *fx, const hv_exec_action_t *a)
     case HV_ACT_EE:
         n->ee_seq = a->u.ee.seq;
         n->ee_action = a->u.ee.action;
-        n->ee_state = HV_EE_BUSY;
+        n->ee_state = HV_CAN_EE_STATE_BUSY;
         n->pending = 2;
         n->pending_ee_action = a->u.ee.action;
         n->busy_until_ns = fx->now_ns + fx->motion_ns;
-        if (a->u.ee.action == HV_EE_CUT) {
+        if (a->u.ee.action == HV_CAN_EE_ACTION_CUT) {
             int k = ++fx->cuts_sent[side];
             if (side == 1 && fx->f.estop_at_cut && k == fx->f.estop_at_cut)
                 fx_latch_estop(fx, a->node);
@@ -265,10 +266,10 @@ static void node_act(fx_t *fx, const hv_exec_action_t *a)
         n->arrived = 0;
         if (fx->f.vehicle_fault_on_move && fx->moves_sent == fx->f.vehicle_fault_on_move) {
             n->fault_bits |= 0x01;
-            n->state = HV_NODE_FAULT;
+            n->state = HV_CAN_STATE_FAULT;
             break;
         }
-        n->state = HV_NODE_MOVING;
+        n->state = HV_CAN_STATE_MOVING;
         if (!fx->f.move_never) {
             n->pending = 3;
             n->busy_until_ns = fx->now_ns + fx->motion_ns;
@@ -297,22 +298,22 @@ static void nodes_progress(fx_t *fx)
         int side = i == HV_EXEC_LEFT ? 0 : 1;
         if (n->pending && fx->now_ns >= n->busy_until_ns) {
             switch (n->pending) {
-            case 1: n->reached = 1; n->state = HV_NODE_IDLE; break;
-            case 3: n->arrived = 1; n->state = HV_NODE_IDLE; break;
-            case 4: n->homed = 1; n->state = HV_NODE_IDLE; break;
+            case 1: n->reached = 1; n->state = HV_CAN_STATE_IDLE; break;
+            case 3: n->arrived = 1; n->state = HV_CAN_STATE_IDLE; break;
+            case 4: n->homed = 1; n->state = HV_CAN_STATE_IDLE; break;
             case 2:
-                if (n->pending_ee_action == HV_EE_CUT) {
+                if (n->pending_ee_action == HV_CAN_EE_ACTION_CUT) {
                     if (fx->f.cut_fail[side] > 0) {
                         fx->f.cut_fail[side]--;
-                        n->ee_state = HV_EE_FAILED;
+                        n->ee_state = HV_CAN_EE_STATE_FAILED;
                     } else {
-                        n->ee_state = HV_EE_DONE;
+                        n->ee_state = HV_CAN_EE_STATE_DONE;
                         n->held = 1;
                         if (fx->cur_pick[side] >= 0)
                             fx->cuts_done[side][fx->cur_pick[side]]++;
                     }
                 } else {
-                    n->ee_state = HV_EE_DONE;
+                    n->ee_state = HV_CAN_EE_STATE_DONE;
                     n->held = 0;
                 }
                 break;
@@ -336,7 +337,8 @@ void fx_run(fx_t *fx, double seconds)
                     memset(&hb, 0, sizeof hb);
                     hb.kind = HV_EV_HEARTBEAT;
                     hb.node = i;
-                    hb.u.hb.health = fx->node[i].state == HV_NODE_ESTOP ? HV_HEALTH_ESTOP : 0;
+                    hb.u.hb.health =
+                        fx->node[i].state == HV_CAN_STATE_ESTOP ? HV_CAN_HEALTH_ESTOP : 0;
                     hb.u.hb.time_scale = fx->node[i].time_scale;
                     hb.u.hb.protocol = HV_PROTOCOL_VERSION;
                     enqueue(fx, &hb);
@@ -394,4 +396,21 @@ int fx_find(const fx_t *fx, int from, hv_exec_action_kind_t kind, int sub)
             return i;
     }
     return -1;
+}
+
+void fx_event(fx_t *fx, const hv_exec_event_t *ev)
+{
+    step(fx, ev);
+}
+
+hv_status_t fx_append_stop(fx_t *fx, const hv_exec_plan_t *src, int s)
+{
+    const hv_exec_stop_t *st = &src->stops[s];
+    hv_status_t r = hv_exec_plan_append(&fx->plan, st->plan_index, st->y_m,
+                                        &src->picks[st->first[HV_SIDE_LEFT]],
+                                        st->count[HV_SIDE_LEFT], st->count[HV_SIDE_RIGHT]);
+    hv_exec_timing_t tm = {1.0, 1.0, 0.1, 0.1};
+    if (r == HV_OK && hv_exec_plan_prepare(&fx->plan, arms, &tm) != HV_OK)
+        abort();
+    return r;
 }

@@ -82,4 +82,10 @@ int fx_count(const fx_t *fx, hv_exec_action_kind_t kind, int jr_kind);
 /* Index in the log of the first action matching, from `from`; -1 when none. */
 int fx_find(const fx_t *fx, int from, hv_exec_action_kind_t kind, int sub);
 
+/* Step one event now (the fake nodes react to its actions). */
+void fx_event(fx_t *fx, const hv_exec_event_t *ev);
+/* Online: append stop s of `src` (built by fx_plan: each stop's left then right picks
+ * contiguous) to fx->plan and prepare it again; hv_exec_plan_append's status. */
+hv_status_t fx_append_stop(fx_t *fx, const hv_exec_plan_t *src, int s);
+
 #endif

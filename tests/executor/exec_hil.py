@@ -205,3 +205,81 @@ def wait_for(pred, timeout, period=0.05):
             return True
         time.sleep(period)
     return False
+
+
+def start_can_logger(path):
+    """python-can's own logger on the test's bus, writing `path` (.blf or .asc by extension)."""
+    return subprocess.Popen(
+        [sys.executable, "-m", "can.logger", "-i", "udp_multicast", "-c", GROUP,
+         "-f", str(path)], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+
+
+def stop_can_logger(proc):
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=30)
+    assert proc.returncode in (0, -signal.SIGINT), err
+
+
+def cut_commands(log_path):
+    """Per arm ("left_arm"/"right_arm"), the distinct end-effector CUT commands (by their
+    sequence number) in a CAN log, decoded with the repository's DBC."""
+    import can
+    import cantools
+
+    db = cantools.database.load_file(os.path.join(SOURCE, "executor", "can", "harvest.dbc"))
+    seqs = {"left_arm": set(), "right_arm": set()}
+    for msg in can.LogReader(str(log_path)):
+        m = db.get_message_by_frame_id(msg.arbitration_id)
+        if m.name.endswith("ArmEeCommand"):
+            d = m.decode(msg.data, decode_choices=True)
+            if str(d["Action"]) == "CUT":
+                seqs["left_arm" if m.name.startswith("Left") else "right_arm"].add(d["EeSeq"])
+    return {k: len(v) for k, v in seqs.items()}
+
+
+def mcap_matches_log(mcap_path, log_path):
+    """Every message of the LCM log is in the MCAP file, in order, with the same content,
+    on its channel, and each channel's schema describes its messages' fields. Returns the
+    number of messages."""
+    import lcm
+    from mcap.reader import make_reader
+
+    from harvest.telemetry import lcm_schema, lcm_types
+
+    types = lcm_types.load()
+
+    expected = [(ev.channel, ev.timestamp * 1000,
+                 lcm_schema.to_json(lcm_types.decode(ev.channel, ev.data, types)))
+                for ev in lcm.EventLog(str(log_path), "r")]
+    got = []
+    with open(mcap_path, "rb") as f:
+        for schema, channel, message in make_reader(f).iter_messages(log_time_order=False):
+            data = json.loads(message.data)
+            assert schema.encoding == "jsonschema" and channel.message_encoding == "json"
+            props = json.loads(schema.data)["properties"]
+            assert set(props) == set(data), channel.topic
+            got.append((channel.topic, message.log_time, data))
+    assert got == expected
+    return len(got)
+
+
+
+def replayed_frames(log_path, timeout_s=60.0):
+    """Replay a CAN log onto the test's bus with python-can's player and count, on a bus
+    of our own, the frames that arrive (the player's order and timing kept)."""
+    import can
+
+    with can.Bus(interface="udp_multicast", channel=GROUP) as bus:
+        player = subprocess.Popen(
+            [sys.executable, "-m", "can.player", "-i", "udp_multicast", "-c", GROUP,
+             "-s", "0.05", str(log_path)], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+            text=True)
+        n, deadline = 0, time.monotonic() + timeout_s
+        while time.monotonic() < deadline:
+            if bus.recv(timeout=0.5) is not None:
+                n += 1
+            elif player.poll() is not None:
+                break
+        _, err = player.communicate(timeout=30)
+        assert player.returncode == 0, err
+    return n

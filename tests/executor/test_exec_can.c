@@ -43,13 +43,13 @@ static void test_encode_actions(void **state)
     memset(&a, 0, sizeof a);
     a.kind = HV_ACT_COMMAND;
     a.node = HV_EXEC_VEHICLE;
-    a.u.cmd.command = HV_CMD_CLEAR_FAULT;
+    a.u.cmd.command = HV_CAN_CMD_CLEAR_FAULT;
     a.u.cmd.seq = 200;
     assert_int_equal(hv_exec_can_encode(&a, &tx, &f, &has), HV_OK);
     assert_int_equal(f.id, (2u << 5) | 2u);
     struct harvest_can_vehicle_command_t vc;
     assert_int_equal(harvest_can_vehicle_command_unpack(&vc, f.data, f.dlc), 0);
-    assert_int_equal(vc.command, HV_CMD_CLEAR_FAULT);
+    assert_int_equal(vc.command, HV_CAN_CMD_CLEAR_FAULT);
     assert_int_equal(vc.command_seq, 200);
 
     memset(&a, 0, sizeof a);
@@ -68,7 +68,7 @@ static void test_encode_actions(void **state)
     memset(&a, 0, sizeof a);
     a.kind = HV_ACT_EE;
     a.node = HV_EXEC_LEFT;
-    a.u.ee.action = HV_EE_CUT;
+    a.u.ee.action = HV_CAN_EE_ACTION_CUT;
     a.u.ee.seq = 77;
     assert_int_equal(hv_exec_can_encode(&a, &tx, &f, &has), HV_OK);
     assert_int_equal(f.id, HARVEST_CAN_LEFT_ARM_EE_COMMAND_FRAME_ID);
@@ -77,13 +77,13 @@ static void test_encode_actions(void **state)
     memset(&a, 0, sizeof a);
     a.kind = HV_ACT_HEARTBEAT;
     a.u.hb.time_scale = 20.0;
-    a.u.hb.health = HV_HEALTH_ESTOP;
+    a.u.hb.health = HV_CAN_HEALTH_ESTOP;
     for (int i = 0; i < 2; i++)
         assert_int_equal(hv_exec_can_encode(&a, &tx, &f, &has), HV_OK);
     struct harvest_can_executor_heartbeat_t hb;
     assert_int_equal(harvest_can_executor_heartbeat_unpack(&hb, f.data, f.dlc), 0);
     assert_int_equal(hb.counter, 1);
-    assert_int_equal(hb.health, HV_HEALTH_ESTOP);
+    assert_int_equal(hb.health, HV_CAN_HEALTH_ESTOP);
     assert_int_equal(hb.protocol_version, 1);
     assert_float_equal(harvest_can_executor_heartbeat_time_scale_decode(hb.time_scale), 20.0, 1e-9);
     a.kind = HV_ACT_ESTOP;
@@ -110,7 +110,7 @@ static void test_decode_statuses(void **state)
     memset(&f, 0, sizeof f);
     struct harvest_can_left_arm_status_t st;
     harvest_can_left_arm_status_init(&st);
-    st.state = HV_NODE_IDLE;
+    st.state = HV_CAN_STATE_IDLE;
     st.target_reached = 1;
     st.homed = 1;
     st.setpoint_seq = 17;
@@ -153,7 +153,7 @@ static void test_decode_statuses(void **state)
 
     struct harvest_can_right_arm_ee_status_t ee;
     harvest_can_right_arm_ee_status_init(&ee);
-    ee.state = HV_EE_DONE;
+    ee.state = HV_CAN_EE_STATE_DONE;
     ee.ee_seq = 201;
     ee.fruit_held = 1;
     memset(&f, 0, sizeof f);

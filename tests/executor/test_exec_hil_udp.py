@@ -3,6 +3,7 @@ multicast (python-can's udp_multicast wire format) inside a private network name
 
 A whole 2 m row, each injected fault, an operator stop and SIGKILL-and-resume.
 """
+import collections
 import json
 import os
 import signal
@@ -68,19 +69,36 @@ def test_telemetry_logged_and_plotted(tmp_path, sim_factory):
         pytest.skip("SKIPPED: built without LCM (HV_WITH_LCM=OFF): no telemetry to log")
     plan = H.make_plan(tmp_path / "plan.json", stops=2, per_arm=2, seed=4)
     n = sum(len(s["left"]) + len(s["right"]) for s in plan["stops"])
-    sim_factory(FAULT_SCALE)
+    sim = sim_factory(FAULT_SCALE)
     url = "udpm://239.255.76.67:7667?ttl=0"
     logger = subprocess.Popen(
         [sys.executable, "-m", "harvest", "telemetry", "log", "--url", url, "--out",
          str(tmp_path / "run.lcmlog"), "--until-done", "--grace", "0.5", "--ready-file",
          str(tmp_path / "ready")],
         env=H.env(), cwd=H.SOURCE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    can_logger = H.start_can_logger(tmp_path / "bus.blf")
     assert H.wait_for(lambda: (tmp_path / "ready").exists(), 30)
     proc, summary = H.run_exec(tmp_path / "plan.json", tmp_path / "j.journal",
                                tmp_path / "summary.json", FAULT_SCALE, ["--lcm-url", url])
     assert proc.returncode == 0, proc.stderr
     out, err = logger.communicate(timeout=30)
     assert logger.returncode == 0, err
+    H.stop_can_logger(can_logger)
+    # the bus log, read back with the DBC: one cut command per fruit the simulator cut
+    cut = collections.Counter(node for node, _, _ in H.sim_picks(sim))
+    assert H.cut_commands(tmp_path / "bus.blf") == {"left_arm": cut["left_arm"],
+                                                   "right_arm": cut["right_arm"]}
+    # and python-can's player puts every frame of it back on the bus (now quiet)
+    import can
+    sim.stop()
+    assert H.replayed_frames(tmp_path / "bus.blf") == sum(1 for _ in can.LogReader(
+        str(tmp_path / "bus.blf")))
+    # the telemetry log as MCAP: every message, in order, typed by its channel's schema
+    r = subprocess.run([sys.executable, "-m", "harvest", "telemetry", "mcap",
+                        str(tmp_path / "run.lcmlog"), "--out", str(tmp_path / "run.mcap")],
+                       env=H.env(), cwd=H.SOURCE, capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert H.mcap_matches_log(tmp_path / "run.mcap", tmp_path / "run.lcmlog") > 0
     assert "HARVEST_ARM_LEFT" in out and "HARVEST_CAN_STATS" in out, out
     r = subprocess.run([sys.executable, "-m", "harvest", "telemetry", "summary",
                         str(tmp_path / "run.lcmlog")], env=H.env(), cwd=H.SOURCE,

@@ -295,7 +295,7 @@ static void test_kill_and_resume(void **state)
                 cur[fx->plan.picks[a->u.fe.pick].side] = a->u.fe.pick;
             if (a->kind == HV_ACT_EE) {
                 int side = a->node == HV_EXEC_LEFT ? 0 : 1;
-                if (a->u.ee.action == HV_EE_CUT) {
+                if (a->u.ee.action == HV_CAN_EE_ACTION_CUT) {
                     cuts[side][cur[side]]++; /* the fake cuts every cut it is sent */
                     held[side] = 1;
                 } else {

@@ -121,9 +121,9 @@ static void test_bad(void **state)
     expect("\"fruits_planned\": 3", "\"fruits_planned\": 4", HV_ERR_EXEC_PLAN_RANGE,
            "totals.fruits_planned");
     expect("\"y_m\": 1.2,", "\"y_m\": 1.2,,", HV_ERR_EXEC_PLAN_SYNTAX, "line 18");
-    expect("\"z\": 0.5,", "\"z\": 05,", HV_ERR_EXEC_PLAN_SYNTAX, "leading zero");
+    expect("\"z\": 0.5,", "\"z\": 05,", HV_ERR_EXEC_PLAN_SYNTAX, "invalid token");
     expect("\"unreachable\": []}", "\"unreachable\": []} x", HV_ERR_EXEC_PLAN_SYNTAX,
-           "trailing");
+           "end of file expected");
     expect("\"f.csv\"", "\"f\x01\"", HV_ERR_EXEC_PLAN_SYNTAX, "control character");
     expect("\"stops\": [", "\"stops\": 7, \"x\": [", HV_ERR_EXEC_PLAN_FIELD, "unknown field");
 }

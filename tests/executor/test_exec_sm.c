@@ -48,13 +48,13 @@ static void test_whole_row(void **state)
     assert_int_equal(fx->sm.picked, fx->plan.n_picks);
     assert_int_equal(fx->sm.failed + fx->sm.skipped + fx->sm.faults, 0);
     /* start-up: DISABLE, CLEAR_FAULT, ENABLE to all, then HOME to both arms */
-    int d = fx_find(fx, 0, HV_ACT_COMMAND, HV_CMD_DISABLE);
-    int c = fx_find(fx, 0, HV_ACT_COMMAND, HV_CMD_CLEAR_FAULT);
-    int e = fx_find(fx, 0, HV_ACT_COMMAND, HV_CMD_ENABLE);
-    int h = fx_find(fx, 0, HV_ACT_COMMAND, HV_CMD_HOME);
+    int d = fx_find(fx, 0, HV_ACT_COMMAND, HV_CAN_CMD_DISABLE);
+    int c = fx_find(fx, 0, HV_ACT_COMMAND, HV_CAN_CMD_CLEAR_FAULT);
+    int e = fx_find(fx, 0, HV_ACT_COMMAND, HV_CAN_CMD_ENABLE);
+    int h = fx_find(fx, 0, HV_ACT_COMMAND, HV_CAN_CMD_HOME);
     int m = fx_find(fx, 0, HV_ACT_MOVE, -1);
     assert_true(d >= 0 && d < c && c < e && e < h && h < m);
-    assert_int_equal(fx_count(fx, HV_ACT_COMMAND, HV_CMD_HOME), 2);
+    assert_int_equal(fx_count(fx, HV_ACT_COMMAND, HV_CAN_CMD_HOME), 2);
     /* sequence numbers continue after what the nodes echoed before we started */
     assert_int_equal(fx->log[d].a.u.cmd.seq, (fx->log[d].a.node + 1) * 7 + 1);
     assert_int_equal(fx->log[c].a.u.cmd.seq, (fx->log[c].a.node + 1) * 7 + 2);
@@ -69,7 +69,7 @@ static void test_whole_row(void **state)
     int last[2] = {-1, -1};
     for (int i = 0; i < fx->nlog; i++) {
         const hv_exec_action_t *a = &fx->log[i].a;
-        if (a->kind == HV_ACT_EE && a->u.ee.action == HV_EE_CUT) {
+        if (a->kind == HV_ACT_EE && a->u.ee.action == HV_CAN_EE_ACTION_CUT) {
             assert_true(i > 0);
             const hv_exec_action_t *prev = &fx->log[i - 1].a;
             assert_int_equal(prev->kind, HV_ACT_JOURNAL);
@@ -88,7 +88,7 @@ static void test_whole_row(void **state)
         assert_int_equal(fx->cuts_done[fx->plan.picks[p].side][p], 1);
     }
     /* the row ends with every node disabled (3 more DISABLEs than at start-up) */
-    assert_int_equal(fx_count(fx, HV_ACT_COMMAND, HV_CMD_DISABLE), 6);
+    assert_int_equal(fx_count(fx, HV_ACT_COMMAND, HV_CAN_CMD_DISABLE), 6);
     assert_true(hv_exec_executed_s(&fx->sm, fx->now_ns) > 0.0);
     assert_int_equal(fx_count(fx, HV_ACT_ESTOP, -1), 0);
     free(fx);
@@ -166,7 +166,7 @@ static void test_lost_heartbeat(void **state)
     assert_true(fx_find(fx, first, HV_ACT_MOVE, -1) < 0);
     assert_true(fx_count(fx, HV_ACT_ESTOP, -1) >= 10);
     int hb = fx_find(fx, first, HV_ACT_HEARTBEAT, -1);
-    assert_int_equal(fx->log[hb].a.u.hb.health, HV_HEALTH_ESTOP);
+    assert_int_equal(fx->log[hb].a.u.hb.health, HV_CAN_HEALTH_ESTOP);
     free(fx);
 }
 
@@ -213,12 +213,12 @@ static void test_joint_fault_retry(void **state)
     assert_int_equal(outcome_of(fx, 0, NULL, &attempt), HV_OUT_PICKED);
     assert_int_equal(attempt, 2);
     /* recovery: DISABLE, CLEAR_FAULT, ENABLE, HOME to the left arm, in that order */
-    int d = fx_find(fx, fx_find(fx, 0, HV_ACT_MOVE, -1), HV_ACT_COMMAND, HV_CMD_DISABLE);
+    int d = fx_find(fx, fx_find(fx, 0, HV_ACT_MOVE, -1), HV_ACT_COMMAND, HV_CAN_CMD_DISABLE);
     assert_true(d >= 0);
     assert_int_equal(fx->log[d].a.node, HV_EXEC_LEFT);
-    int cl = fx_find(fx, d, HV_ACT_COMMAND, HV_CMD_CLEAR_FAULT);
-    int en = fx_find(fx, cl, HV_ACT_COMMAND, HV_CMD_ENABLE);
-    int ho = fx_find(fx, en, HV_ACT_COMMAND, HV_CMD_HOME);
+    int cl = fx_find(fx, d, HV_ACT_COMMAND, HV_CAN_CMD_CLEAR_FAULT);
+    int en = fx_find(fx, cl, HV_ACT_COMMAND, HV_CAN_CMD_ENABLE);
+    int ho = fx_find(fx, en, HV_ACT_COMMAND, HV_CAN_CMD_HOME);
     assert_true(cl > d && en > cl && ho > en);
     assert_int_equal(fx->log[ho].a.node, HV_EXEC_LEFT);
     free(fx);
@@ -282,7 +282,7 @@ static void test_approach_timeout(void **state)
     assert_int_equal(reason, HV_RSN_TIMEOUT);
     /* the timeout came after the planned time / scale, not before */
     int sp = fx_find(fx, 0, HV_ACT_SETPOINT, -1);
-    int dis = fx_find(fx, sp, HV_ACT_COMMAND, HV_CMD_DISABLE);
+    int dis = fx_find(fx, sp, HV_ACT_COMMAND, HV_CAN_CMD_DISABLE);
     double waited = (double)(fx->log[dis].t_ns - fx->log[sp].t_ns) * 1e-9;
     double planned = fx->plan.picks[0].move_s / 10.0;
     assert_true(waited >= planned * (1.0 + fx->prm.margin));
@@ -366,7 +366,7 @@ static void test_recovery_fails(void **state)
         assert_int_equal(fx->sm.safe_reason, faults ? HV_SAFE_FAULT : HV_SAFE_TIMEOUT);
         assert_int_equal(fx->sm.safe_node, HV_EXEC_LEFT);
         /* the e-stop comes after the recovery's HOME; a fault stops before its deadline */
-        int home = fx_find(fx, fx_find(fx, 0, HV_ACT_MOVE, -1), HV_ACT_COMMAND, HV_CMD_HOME);
+        int home = fx_find(fx, fx_find(fx, 0, HV_ACT_MOVE, -1), HV_ACT_COMMAND, HV_CAN_CMD_HOME);
         int stop = fx_find(fx, home, HV_ACT_ESTOP, -1);
         assert_true(home >= 0 && stop > home);
         assert_true(faults == (fx->log[stop].t_ns < fx->sm.arm[0].deadline_ns));
@@ -473,12 +473,12 @@ static void test_estop_then_restarts(void **state)
     assert_true(e >= 0);
     assert_int_equal(fx->log[e].a.u.jr.nodes, HV_EXEC_ALL_NODES);
     assert_int_equal(fx_count(fx, HV_ACT_JOURNAL, HV_JR_ESTOP_CLEAR), 1);
-    int c = fx_find(fx, run3, HV_ACT_COMMAND, HV_CMD_CLEAR_ESTOP);
-    int f = fx_find(fx, run3, HV_ACT_COMMAND, HV_CMD_CLEAR_FAULT);
-    int en = fx_find(fx, run3, HV_ACT_COMMAND, HV_CMD_ENABLE);
-    int h = fx_find(fx, run3, HV_ACT_COMMAND, HV_CMD_HOME);
+    int c = fx_find(fx, run3, HV_ACT_COMMAND, HV_CAN_CMD_CLEAR_ESTOP);
+    int f = fx_find(fx, run3, HV_ACT_COMMAND, HV_CAN_CMD_CLEAR_FAULT);
+    int en = fx_find(fx, run3, HV_ACT_COMMAND, HV_CAN_CMD_ENABLE);
+    int h = fx_find(fx, run3, HV_ACT_COMMAND, HV_CAN_CMD_HOME);
     assert_true(e < c && c < f && f < en && en < h);
-    assert_int_equal(commands_from(fx, 0, HV_CMD_CLEAR_ESTOP), HV_EXEC_NODES);
+    assert_int_equal(commands_from(fx, 0, HV_CAN_CMD_CLEAR_ESTOP), HV_EXEC_NODES);
     for (int i = 0; i < HV_EXEC_NODES; i++)
         assert_int_equal(fx->estop_clears[i], 1);
     free(fx);
@@ -489,7 +489,7 @@ static void test_estop_then_restarts(void **state)
 typedef struct hand {
     fx_t *fx;
     hv_exec_actions_t out; /* the last step's actions */
-    int sent[HV_EXEC_NODES][HV_CMD_CLEAR_ESTOP + 1]; /* commands sent so far, by kind */
+    int sent[HV_EXEC_NODES][HV_CAN_CMD_CLEAR_ESTOP + 1]; /* commands sent so far, by kind */
     int seq[HV_EXEC_NODES];                          /* the last command's sequence number */
 } hand_t;
 
@@ -567,8 +567,8 @@ static void hand_clear(hand_t *h)
     h->fx = fx;
     for (int i = 0; i < HV_EXEC_NODES; i++) {
         int latched = i != HV_EXEC_VEHICLE;
-        hand_hb(h, i, latched ? HV_HEALTH_ESTOP : HV_HEALTH_OK);
-        hand_status(h, i, latched ? HV_NODE_ESTOP : HV_NODE_DISABLED, 40 + i, latched);
+        hand_hb(h, i, latched ? HV_CAN_HEALTH_ESTOP : HV_CAN_HEALTH_OK);
+        hand_status(h, i, latched ? HV_CAN_STATE_ESTOP : HV_CAN_STATE_DISABLED, 40 + i, latched);
         if (i != HV_EXEC_VEHICLE) {
             hv_exec_event_t ee;
             memset(&ee, 0, sizeof ee);
@@ -578,21 +578,21 @@ static void hand_clear(hand_t *h)
         }
     }
     assert_int_equal(fx->sm.phase, HV_PH_ENABLE);
-    assert_int_equal(hand_sent(h, HV_CMD_DISABLE), HV_EXEC_NODES);
+    assert_int_equal(hand_sent(h, HV_CAN_CMD_DISABLE), HV_EXEC_NODES);
     for (int i = 0; i < HV_EXEC_NODES; i++)
-        hand_status(h, i, i == HV_EXEC_VEHICLE ? HV_NODE_DISABLED : HV_NODE_ESTOP, h->seq[i],
-                    i != HV_EXEC_VEHICLE);
+        hand_status(h, i, i == HV_EXEC_VEHICLE ? HV_CAN_STATE_DISABLED : HV_CAN_STATE_ESTOP,
+                    h->seq[i], i != HV_EXEC_VEHICLE);
     /* the journal record first, in the same step as the clears, to the latched nodes only */
     assert_int_equal(h->out.a[0].kind, HV_ACT_JOURNAL);
     assert_int_equal(h->out.a[0].u.jr.kind, HV_JR_ESTOP_CLEAR);
     assert_int_equal(h->out.a[0].u.jr.nodes, (1u << HV_EXEC_LEFT) | (1u << HV_EXEC_RIGHT));
-    assert_int_equal(h->sent[HV_EXEC_VEHICLE][HV_CMD_CLEAR_ESTOP], 0);
-    assert_int_equal(h->sent[HV_EXEC_LEFT][HV_CMD_CLEAR_ESTOP], 1);
-    assert_int_equal(h->sent[HV_EXEC_RIGHT][HV_CMD_CLEAR_ESTOP], 1);
+    assert_int_equal(h->sent[HV_EXEC_VEHICLE][HV_CAN_CMD_CLEAR_ESTOP], 0);
+    assert_int_equal(h->sent[HV_EXEC_LEFT][HV_CAN_CMD_CLEAR_ESTOP], 1);
+    assert_int_equal(h->sent[HV_EXEC_RIGHT][HV_CAN_CMD_CLEAR_ESTOP], 1);
     /* a heartbeat already on its way when the clear went out: from before it */
-    hand_hb(h, HV_EXEC_RIGHT, HV_HEALTH_ESTOP);
+    hand_hb(h, HV_EXEC_RIGHT, HV_CAN_HEALTH_ESTOP);
     for (int i = HV_EXEC_LEFT; i <= HV_EXEC_RIGHT; i++)
-        hand_status(h, i, HV_NODE_DISABLED, h->seq[i], 0);
+        hand_status(h, i, HV_CAN_STATE_DISABLED, h->seq[i], 0);
 }
 
 static void test_stale_estop_reports_after_a_clear_do_not_count(void **state)
@@ -601,10 +601,10 @@ static void test_stale_estop_reports_after_a_clear_do_not_count(void **state)
     hand_t h;
     hand_clear(&h);
     /* every arm's last heartbeat says ESTOP, but it was sent before the arm's clear */
-    assert_int_equal(h.fx->sm.node[HV_EXEC_RIGHT].health, HV_HEALTH_ESTOP);
+    assert_int_equal(h.fx->sm.node[HV_EXEC_RIGHT].health, HV_CAN_HEALTH_ESTOP);
     hand_tick(&h);
     assert_int_equal(h.fx->sm.phase, HV_PH_ENABLE);
-    assert_int_equal(hand_sent(&h, HV_CMD_CLEAR_FAULT) + hand_sent(&h, HV_CMD_ENABLE), 0);
+    assert_int_equal(hand_sent(&h, HV_CAN_CMD_CLEAR_FAULT) + hand_sent(&h, HV_CAN_CMD_ENABLE), 0);
     free(h.fx);
 }
 
@@ -615,19 +615,19 @@ static void test_enable_waits_for_every_node_after_the_clear(void **state)
     hand_clear(&h);
     /* the arms speak after their clears; the vehicle (not latched) only by a heartbeat */
     for (int i = HV_EXEC_LEFT; i <= HV_EXEC_RIGHT; i++) {
-        hand_hb(&h, i, HV_HEALTH_OK);
-        hand_status(&h, i, HV_NODE_DISABLED, h.seq[i], 0);
+        hand_hb(&h, i, HV_CAN_HEALTH_OK);
+        hand_status(&h, i, HV_CAN_STATE_DISABLED, h.seq[i], 0);
     }
-    hand_hb(&h, HV_EXEC_VEHICLE, HV_HEALTH_OK);
+    hand_hb(&h, HV_EXEC_VEHICLE, HV_CAN_HEALTH_OK);
     hand_tick(&h);
-    assert_int_equal(hand_sent(&h, HV_CMD_CLEAR_FAULT) + hand_sent(&h, HV_CMD_ENABLE), 0);
+    assert_int_equal(hand_sent(&h, HV_CAN_CMD_CLEAR_FAULT) + hand_sent(&h, HV_CAN_CMD_ENABLE), 0);
     /* the vehicle's status after the clear: now every node is fresh */
-    hand_status(&h, HV_EXEC_VEHICLE, HV_NODE_DISABLED, h.seq[HV_EXEC_VEHICLE], 0);
-    assert_int_equal(hand_sent(&h, HV_CMD_CLEAR_FAULT), HV_EXEC_NODES);
-    assert_int_equal(hand_sent(&h, HV_CMD_ENABLE), 0);
+    hand_status(&h, HV_EXEC_VEHICLE, HV_CAN_STATE_DISABLED, h.seq[HV_EXEC_VEHICLE], 0);
+    assert_int_equal(hand_sent(&h, HV_CAN_CMD_CLEAR_FAULT), HV_EXEC_NODES);
+    assert_int_equal(hand_sent(&h, HV_CAN_CMD_ENABLE), 0);
     for (int i = 0; i < HV_EXEC_NODES; i++)
-        hand_status(&h, i, HV_NODE_DISABLED, h.seq[i], 0);
-    assert_int_equal(hand_sent(&h, HV_CMD_ENABLE), HV_EXEC_NODES);
+        hand_status(&h, i, HV_CAN_STATE_DISABLED, h.seq[i], 0);
+    assert_int_equal(hand_sent(&h, HV_CAN_CMD_ENABLE), HV_EXEC_NODES);
     assert_int_equal(h.fx->sm.phase, HV_PH_ENABLE);
     free(h.fx);
 }
@@ -637,17 +637,17 @@ static void test_estop_reported_after_the_clear_stops(void **state)
     (void)state;
     hand_t h;
     hand_clear(&h);
-    hand_hb(&h, HV_EXEC_LEFT, HV_HEALTH_OK);
-    hand_status(&h, HV_EXEC_LEFT, HV_NODE_DISABLED, h.seq[HV_EXEC_LEFT], 0);
+    hand_hb(&h, HV_EXEC_LEFT, HV_CAN_HEALTH_OK);
+    hand_status(&h, HV_EXEC_LEFT, HV_CAN_STATE_DISABLED, h.seq[HV_EXEC_LEFT], 0);
     /* the right arm's e-stop is still pressed: it latches again after the clear */
-    hand_hb(&h, HV_EXEC_RIGHT, HV_HEALTH_ESTOP);
+    hand_hb(&h, HV_EXEC_RIGHT, HV_CAN_HEALTH_ESTOP);
     assert_int_equal(h.fx->sm.phase, HV_PH_ENABLE); /* its status is not fresh yet */
-    hand_status(&h, HV_EXEC_RIGHT, HV_NODE_ESTOP, h.seq[HV_EXEC_RIGHT], 1);
+    hand_status(&h, HV_EXEC_RIGHT, HV_CAN_STATE_ESTOP, h.seq[HV_EXEC_RIGHT], 1);
     assert_int_equal(h.fx->sm.phase, HV_PH_SAFE);
     assert_int_equal(h.fx->sm.safe_reason, HV_SAFE_ESTOP);
     assert_int_equal(h.fx->sm.safe_node, HV_EXEC_RIGHT);
     assert_int_equal(h.out.a[0].kind, HV_ACT_ESTOP);
-    assert_int_equal(hand_sent(&h, HV_CMD_CLEAR_FAULT) + hand_sent(&h, HV_CMD_ENABLE), 0);
+    assert_int_equal(hand_sent(&h, HV_CAN_CMD_CLEAR_FAULT) + hand_sent(&h, HV_CAN_CMD_ENABLE), 0);
     free(h.fx);
 }
 

@@ -19,6 +19,9 @@ import lcm  # noqa: E402
 
 from harvest.telemetry import gantt, timeline  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import exec_hil as H  # noqa: E402
+
 SOURCE = os.environ.get("HV_SOURCE_DIR", os.getcwd())
 
 
@@ -123,3 +126,30 @@ def test_cli(tmp_path):
     r = subprocess.run([sys.executable, "-m", "harvest", "telemetry", "--help"],
                        capture_output=True, text=True, env=env())
     assert r.returncode == 0 and "gantt" in r.stdout
+
+
+def test_mcap_export(tmp_path):
+    _write_log(tmp_path / "t.lcmlog")
+    r = subprocess.run([sys.executable, "-m", "harvest", "telemetry", "mcap",
+                        str(tmp_path / "t.lcmlog"), "--out", str(tmp_path / "t.mcap")],
+                       capture_output=True, text=True, env=env())
+    assert r.returncode == 0, r.stderr
+    assert "HARVEST_EXEC_STATE 3, HARVEST_FRUIT 9, HARVEST_PLAN 1" in r.stdout
+    assert H.mcap_matches_log(tmp_path / "t.mcap", tmp_path / "t.lcmlog") == 13
+
+
+def test_lcm_schema_from_definitions(tmp_path):
+    from harvest.telemetry import lcm_schema
+
+    structs = lcm_schema.load()
+    assert set(structs) == set(lcm_types.TYPES)
+    plan = lcm_schema.json_schema(structs, "plan_t")
+    stop = plan["properties"]["stops"]["items"]
+    assert stop["title"] == "plan_stop_t"
+    assert stop["properties"]["arm_s"]["maxItems"] == 2
+    assert plan["properties"]["utime"]["type"] == "integer"
+    assert "microseconds" in plan["properties"]["utime"]["description"]
+    bad = tmp_path / "bad.lcm"
+    bad.write_text("package harvest;\nstruct x_t\n{\n    double a b;\n}\n")
+    with pytest.raises(ValueError, match="bad.lcm:4"):
+        lcm_schema.parse(str(bad))

@@ -4,9 +4,9 @@ import math
 
 import pytest
 
+from harvest.canbus.enums import Command, EeAction, EeState, Health, State
 from harvest.sim import arm as arm_mod
 from harvest.sim import faults
-from harvest.sim import node as node_mod
 from harvest.sim.arm import ArmNode
 from harvest.sim.clock import ScaledClock
 from harvest.sim.model import ConfigError, Model
@@ -156,97 +156,97 @@ def test_arm_state_machine_and_setpoint():
     a = ArmNode("left_arm", MODEL, log)
     a.on_setpoint(0.0, [0.3, 0.0, 1.4, 0.0], 1)
     assert a.setpoint_seq == 0 and log.of("setpoint")[-1]["accepted"] is False
-    a.on_command(0.0, node_mod.CMD_ENABLE, 1)
-    assert a.state == node_mod.IDLE and a.command_seq == 1
+    a.on_command(0.0, Command.ENABLE, 1)
+    assert a.state == State.IDLE and a.command_seq == 1
     q = [0.35, 0.5, 1.0, -0.5]
     a.on_setpoint(1.0, q, 2)
-    assert a.state == node_mod.MOVING and a.setpoint_seq == 2 and not a.target_reached
+    assert a.state == State.MOVING and a.setpoint_seq == 2 and not a.target_reached
     t_end = 1.0 + max(formula(b - x, j.vmax, j.amax) for x, b, j in zip(MODEL.home, q, MODEL.joints))
     assert a.next_event() == pytest.approx(t_end)
     a.update(t_end - 1e-6)
     assert not a.target_reached
     a.update(t_end + 5.0)
-    assert a.target_reached and a.state == node_mod.IDLE
+    assert a.target_reached and a.state == State.IDLE
     assert log.of("target_reached")[-1]["t"] == pytest.approx(t_end)
     assert a.positions(t_end + 5) == q
     # out of range: bit 11, not echoed, state kept
     a.on_setpoint(20.0, [0.3, 0.0, 3.0, 0.0], 3)
     assert a.fault_bits == 1 << arm_mod.BIT_REJECTED and a.setpoint_seq == 2
-    assert a.state == node_mod.IDLE and a.health() == node_mod.HEALTH_WARNING
+    assert a.state == State.IDLE and a.health() == Health.WARNING
 
 
 def test_arm_estop_brakes_and_latches():
     log = Log()
     a = ArmNode("right_arm", MODEL, log)
-    a.on_command(0.0, node_mod.CMD_ENABLE, 1)
+    a.on_command(0.0, Command.ENABLE, 1)
     a.on_setpoint(0.0, [0.45, 1.5, 0.2, 3.0], 1)
     a.update(3.0)
     _, v = a.axes[1].state(3.0)
     assert v > 0
     a.estop(3.0, "test")
-    assert a.state == node_mod.ESTOP and a.fault_bits == 1 << arm_mod.BIT_ESTOP
+    assert a.state == State.ESTOP and a.fault_bits == 1 << arm_mod.BIT_ESTOP
     stop = a.axes[1].t_end
     assert stop == pytest.approx(3.0 + v / MODEL.joints[1].amax)
     a.update(stop + 1)
     assert a.velocities(stop + 1) == [0.0] * 4 and not a.target_reached
-    a.on_command(stop + 1, node_mod.CMD_ENABLE, 2)
-    assert a.state == node_mod.ESTOP and a.command_seq == 1
-    a.on_command(stop + 1, node_mod.CMD_CLEAR_FAULT, 3)   # never releases an e-stop
-    assert a.state == node_mod.ESTOP and a.command_seq == 1
-    a.on_command(stop + 1, node_mod.CMD_CLEAR_ESTOP, 4)
-    assert a.state == node_mod.DISABLED and a.fault_bits == 0 and a.command_seq == 4
+    a.on_command(stop + 1, Command.ENABLE, 2)
+    assert a.state == State.ESTOP and a.command_seq == 1
+    a.on_command(stop + 1, Command.CLEAR_FAULT, 3)   # never releases an e-stop
+    assert a.state == State.ESTOP and a.command_seq == 1
+    a.on_command(stop + 1, Command.CLEAR_ESTOP, 4)
+    assert a.state == State.DISABLED and a.fault_bits == 0 and a.command_seq == 4
 
 
 def test_clear_estop_leaves_an_older_fault_latched():
     log = Log()
     v = VehicleNode(MODEL, log)
-    v.on_command(0.0, node_mod.CMD_ENABLE, 1)
+    v.on_command(0.0, Command.ENABLE, 1)
     v.comm_timeout(1.0)
     v.estop(2.0, "test")
-    assert v.state == node_mod.ESTOP and v.health() == node_mod.HEALTH_ESTOP
-    v.on_command(3.0, node_mod.CMD_CLEAR_ESTOP, 2)
-    assert v.state == node_mod.FAULT and v.fault_bits == 1 << 3   # the comm timeout
-    assert v.health() == node_mod.HEALTH_FAULT
-    v.on_command(3.0, node_mod.CMD_CLEAR_FAULT, 3)
-    assert v.state == node_mod.DISABLED and v.fault_bits == 0 and v.command_seq == 3
+    assert v.state == State.ESTOP and v.health() == Health.ESTOP
+    v.on_command(3.0, Command.CLEAR_ESTOP, 2)
+    assert v.state == State.FAULT and v.fault_bits == 1 << 3   # the comm timeout
+    assert v.health() == Health.FAULT
+    v.on_command(3.0, Command.CLEAR_FAULT, 3)
+    assert v.state == State.DISABLED and v.fault_bits == 0 and v.command_seq == 3
 
 
 def test_injected_estop_after_the_kth_pick_keeps_the_fruit():
     log = Log()
     a = ArmNode("left_arm", MODEL, log, faults=[faults.parse_flag("estop:node=left_arm,pick=2")],
                 cut_s=1.0, release_s=0.5)
-    a.on_command(0.0, node_mod.CMD_ENABLE, 1)
+    a.on_command(0.0, Command.ENABLE, 1)
     t = 0.0
     for k in range(2):
-        a.on_ee(t, arm_mod.ACT_CUT, 2 * k)
+        a.on_ee(t, EeAction.CUT, 2 * k)
         a.update(t + 1.0)
-        assert a.state == (node_mod.IDLE if k == 0 else node_mod.ESTOP)
+        assert a.state == (State.IDLE if k == 0 else State.ESTOP)
         if k == 0:
-            a.on_ee(t + 1.0, arm_mod.ACT_RELEASE, 2 * k + 1)
+            a.on_ee(t + 1.0, EeAction.RELEASE, 2 * k + 1)
             a.update(t + 1.5)
         t += 2.0
-    assert a.picks == 2 and a.fruit_held and a.ee_state == arm_mod.EE_DONE
+    assert a.picks == 2 and a.fruit_held and a.ee_state == EeState.DONE
     assert [e["pick"] for e in log.of("fault_injected")] == [2]
-    a.on_command(t, node_mod.CMD_CLEAR_ESTOP, 2)
-    assert a.state == node_mod.DISABLED and a.fruit_held
+    a.on_command(t, Command.CLEAR_ESTOP, 2)
+    assert a.state == State.DISABLED and a.fruit_held
 
 
 def test_injected_joint_fault_during_the_nth_homing():
     log = Log()
     a = ArmNode("right_arm", MODEL, log, start=[0.05, 0.6, 0.3, -1.0],
                 faults=[faults.parse_flag("joint_fault:node=right_arm,joint=1,home=2,at=0.5")])
-    a.on_command(0.0, node_mod.CMD_ENABLE, 1)
-    a.on_command(0.0, node_mod.CMD_HOME, 2)
+    a.on_command(0.0, Command.ENABLE, 1)
+    a.on_command(0.0, Command.HOME, 2)
     first = a.next_event()
     a.update(first)
-    assert a.homed and a.state == node_mod.IDLE           # the first homing is untouched
+    assert a.homed and a.state == State.IDLE           # the first homing is untouched
     a.on_setpoint(first, [0.05, 0.6, 0.3, -1.0], 1)
     a.update(100.0)
-    a.on_command(100.0, node_mod.CMD_HOME, 3)
+    a.on_command(100.0, Command.HOME, 3)
     due = a.next_event()
     assert due == pytest.approx(100.0 + 0.5 * (a.motion["t_end"] - 100.0))
     a.update(due)
-    assert a.state == node_mod.FAULT and a.fault_bits == 1 << arm_mod.BIT_FOLLOWING
+    assert a.state == State.FAULT and a.fault_bits == 1 << arm_mod.BIT_FOLLOWING
     assert a.motion is None and [e["joint"] for e in log.of("fault_injected")] == [1]
 
 
@@ -254,21 +254,21 @@ def test_end_effector_cut_counts_picks():
     log = Log()
     a = ArmNode("left_arm", MODEL, log, cut_s=1.5, release_s=0.5,
                 vehicle_position=lambda t: 0.7)
-    a.on_command(0.0, node_mod.CMD_ENABLE, 1)
-    a.on_ee(1.0, arm_mod.ACT_CUT, 5)
-    assert a.ee_state == arm_mod.EE_BUSY and a.next_event() == pytest.approx(2.5)
+    a.on_command(0.0, Command.ENABLE, 1)
+    a.on_ee(1.0, EeAction.CUT, 5)
+    assert a.ee_state == EeState.BUSY and a.next_event() == pytest.approx(2.5)
     a.update(3.0)
-    assert a.ee_state == arm_mod.EE_DONE and a.fruit_held and a.picks == 1
+    assert a.ee_state == EeState.DONE and a.fruit_held and a.picks == 1
     pick = log.of("pick")[0]
     assert pick["t"] == pytest.approx(2.5) and pick["vehicle_position"] == 0.7
-    a.on_ee(3.0, arm_mod.ACT_CUT, 6)      # still holding one
-    assert a.ee_state == arm_mod.EE_FAILED and a.picks == 1
+    a.on_ee(3.0, EeAction.CUT, 6)      # still holding one
+    assert a.ee_state == EeState.FAILED and a.picks == 1
 
 
 def test_vehicle_move_and_limits():
     log = Log()
     v = VehicleNode(MODEL, log, travel=(0.0, 2.0))
-    v.on_command(0.0, node_mod.CMD_ENABLE, 1)
+    v.on_command(0.0, Command.ENABLE, 1)
     v.on_move(0.0, 2.0, 0.0, 1)
     assert v.next_event() == pytest.approx(formula(2.0, MODEL.vehicle_speed, MODEL.vehicle_accel))
     v.update(100.0)

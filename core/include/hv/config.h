@@ -61,6 +61,10 @@ typedef struct hv_config {
                                   stopping: hv_config_stop_time_s); 0 in the paper's (G one
                                   way home -> fruit, tau = vehicle.stop_penalty) */
 
+    /* online mode: the camera's view along the row, relative to the vehicle's position */
+    double camera_lead_m;      /* camera.lead: near edge of the view ahead of the vehicle (m) */
+    double camera_window_m;    /* camera.window: length of the view along the row (m, > 0) */
+
     /* grids */
     double grid_step_m;        /* grid.step: stops and x, y, z of the cost table */
     double grid_yaw_step_rad;  /* grid.yaw_step_deg */

@@ -106,6 +106,9 @@ static int key_index(const msgpack_object *key)
     return -1;
 }
 
+/* The largest timestamp (s since the epoch) whose ns fit hv_can_frame_t.timestamp_ns. */
+#define WIRE_MAX_TIMESTAMP_S 9.2e9
+
 typedef struct wire_fields {
     double timestamp_s;
     uint64_t id;
@@ -143,7 +146,9 @@ static int take_field(int k, const msgpack_object *v, wire_fields_t *f)
             f->timestamp_s = (double)v->via.u64;
         else
             return -1;
-        return (isfinite(f->timestamp_s) && f->timestamp_s >= 0.0) ? 0 : -1;
+        /* the frame keeps int64 ns: a later time (past 2262) would overflow it */
+        return (isfinite(f->timestamp_s) && f->timestamp_s >= 0.0 &&
+                f->timestamp_s < WIRE_MAX_TIMESTAMP_S) ? 0 : -1;
     case K_ID: return get_uint(v, &f->id);
     case K_EXT: return get_bool(v, &f->ext);
     case K_RTR: return get_bool(v, &f->rtr);

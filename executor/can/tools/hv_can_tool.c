@@ -3,6 +3,7 @@
  * it against python-can; it is also handy on a real bus. Run with --help. */
 #define _GNU_SOURCE /* SO_RCVBUFFORCE */
 #include <errno.h>
+#include <getopt.h>
 #include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -94,8 +95,68 @@ static int parse_long(const char *s, long *out)
     return 0;
 }
 
+/* The filter ID:MASK (hex) into the next free filter. */
+static int parse_filter(const char *v, opts_t *o)
+{
+    char buf[32];
+    if (o->n_filters == HV_CAN_MAX_FILTERS || strlen(v) >= sizeof buf)
+        return -1;
+    strcpy(buf, v);
+    char *colon = strchr(buf, ':');
+    if (!colon)
+        return -1;
+    *colon = '\0';
+    hv_can_filter_t *f = &o->filters[o->n_filters];
+    if (parse_hex_u32(buf, &f->id) || parse_hex_u32(colon + 1, &f->mask))
+        return -1;
+    f->ext = (strlen(buf) > 3 || f->id > HV_CAN_SFF_MASK) ? 1 : 0;
+    o->n_filters++;
+    return 0;
+}
+
+enum { OPT_BUS = 256, OPT_COUNT, OPT_TIMEOUT, OPT_WINDOW, OPT_RCVBUF, OPT_ID, OPT_REPLY_ID,
+       OPT_OFFSET, OPT_FILTER, OPT_QUIET };
+
+/* One option's value into `o`; -1 when it is out of range or malformed. */
+static int apply_option(int opt, const char *v, opts_t *o)
+{
+    long n;
+    switch (opt) {
+    case OPT_BUS: o->bus_spec = v; return 0;
+    case OPT_QUIET: o->quiet = 1; return 0;
+    case OPT_COUNT: return (parse_long(v, &o->count) || o->count < 0) ? -1 : 0;
+    case OPT_TIMEOUT:
+        if (parse_long(v, &n) || n < -1 || n > 86400000)
+            return -1;
+        o->timeout_ms = (int)n;
+        return 0;
+    case OPT_WINDOW: return (parse_long(v, &o->window) || o->window < 1 || o->window > 1024) ? -1 : 0;
+    case OPT_RCVBUF: return (parse_long(v, &o->rcvbuf) || o->rcvbuf < 0 || o->rcvbuf > (1l << 30)) ? -1 : 0;
+    case OPT_ID: return (parse_hex_u32(v, &o->id) || o->id > HV_CAN_SFF_MASK) ? -1 : 0;
+    case OPT_REPLY_ID: return (parse_hex_u32(v, &o->reply_id) || o->reply_id > HV_CAN_SFF_MASK) ? -1 : 0;
+    case OPT_OFFSET: return (parse_hex_u32(v, &o->offset) || o->offset > HV_CAN_SFF_MASK) ? -1 : 0;
+    case OPT_FILTER: return parse_filter(v, o);
+    default: return -1;
+    }
+}
+
+/* getopt_long: options anywhere (--opt value or --opt=value), then COMMAND and its frames. */
 static int parse_args(int argc, char **argv, opts_t *o)
 {
+    static const struct option longopts[] = {
+        {"bus", required_argument, NULL, OPT_BUS},
+        {"count", required_argument, NULL, OPT_COUNT},
+        {"timeout-ms", required_argument, NULL, OPT_TIMEOUT},
+        {"window", required_argument, NULL, OPT_WINDOW},
+        {"rcvbuf", required_argument, NULL, OPT_RCVBUF},
+        {"id", required_argument, NULL, OPT_ID},
+        {"reply-id", required_argument, NULL, OPT_REPLY_ID},
+        {"offset", required_argument, NULL, OPT_OFFSET},
+        {"filter", required_argument, NULL, OPT_FILTER},
+        {"quiet", no_argument, NULL, OPT_QUIET},
+        {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0},
+    };
     memset(o, 0, sizeof *o);
     o->bus_spec = "udp";
     o->timeout_ms = 2000;
@@ -103,90 +164,33 @@ static int parse_args(int argc, char **argv, opts_t *o)
     o->reply_id = 0x7F1;
     o->offset = 1;
     o->window = 1;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = (i + 1 < argc) ? argv[i + 1] : NULL;
-        long n;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+    opterr = 0; /* our own messages, naming the option */
+    int opt, idx = -1;
+    while ((opt = getopt_long(argc, argv, "h", longopts, &idx)) != -1) {
+        if (opt == 'h') {
             fputs(usage, stdout);
             exit(0);
-        } else if (!strcmp(a, "--quiet")) {
-            o->quiet = 1;
-        } else if (a[0] == '-' && a[1] == '-' && !v) {
-            fprintf(stderr, "hv-can-tool: option %s needs a value\n", a);
-            return -1;
-        } else if (!strcmp(a, "--bus")) {
-            o->bus_spec = argv[++i];
-        } else if (!strcmp(a, "--count")) {
-            if (parse_long(v, &o->count) || o->count < 0)
-                goto bad;
-            i++;
-        } else if (!strcmp(a, "--timeout-ms")) {
-            if (parse_long(v, &n) || n < -1 || n > 86400000)
-                goto bad;
-            o->timeout_ms = (int)n;
-            i++;
-        } else if (!strcmp(a, "--window")) {
-            if (parse_long(v, &o->window) || o->window < 1 || o->window > 1024)
-                goto bad;
-            i++;
-        } else if (!strcmp(a, "--rcvbuf")) {
-            if (parse_long(v, &o->rcvbuf) || o->rcvbuf < 0 || o->rcvbuf > (1l << 30))
-                goto bad;
-            i++;
-        } else if (!strcmp(a, "--id")) {
-            if (parse_hex_u32(v, &o->id) || o->id > HV_CAN_SFF_MASK)
-                goto bad;
-            i++;
-        } else if (!strcmp(a, "--reply-id")) {
-            if (parse_hex_u32(v, &o->reply_id) || o->reply_id > HV_CAN_SFF_MASK)
-                goto bad;
-            i++;
-        } else if (!strcmp(a, "--offset")) {
-            if (parse_hex_u32(v, &o->offset) || o->offset > HV_CAN_SFF_MASK)
-                goto bad;
-            i++;
-        } else if (!strcmp(a, "--filter")) {
-            char buf[32];
-            char *colon;
-            if (o->n_filters == HV_CAN_MAX_FILTERS || strlen(v) >= sizeof buf)
-                goto bad;
-            strcpy(buf, v);
-            colon = strchr(buf, ':');
-            if (!colon)
-                goto bad;
-            *colon = '\0';
-            hv_can_filter_t *f = &o->filters[o->n_filters];
-            if (parse_hex_u32(buf, &f->id) || parse_hex_u32(colon + 1, &f->mask))
-                goto bad;
-            f->ext = (strlen(buf) > 3 || f->id > HV_CAN_SFF_MASK) ? 1 : 0;
-            o->n_filters++;
-            i++;
-        } else if (a[0] == '-' && a[1] == '-') {
-            fprintf(stderr, "hv-can-tool: unknown option %s (see --help)\n", a);
-            return -1;
-        } else if (!o->command) {
-            o->command = a;
-            o->args = argv + i + 1;
-            /* the rest are frames for `send` */
-            o->n_args = 0;
-            while (i + 1 < argc && argv[i + 1][0] != '-') {
-                i++;
-                o->n_args++;
-            }
-        } else {
-            fprintf(stderr, "hv-can-tool: unexpected argument '%s'\n", a);
+        }
+        if (opt == '?' || opt == ':') {
+            const char *bad = argv[optind - 1];
+            if (optopt != 0 && optopt != '?')
+                fprintf(stderr, "hv-can-tool: option %s needs a value\n", bad);
+            else
+                fprintf(stderr, "hv-can-tool: unknown option %s (see --help)\n", bad);
             return -1;
         }
-        continue;
-    bad:
-        fprintf(stderr, "hv-can-tool: bad value '%s' for %s\n", v, a);
-        return -1;
+        if (apply_option(opt, optarg, o)) {
+            fprintf(stderr, "hv-can-tool: bad value '%s' for --%s\n", optarg, longopts[idx].name);
+            return -1;
+        }
     }
-    if (!o->command) {
+    if (optind >= argc) {
         fputs(usage, stderr);
         return -1;
     }
+    o->command = argv[optind];
+    o->args = argv + optind + 1;
+    o->n_args = argc - optind - 1;
     return 0;
 }
 

@@ -1,6 +1,7 @@
 /* The harvest journal: an append-only text file that survives a crash (DESIGN §7).
  *
- * One record per line, each ending in " *" + the CRC-32 (hex) of the text before it:
+ * One record per line, each ending in " *" + the CRC-32 of the text before it (exactly 8
+ * lowercase hex digits, as "%08x"):
  *   HVJ 1 plan=<crc32 of the plan's stops and picks> picks=<n> stops=<n>   (first line)
  *   S <stop> t=<s>                      stop reached (position in the plan's stop list)
  *   C <L|R> <fruit id> a=<attempt> t=<s>     cut issued

@@ -11,6 +11,7 @@
 
 #include "hv/can_bus.h"
 #include "hv/exec_can.h"
+#include "hv/exec_feed.h"
 #include "hv/exec_journal.h"
 #include "hv/exec_sm.h"
 #include "hv/exec_telemetry.h"
@@ -39,6 +40,7 @@ typedef struct hv_exec_loop {
                                         NULL: an e-stop clear then fails like a journal write */
     double tick_s;                   /* timer tick (s, real), default 0.01 */
     double linger_s;                 /* keep running after the end (e-stop repeats), s */
+    hv_exec_feed_t *feed;            /* online: the planner's stops, or NULL */
     /* private */
     hv_exec_can_tx_t tx;
     hv_exec_arm_sample_t samples[2];

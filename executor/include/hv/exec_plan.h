@@ -30,10 +30,10 @@ extern "C" {
 
 /* Capacities of the tables; a build may set smaller ones for all its code (firmware/). */
 #ifndef HV_EXEC_MAX_STOPS
-#define HV_EXEC_MAX_STOPS 256u
+#define HV_EXEC_MAX_STOPS 1024u /* a 50 m row at the paper's densities takes ~600 */
 #endif
 #ifndef HV_EXEC_MAX_PICKS
-#define HV_EXEC_MAX_PICKS 1024u /* both arms together */
+#define HV_EXEC_MAX_PICKS 4096u /* both arms together */
 #endif
 #define HV_EXEC_ID_LEN 32u       /* fruit id incl. its NUL */
 
@@ -100,6 +100,15 @@ hv_status_t hv_exec_plan_prepare(hv_exec_plan_t *plan, const hv_arm_t arm[2],
  * end. */
 double hv_exec_course_start(const hv_exec_plan_t *plan);
 double hv_exec_course_end(const hv_exec_plan_t *plan);
+
+/* Online: append one stop at y_m (candidate index plan_index) after the last one, with
+ * its picks (left ones first: n_left, then n_right; id, pose, cost_s and start_s are
+ * taken, their stop is set). Stops already there never change. Refused: a stop behind the
+ * last one or off the course, or a fruit already in the plan (HV_ERR_EXEC_PLAN_RANGE, the
+ * plan unchanged), the tables full (HV_ERR_EXEC_PLAN_CAPACITY). Run
+ * hv_exec_plan_prepare() afterwards. */
+hv_status_t hv_exec_plan_append(hv_exec_plan_t *plan, uint32_t plan_index, double y_m,
+                                const hv_exec_pick_t *picks, uint16_t n_left, uint16_t n_right);
 
 /* Index of a pick by (side, id); -1 when the plan has no such pick. */
 int hv_exec_plan_find(const hv_exec_plan_t *plan, hv_side_t side, const char *id);

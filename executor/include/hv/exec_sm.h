@@ -49,6 +49,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "hv/can_enums.h"
 #include "hv/exec_outcome.h"
 #include "hv/exec_plan.h"
 #include "hv/status.h"
@@ -64,14 +65,9 @@ enum { HV_EXEC_VEHICLE = 0, HV_EXEC_LEFT = 1, HV_EXEC_RIGHT = 2, HV_EXEC_NODES =
 /* a set of them: 1 << HV_EXEC_* */
 #define HV_EXEC_ALL_NODES ((1u << HV_EXEC_NODES) - 1u)
 
-/* Node commands, states and end-effector values: as in the DBC's value tables. */
-enum { HV_CMD_NONE = 0, HV_CMD_ENABLE = 1, HV_CMD_DISABLE = 2, HV_CMD_HOME = 3,
-       HV_CMD_ESTOP = 4, HV_CMD_CLEAR_FAULT = 5, HV_CMD_CLEAR_ESTOP = 6 };
-enum { HV_NODE_DISABLED = 0, HV_NODE_IDLE = 1, HV_NODE_HOMING = 2, HV_NODE_MOVING = 3,
-       HV_NODE_FAULT = 4, HV_NODE_ESTOP = 5 };
-enum { HV_HEALTH_OK = 0, HV_HEALTH_WARNING = 1, HV_HEALTH_FAULT = 2, HV_HEALTH_ESTOP = 3 };
-enum { HV_EE_NONE = 0, HV_EE_CUT = 1, HV_EE_RELEASE = 2 };
-enum { HV_EE_IDLE = 0, HV_EE_BUSY = 1, HV_EE_DONE = 2, HV_EE_FAILED = 3, HV_EE_FAULTED = 4 };
+/* Node commands, states, health and end-effector values (HV_CAN_CMD_*, HV_CAN_STATE_*,
+ * HV_CAN_HEALTH_*, HV_CAN_EE_ACTION_*, HV_CAN_EE_STATE_*) are hv/can_enums.h, generated
+ * from the DBC's value tables by the build. */
 
 /* Arm FaultBits (DBC) */
 #define HV_ARM_FAULT_JOINTS 0x00FFu   /* bits 0..7: joint limit, following error (stall) */
@@ -94,6 +90,7 @@ typedef enum hv_exec_phase {
     HV_PH_FINAL_DRIVE,
     HV_PH_ROW_DONE,
     HV_PH_SAFE,
+    HV_PH_WAIT_PLAN,   /* online: every committed stop done, waiting for the planner's next */
     HV_PH_COUNT
 } hv_exec_phase_t;
 
@@ -153,6 +150,8 @@ typedef struct hv_exec_params {
                                    (> 0; several status periods, so a status was missed) */
     int clear_estop;            /* 1: an operator cleared the e-stop for this run: a latch
                                    found at start-up is released; 0: it keeps us in SAFE */
+    int online;                 /* 1: the plan grows while the row runs (HV_EV_PLAN_GROWN)
+                                   until an event says it is final; 0: the plan is whole */
 } hv_exec_params_t;
 
 /* Defaults: margin 0.5, slack 1 s, latency 0.3 s, heartbeat 0.5 s / 0.1 s, start-up 10 s,
@@ -171,7 +170,8 @@ typedef enum hv_exec_event_kind {
     HV_EV_ARM_STATUS,
     HV_EV_EE_STATUS,
     HV_EV_STOP_REQUEST,   /* operator: stop now (SIGINT/SIGTERM) */
-    HV_EV_JOURNAL_FAILED  /* the program could not write a journal record */
+    HV_EV_JOURNAL_FAILED, /* the program could not write a journal record */
+    HV_EV_PLAN_GROWN      /* online: the program appended stops to the plan (u.plan) */
 } hv_exec_event_kind_t;
 
 typedef struct hv_exec_event {
@@ -184,6 +184,9 @@ typedef struct hv_exec_event {
         struct { int state; int reached; int homed; int sp_seq; int cmd_seq;
                  int fault_bits; } arm;
         struct { int state; int action; int ee_seq; int fruit_held; } ee;
+        /* final: no stop will follow; advance_m: the planner has committed the course up
+         * to here, so the vehicle may drive this far when no stop with work is ahead */
+        struct { int final; double advance_m; } plan;
     } u;
 } hv_exec_event_t;
 
@@ -293,6 +296,15 @@ typedef struct hv_exec_sm {
     unsigned faults;           /* recoverable arm faults seen in this run */
     unsigned resends;          /* frames sent again for want of an acknowledgement */
     int started;               /* first step done */
+    /* online (params.online) */
+    int plan_final;            /* the planner said no stop will follow */
+    double advance_m;          /* the course is committed up to here (m) */
+    int advancing;             /* WAIT_PLAN: a move to advance_m is under way */
+    uint64_t wait_from_ns;     /* WAIT_PLAN entered */
+    int wait_first;            /* this wait came before the row started */
+    uint64_t wait_first_ns;    /* real time waited for the first stop (before the row) */
+    uint64_t wait_row_ns;      /* real time waited for the planner once the row started */
+    unsigned waits;            /* times the vehicle waited for the planner in the row */
 } hv_exec_sm_t;
 
 /* Set up for `plan` (prepared) with `params`; `progress` from the journal, or NULL for a
@@ -308,6 +320,11 @@ hv_status_t hv_exec_step(hv_exec_sm_t *sm, const hv_exec_event_t *ev, uint64_t n
 
 /* Plan time (s) elapsed between the first move and row done (or now when not done). */
 double hv_exec_executed_s(const hv_exec_sm_t *sm, uint64_t now_ns);
+
+/* Online: plan time (s) the vehicle waited for the planner before its first stop (*first_s)
+ * and once the row had started (*row_s), the current wait included. */
+void hv_exec_plan_wait_s(const hv_exec_sm_t *sm, uint64_t now_ns, double *first_s,
+                         double *row_s);
 
 /* 1 once the run ended (ROW_DONE or SAFE). */
 int hv_exec_finished(const hv_exec_sm_t *sm);

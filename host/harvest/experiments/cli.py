@@ -1,10 +1,16 @@
 """`python -m harvest experiments`: the paper's comparison in one command.
 
   run       plan every (alpha, seed, method) with the planner CLI -> OUT/results.csv
+  cost-models
+            plan the same instances in the other cost model -> OUT/pick_cycle_<0|1>/
+            (the dual-arm / single-arm ratio and the gain over FOV in both)
+  fov-width plan FOV again at each --fov-widths on the same instances, in each cost model
+            planned -> OUT/fov_width/, OUT/pick_cycle_<0|1>/fov_width/ (the MILP's gain
+            over FOV as a function of FOV's window width)
   plots     box plots (stops, throughput, runtime) and a top view of one plan
   analysis  the cost-G and coverage figures from cost tables made by costgen
   report    OUT/report.md: our numbers beside each claim of the paper
-  all       run, plots, analysis and report (the default)
+  all       run, cost-models, fov-width, plots, analysis and report (the default)
 """
 import argparse
 import json
@@ -15,13 +21,14 @@ import sys
 
 from ..scenario import fruit_map
 from ..scenario.config import Config, ConfigError, Row, default_config_path
-from . import analysis_tables, box_plots, cost_analysis, cost_table, plan_file, plan_view, report
+from . import (analysis_tables, box_plots, cost_analysis, cost_models, cost_table, plan_file,
+               plan_view, report, sensitivity)
 from . import results as results_mod
 from .binaries import COSTGEN, PLANNER, MissingProgram, find
 from .runner import (METHODS, PAPER_ALPHAS, PAPER_SEEDS, QUICK_ALPHAS, QUICK_SEEDS, RunError,
                      Settings, run)
 
-STEPS = ("run", "plots", "analysis", "report", "all")
+STEPS = ("run", "cost-models", "fov-width", "plots", "analysis", "report", "all")
 
 
 def build_parser():
@@ -52,6 +59,9 @@ def build_parser():
                    help="planner --time-limit in s (default: the planner's own)")
     p.add_argument("--fov-width", type=float, default=None,
                    help="planner --fov-width in m (default: the planner's own)")
+    p.add_argument("--fov-widths", default=",".join(f"{w:g}" for w in sensitivity.DEFAULT_WIDTHS_M),
+                   help="fov-width step: FOV window widths in m, comma-separated "
+                        "(default: %(default)s)")
     p.add_argument("--jobs", type=int, default=1,
                    help="planners run at once (default 1: the MILP runtime is benchmarked)")
     p.add_argument("--distribution", choices=("uniform", "clustered", "gradient"),
@@ -93,6 +103,10 @@ def _settings(args, need_planner):
         raise RunError("--jobs must be >= 1")
     if args.time_limit is not None and not args.time_limit > 0:
         raise RunError("--time-limit must be > 0")
+    try:
+        sensitivity.parse_widths(args.fov_widths)
+    except ValueError as e:
+        raise RunError(str(e)) from None
     planner = find(PLANNER, args.planner, args.build_dir) if need_planner else ""
     costgen = find(COSTGEN, args.costgen, args.build_dir) if need_planner else ""
     return Settings(config=os.path.abspath(args.config), out_dir=os.path.abspath(args.out),
@@ -121,11 +135,19 @@ def _pick_plan(out, rows):
     return min(cands, key=lambda r: (abs(r["alpha"] - 1.0), r["seed"]))
 
 
+def _width_tables(out):
+    """{pick_cycle: gain by FOV width} of each cost model planned and swept."""
+    return {pc: sensitivity.gain_by_width(results_mod.read(os.path.join(d, "results.csv")),
+                                          sensitivity.load(d))
+            for pc, d in cost_models.dirs(out).items()}
+
+
 def do_plots(args):
     out = os.path.abspath(args.out)
     rows = _rows(out)
     fig_dir = os.path.join(out, "figures")
     paths = box_plots.write_all(rows, fig_dir)
+    paths += sensitivity.figure(_width_tables(out), fig_dir, _run_info(out).get("fov_width_m"))
     r = _pick_plan(out, rows)
     if r is not None:
         # the plan's own fruit map and config, wherever they were when it was planned
@@ -187,19 +209,25 @@ def do_report(args, s):
     rows = _rows(out)
     fig_dir = os.path.join(out, "figures")
     figures = {}
-    captions = {"boxplot_stops": "Number of stops by alpha and method",
-                "boxplot_throughput": "Throughput by alpha and method",
-                "boxplot_runtime": "Planner runtime by alpha and method",
-                "plan_top_view": "Top view of one plan: fruits, stops, arms, busy and idle time",
-                "cost_G_joint3": "Cost G with joint 3 unlimited and limited",
-                "coverage_pick_modes": "Coverage per pick mode; single-sided coverage"}
+    info = _run_info(out)
+    pick_cycle = bool(info.get("pick_cycle"))
+    costs = f" (costs: {report.cost_model_text(pick_cycle)})"
+    table_costs = " (costs: none, the cost table's G = t(home -> fruit) itself)"
+    captions = {"boxplot_stops": "Number of stops by alpha and method" + costs,
+                "boxplot_throughput": "Throughput by alpha and method" + costs,
+                "boxplot_runtime": "Planner runtime by alpha and method" + costs,
+                sensitivity.FIGURE_STEM: "MILP throughput gain over FOV by FOV window width"
+                                         " (costs: per curve, plan.pick_cycle = 0 the paper's, "
+                                         "= 1 the robot's pick cycle)",
+                "plan_top_view": "Top view of one plan: fruits, stops, arms, busy and idle time" + costs,
+                "cost_G_joint3": "Cost G with joint 3 unlimited and limited" + table_costs,
+                "coverage_pick_modes": "Coverage per pick mode; single-sided coverage" + table_costs}
     for stem, cap in captions.items():
         p = os.path.join(fig_dir, stem + ".png")
         if os.path.exists(p):
             figures[cap] = p
     tl = "the planner's default"
     build = ""
-    info = _run_info(out)
     if info:
         if info.get("time_limit_s") is not None:
             tl = f"{info['time_limit_s']:g} s"
@@ -219,11 +247,8 @@ def do_report(args, s):
            "(row.stops_beyond_ends = 1)" if info.get("stops_beyond_ends") else
            "the paper's candidate stops (N = 201 on a 2 m row): stop p is the vehicle at "
            "y = p x grid.step along the row, its arm bases half mount.base_spacing ahead of "
-           "and behind it (row.stops_beyond_ends = 0)") + "; costs: "
-        + ("the robot's time, a pick its whole cycle 2 t(home -> fruit) + cut + release and "
-           "a stop the drive's v/a (plan.pick_cycle = 1)" if info.get("pick_cycle") else
-           "the paper's, G = t(home -> fruit) one way and tau = vehicle.stop_penalty "
-           "(plan.pick_cycle = 0)") + ".\n"
+           "and behind it (row.stops_beyond_ends = 0)") + "; costs of the main run: "
+        + report.cost_model_text(pick_cycle) + ".\n"
         f"- Planner: `harvest-plan` (GLPK), MILP time limit {tl}{build}; {os.cpu_count()} CPU(s), "
         f"{platform.machine()}, Python {platform.python_version()}.\n"
         "- Paper: Gurobi on an AMD 7950, 128 GB.")
@@ -232,9 +257,14 @@ def do_report(args, s):
         if r["method"] == "milp" and r["plan"] and r["status"] != "error":
             for u in plan_file.load(os.path.join(out, r["plan"])).get("unreachable", []):
                 reasons[u.get("reason", "?")] = reasons.get(u.get("reason", "?"), 0) + 1
+    main_width = (f"{info['fov_width_m']:g} m" if info.get("fov_width_m") is not None else
+                  "the planner's default width (harvest-plan --help)")
+    fov_width = report.fov_width_section(_width_tables(out), pick_cycle, main_width)
+    models = {pc: cost_models.ratios(rs) for pc, rs in cost_models.load(out).items()}
     path = report.write(os.path.join(out, "report.md"), rows, settings_text, figures,
                         report.analysis_section(os.path.join(out, "analysis.json")),
-                        unreachable_reasons=reasons)
+                        unreachable_reasons=reasons, pick_cycle=pick_cycle, fov_width=fov_width,
+                        cost_models=report.cost_models_section(models, pick_cycle))
     print(f"experiments: report {path}")
     return path
 
@@ -243,13 +273,23 @@ def main(argv):
     args = build_parser().parse_args(argv)
     try:
         row_cfg = Row(Config.load(args.config))
-        need_planner = args.step in ("run", "all")
+        need_planner = args.step in ("run", "fov-width", "cost-models", "all")
         s = _settings(args, need_planner)
         os.makedirs(s.out_dir, exist_ok=True)
         if args.step in ("run", "all"):
             ran, total = run(s, retry_errors=args.retry_errors)
             print(f"experiments: {ran} plan(s) computed now, {total} in "
                   f"{os.path.join(s.out_dir, 'results.csv')}")
+        if args.step in ("cost-models", "all"):
+            ran = cost_models.run_other(s, retry_errors=args.retry_errors)
+            print(f"experiments: {ran} plan(s) computed now in "
+                  f"{os.path.join(s.out_dir, cost_models.subdir(not s.pick_cycle))}")
+        if args.step in ("fov-width", "all"):
+            for ss in cost_models.planned(s):
+                ran = sensitivity.run_sweep(ss, sensitivity.parse_widths(args.fov_widths),
+                                            retry_errors=args.retry_errors)
+                print(f"experiments: {ran} FOV plan(s) computed now in "
+                      f"{os.path.join(ss.out_dir, sensitivity.SUBDIR)}")
         if args.step in ("plots", "all"):
             do_plots(args)
         if args.step in ("analysis", "all"):

@@ -5,7 +5,8 @@ a setpoint outside a joint's range is refused with fault bit 11 and not echoed. 
 effector cuts or releases in a configurable (simulated) time, only while the arm stands.
 Injected faults (stall, joint fault, reject) are applied here, counted per arm.
 """
-from .node import ESTOP, FAULT, IDLE, MOVING, STATE_NAMES, Node
+from ..canbus.enums import EeAction, EeState, State, label, member
+from .node import Node
 from .profile import Profile
 
 # FaultBits of <Arm>Status (DBC comment)
@@ -16,24 +17,8 @@ BIT_COMM = 9
 BIT_ESTOP = 10
 BIT_REJECTED = 11
 
-# EeStatus.State and EeCommand.Action (VAL_ of the DBC)
-EE_IDLE, EE_BUSY, EE_DONE, EE_FAILED, EE_FAULT = range(5)
-EE_STATE_NAMES = ("IDLE", "BUSY", "DONE", "FAILED", "FAULT")
-ACT_NONE, ACT_CUT, ACT_RELEASE = range(3)
-ACTION_NAMES = ("NONE", "CUT", "RELEASE")
-
 # "Within tolerance of the setpoint": the DBC's resolution of a joint position.
 REACHED_TOL = 1e-4
-
-
-def check_ee_against(proto, prefix):
-    for msg, sig, names in ((f"{prefix}EeStatus", "State", EE_STATE_NAMES),
-                            (f"{prefix}EeStatus", "Action", ACTION_NAMES),
-                            (f"{prefix}EeCommand", "Action", ACTION_NAMES)):
-        want = dict(enumerate(names))
-        if proto.choices(msg, sig) != want:
-            raise ValueError(f"{proto.path}: {msg}.{sig} values {proto.choices(msg, sig)} "
-                             f"differ from the simulator's {want}")
 
 
 class ArmNode(Node):
@@ -56,7 +41,7 @@ class ArmNode(Node):
         self.homings = 0
         self.picks = 0
         self.pick_times = []        # simulated time of each pick
-        self.ee_state, self.ee_action, self.ee_seq = EE_IDLE, ACT_NONE, 0
+        self.ee_state, self.ee_action, self.ee_seq = EeState.IDLE, EeAction.NONE, 0
         self.ee_done_t = None
         self.fruit_held = False
         self.ee_changed = True
@@ -96,8 +81,8 @@ class ArmNode(Node):
         self.setpoints_received += 1
         reason, bits = "", 0
         injected = self._fault_at("reject", "setpoint", self.setpoints_received)
-        if self.state not in (IDLE, MOVING):
-            reason = f"state {STATE_NAMES[self.state]}"
+        if self.state not in (State.IDLE, State.MOVING):
+            reason = f"state {State(self.state).name}"
         elif injected is not None:
             reason, bits = f"injected reject of setpoint #{self.setpoints_received}", 1 << BIT_REJECTED
         else:
@@ -128,7 +113,7 @@ class ArmNode(Node):
             at = t + jf["at"] * (motion["t_end"] - t)
             self.pending_fault = (at, jf)
             fields["joint_fault_at"] = at
-        self.set_state(t, MOVING, "setpoint")
+        self.set_state(t, State.MOVING, "setpoint")
         self.log(t, "setpoint", seq=seq, positions=list(q), accepted=True, reason="",
                  number=self.setpoints_received, durations=motion["durations"],
                  duration=motion["t_end"] - t, **fields)
@@ -144,37 +129,39 @@ class ArmNode(Node):
 
     def on_ee(self, t, action, seq):
         """Handle <Arm>EeCommand: CUT at the fruit, RELEASE at home."""
-        name = ACTION_NAMES[action] if 0 <= action < len(ACTION_NAMES) else str(action)
-        self.ee_seq, self.ee_action = seq, action if action < len(ACTION_NAMES) else ACT_NONE
+        known = member(EeAction, action)
+        name = label(EeAction, action)
+        self.ee_seq, self.ee_action = seq, EeAction.NONE if known is None else known
         self.ee_changed = True
-        if action == ACT_CUT:
+        if action == EeAction.CUT:
             self.cuts_received += 1
             jf = self._fault_at("joint_fault", "pick", self.cuts_received)
-            if jf is not None and self.state not in (FAULT, ESTOP):
+            if jf is not None and self.state not in (State.FAULT, State.ESTOP):
                 self.log(t, "ee", action=name, seq=seq, accepted=False,
                          reason=f"injected joint fault at pick #{self.cuts_received}")
                 self._joint_fault(t, jf)
-                self._set_ee(t, EE_FAILED)
+                self._set_ee(t, EeState.FAILED)
                 return
         reason = ""
-        if action not in (ACT_NONE, ACT_CUT, ACT_RELEASE):
+        if known is None:
             reason = f"unknown action {action}"
-        elif action == ACT_NONE:
+        elif action == EeAction.NONE:
             self.ee_done_t = None
-            self._set_ee(t, EE_IDLE)
-        elif self.state != IDLE:
-            reason = f"arm {STATE_NAMES[self.state]}, not standing"
-        elif self.ee_state == EE_BUSY:
+            self._set_ee(t, EeState.IDLE)
+        elif self.state != State.IDLE:
+            reason = f"arm {State(self.state).name}, not standing"
+        elif self.ee_state == EeState.BUSY:
             reason = "end effector busy"
-        elif action == ACT_CUT and self.fruit_held:
+        elif action == EeAction.CUT and self.fruit_held:
             reason = "already holding a fruit"
         if reason:
-            self._set_ee(t, EE_FAULT if self.state in (FAULT, ESTOP) else EE_FAILED)
+            self._set_ee(t, EeState.FAULT if self.state in (State.FAULT, State.ESTOP)
+                         else EeState.FAILED)
             self.log(t, "ee", action=name, seq=seq, accepted=False, reason=reason)
             return
-        if action != ACT_NONE:
-            self.ee_done_t = t + (self.cut_s if action == ACT_CUT else self.release_s)
-            self._set_ee(t, EE_BUSY)
+        if action != EeAction.NONE:
+            self.ee_done_t = t + (self.cut_s if action == EeAction.CUT else self.release_s)
+            self._set_ee(t, EeState.BUSY)
         self.log(t, "ee", action=name, seq=seq, accepted=True, reason="",
                  done_at=self.ee_done_t)
 
@@ -197,10 +184,10 @@ class ArmNode(Node):
             self.ee_changed = True
 
     def _fail_ee(self, t, why):
-        if self.ee_state == EE_BUSY:
+        if self.ee_state == EeState.BUSY:
             self.ee_done_t = None
-            self._set_ee(t, EE_FAILED)
-            self.log(t, "ee_done", action=ACTION_NAMES[self.ee_action], seq=self.ee_seq,
+            self._set_ee(t, EeState.FAILED)
+            self.log(t, "ee_done", action=EeAction(self.ee_action).name, seq=self.ee_seq,
                      result="FAILED", reason=why)
 
     # -- time ------------------------------------------------------------------------------
@@ -213,7 +200,7 @@ class ArmNode(Node):
         if self.ee_done_t is not None and t >= self.ee_done_t:
             done, self.ee_done_t = self.ee_done_t, None
             q = self.positions(done)
-            if self.ee_action == ACT_CUT:
+            if self.ee_action == EeAction.CUT:
                 self.fruit_held = True
                 self.picks += 1
                 self.pick_times.append(done)
@@ -222,10 +209,10 @@ class ArmNode(Node):
             else:
                 self.log(done, "release", seq=self.ee_seq, fruit=self.fruit_held, positions=q)
                 self.fruit_held = False
-            self._set_ee(done, EE_DONE)
-            self.log(done, "ee_done", action=ACTION_NAMES[self.ee_action], seq=self.ee_seq,
+            self._set_ee(done, EeState.DONE)
+            self.log(done, "ee_done", action=EeAction(self.ee_action).name, seq=self.ee_seq,
                      result="DONE")
-            if self.ee_action == ACT_CUT and self._fault_at("estop", "pick", self.picks):
+            if self.ee_action == EeAction.CUT and self._fault_at("estop", "pick", self.picks):
                 # once the cut is done: the arm stops with the fruit held
                 self.log(done, "fault_injected", fault="estop", pick=self.picks)
                 self.estop(done, f"injected e-stop after pick #{self.picks}")

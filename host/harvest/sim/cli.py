@@ -116,6 +116,17 @@ def build_parser():
                      help="vehicle travel limits, m; moves outside are refused (default: none)")
     sim.add_argument("--config", help="harvest.cfg (default: config/harvest.cfg of the tree)")
     sim.add_argument("--dbc", help="DBC file (default: executor/can/harvest.dbc)")
+    cam = p.add_argument_group("online mode: the camera (DESIGN §5)")
+    cam.add_argument("--fruits", metavar="MAP.csv",
+                     help="reveal this fruit map ahead of the vehicle as the camera of the config "
+                          "sees it (camera.lead, camera.window): camera_frame_t on HARVEST_CAMERA")
+    cam.add_argument("--lcm-url", default="udpm://239.255.76.67:7667?ttl=0",
+                     help="LCM URL of the camera (default udpm://239.255.76.67:7667?ttl=0)")
+    cam.add_argument("--camera-period", type=_positive, default=0.5,
+                     help="simulated s between camera frames (0.5)")
+    cam.add_argument("--camera-bad", type=int, default=0, metavar="N",
+                     help="also send N detections of each bad kind (outside the row, a fruit "
+                          "seen twice, a fruit behind the vehicle), spread over the row (0)")
     f = p.add_argument_group("faults and record")
     f.add_argument("--fault", action="append", default=[], metavar="TYPE:K=V,...",
                    help="inject a fault (repeatable, see below)")
@@ -152,7 +163,18 @@ def _options(args, model):
                    faults=faults, seed=seed or 0,
                    arm_start=args.arm_start, vehicle_start_m=args.vehicle_start,
                    travel=tuple(args.travel) if args.travel else None,
-                   progress_s=args.progress)
+                   progress_s=args.progress, camera=_camera(args))
+
+
+def _camera(args):
+    """The camera's options (online mode), None without --fruits."""
+    if not args.fruits:
+        return None
+    if args.camera_bad < 0:
+        raise ValueError(f"--camera-bad {args.camera_bad}: must be >= 0")
+    from harvest.scenario import fruit_map
+    return {"fruits": fruit_map.read(args.fruits), "url": args.lcm_url,
+            "period_s": args.camera_period, "bad": args.camera_bad}
 
 
 def bus_spec(args):

@@ -38,6 +38,11 @@ class Model:
         self.row_length = cfg.positive("row.length")         # m
         self.cut_s = cfg.positive("pick.cut_time")             # s, the end effector's CUT
         self.release_s = cfg.positive("pick.release_time")     # s, and its RELEASE
+        # online mode's camera: the row in view from lead to lead + window ahead (m)
+        self.camera_lead = cfg.float("camera.lead")
+        if self.camera_lead < 0:
+            raise ConfigError(f"{cfg.path}: 'camera.lead' ({self.camera_lead}) must be >= 0")
+        self.camera_window = cfg.positive("camera.window")
 
     @classmethod
     def load(cls, path=None):

@@ -3,32 +3,11 @@ state machine over a set of axes on trapezoidal profiles.
 
 Nodes are pure state machines: every call takes the simulated time, nothing reads a clock
 or a bus, so the runner decides when things happen and tests can drive a node by hand.
-The numbers of states, commands and health values are the DBC's; the runner checks them
-against the loaded DBC at start-up (`check_against`).
+States, commands and health values are the DBC's, read from it at import
+(harvest.canbus.enums); the runner checks that the DBC it loads has the same tables.
 """
+from ..canbus.enums import Command, Health, State, label
 from .profile import Profile
-
-# State (VAL_ of <Node>Status.State)
-DISABLED, IDLE, HOMING, MOVING, FAULT, ESTOP = range(6)
-STATE_NAMES = ("DISABLED", "IDLE", "HOMING", "MOVING", "FAULT", "ESTOP")
-# Command (VAL_ of <Node>Command.Command)
-CMD_NONE, CMD_ENABLE, CMD_DISABLE, CMD_HOME, CMD_ESTOP, CMD_CLEAR_FAULT, CMD_CLEAR_ESTOP = range(7)
-COMMAND_NAMES = ("NONE", "ENABLE", "DISABLE", "HOME", "ESTOP", "CLEAR_FAULT", "CLEAR_ESTOP")
-# Health (VAL_ of <Node>Heartbeat.Health)
-HEALTH_OK, HEALTH_WARNING, HEALTH_FAULT, HEALTH_ESTOP = range(4)
-HEALTH_NAMES = ("OK", "WARNING", "FAULT", "ESTOP")
-
-
-def check_against(proto, prefix):
-    """Raise ValueError when the DBC's enum values differ from the ones this module uses."""
-    for msg, sig, names in ((f"{prefix}Status", "State", STATE_NAMES),
-                            (f"{prefix}Command", "Command", COMMAND_NAMES),
-                            (f"{prefix}Heartbeat", "Health", HEALTH_NAMES)):
-        want = dict(enumerate(names))
-        got = proto.choices(msg, sig)
-        if got != want:
-            raise ValueError(f"{proto.path}: {msg}.{sig} values {got} differ from the "
-                             f"simulator's {want}")
 
 
 class Node:
@@ -41,7 +20,7 @@ class Node:
         self.name = name
         self.limits = limits                      # [(vmax, amax)] per axis
         self.axes = [Profile.hold(0.0, p) for p in positions]
-        self.state = DISABLED
+        self.state = State.DISABLED
         self.fault_bits = 0
         self.homed = False
         self.command_seq = 0
@@ -55,7 +34,7 @@ class Node:
 
     def set_state(self, t, state, why):
         if state != self.state:
-            self.log(t, "state", **{"from": STATE_NAMES[self.state], "to": STATE_NAMES[state],
+            self.log(t, "state", **{"from": State(self.state).name, "to": State(state).name,
                                     "why": why})
             self.state = state
             self.changed = True
@@ -95,18 +74,18 @@ class Node:
         return self.motion
 
     def health(self):
-        if self.state == ESTOP:
-            return HEALTH_ESTOP
-        if self.state == FAULT:
-            return HEALTH_FAULT
-        return HEALTH_WARNING if self.fault_bits else HEALTH_OK
+        if self.state == State.ESTOP:
+            return Health.ESTOP
+        if self.state == State.FAULT:
+            return Health.FAULT
+        return Health.WARNING if self.fault_bits else Health.OK
 
     def fault(self, t, bits, why):
         """Stop and enter FAULT (an e-stop stays the stronger state)."""
         self.stop_axes(t)
         self.set_bits(bits)
-        if self.state != ESTOP:
-            self.set_state(t, FAULT, why)
+        if self.state != State.ESTOP:
+            self.set_state(t, State.FAULT, why)
         self.on_stopped(t, why)
 
     # -- hooks for subclasses -----------------------------------------------------------
@@ -122,61 +101,61 @@ class Node:
     # -- inputs ------------------------------------------------------------------------
     def on_command(self, t, command, seq):
         """Handle <Node>Command; the seq is echoed only when the command is accepted."""
-        name = COMMAND_NAMES[command] if 0 <= command < len(COMMAND_NAMES) else str(command)
+        name = label(Command, command)
         before = self.state
         accepted, why = True, ""
-        if command == CMD_NONE:
+        if command == Command.NONE:
             pass
-        elif command == CMD_ENABLE:
-            if self.state in (FAULT, ESTOP):
-                accepted, why = False, (f"latched {STATE_NAMES[self.state]}: "
-                                        f"{'CLEAR_ESTOP' if self.state == ESTOP else 'CLEAR_FAULT'} first")
-            elif self.state == DISABLED:
-                self.set_state(t, IDLE, "ENABLE")
-        elif command == CMD_DISABLE:
+        elif command == Command.ENABLE:
+            if self.state in (State.FAULT, State.ESTOP):
+                accepted, why = False, (f"latched {State(self.state).name}: "
+                                        f"{'CLEAR_ESTOP' if self.state == State.ESTOP else 'CLEAR_FAULT'} first")
+            elif self.state == State.DISABLED:
+                self.set_state(t, State.IDLE, "ENABLE")
+        elif command == Command.DISABLE:
             if self.motion is not None or any(v for v in self.velocities(t)):
                 self.stop_axes(t)
                 self.on_stopped(t, "DISABLE")
-            if self.state not in (FAULT, ESTOP):
-                self.set_state(t, DISABLED, "DISABLE")
-        elif command == CMD_HOME:
-            if self.state in (DISABLED, FAULT, ESTOP):
-                accepted, why = False, f"state {STATE_NAMES[self.state]}"
-            elif self.state != HOMING:
+            if self.state not in (State.FAULT, State.ESTOP):
+                self.set_state(t, State.DISABLED, "DISABLE")
+        elif command == Command.HOME:
+            if self.state in (State.DISABLED, State.FAULT, State.ESTOP):
+                accepted, why = False, f"state {State(self.state).name}"
+            elif self.state != State.HOMING:
                 self.start_motion(t, self.home_targets(), "home")
                 self.on_new_motion(t)
                 self.on_homing(t)
-                self.set_state(t, HOMING, "HOME")
+                self.set_state(t, State.HOMING, "HOME")
                 self.log(t, "homing", targets=self.motion["targets"],
                          duration=self.motion["t_end"] - t)
-        elif command == CMD_ESTOP:
+        elif command == Command.ESTOP:
             self.estop(t, "ESTOP command")
-        elif command == CMD_CLEAR_FAULT:
+        elif command == Command.CLEAR_FAULT:
             # an e-stop is the operator's: only CLEAR_ESTOP releases it (DBC)
-            if self.state == ESTOP:
+            if self.state == State.ESTOP:
                 accepted, why = False, "latched ESTOP: CLEAR_ESTOP first"
             else:
                 self.clear_bits(0xFFFF)
-                if self.state == FAULT:
-                    self.set_state(t, DISABLED, "CLEAR_FAULT")
-        elif command == CMD_CLEAR_ESTOP:
+                if self.state == State.FAULT:
+                    self.set_state(t, State.DISABLED, "CLEAR_FAULT")
+        elif command == Command.CLEAR_ESTOP:
             self.clear_bits(1 << self.ESTOP_BIT)
-            if self.state == ESTOP:
+            if self.state == State.ESTOP:
                 # a fault from before the e-stop is still there: FAULT until CLEAR_FAULT
-                self.set_state(t, FAULT if self.fault_bits else DISABLED, "CLEAR_ESTOP")
+                self.set_state(t, State.FAULT if self.fault_bits else State.DISABLED, "CLEAR_ESTOP")
         else:
             accepted, why = False, f"unknown command {command}"
         if accepted and seq != self.command_seq:
             self.command_seq = seq
             self.changed = True
         self.log(t, "command", command=name, seq=seq, accepted=accepted, reason=why,
-                 state_before=STATE_NAMES[before], state_after=STATE_NAMES[self.state])
+                 state_before=State(before).name, state_after=State(self.state).name)
 
     def estop(self, t, why):
-        if self.state != ESTOP:
+        if self.state != State.ESTOP:
             self.stop_axes(t)
             self.set_bits(1 << self.ESTOP_BIT)
-            self.set_state(t, ESTOP, why)
+            self.set_state(t, State.ESTOP, why)
             self.on_stopped(t, why)
 
     def comm_timeout(self, t):
@@ -194,13 +173,13 @@ class Node:
         m = self.motion
         if m is not None and t >= m["t_end"] and not m.get("stalled"):
             self.motion = None
-            if self.state in (HOMING, MOVING):
+            if self.state in (State.HOMING, State.MOVING):
                 if m["kind"] == "home":
                     self.homed = True
                     self.changed = True
                     self.log(m["t_end"], "homed", positions=self.positions(m["t_end"]),
                              elapsed=m["t_end"] - m["t_start"])
-                self.set_state(m["t_end"], IDLE, f"{m['kind']} done")
+                self.set_state(m["t_end"], State.IDLE, f"{m['kind']} done")
             self.on_motion_done(m["t_end"], m)
 
     def next_event(self):

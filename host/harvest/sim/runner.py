@@ -19,9 +19,9 @@ import threading
 import can
 
 from harvest.canbus import PROTOCOL_VERSION, buses
+from harvest.canbus.enums import State, check_same
 
-from .arm import ArmNode, check_ee_against
-from .node import STATE_NAMES, check_against
+from .arm import ArmNode
 from .vehicle import VehicleNode
 
 NODE_PREFIX = {"vehicle": "Vehicle", "left_arm": "LeftArm", "right_arm": "RightArm"}
@@ -48,6 +48,7 @@ class Options:
         self.vehicle_start_m = kw.pop("vehicle_start_m", 0.0)
         self.travel = kw.pop("travel", None)             # (min, max) m, None: unlimited
         self.progress_s = kw.pop("progress_s", 0.0)      # wall s between progress lines, 0: off
+        self.camera = kw.pop("camera", None)             # {fruits, url, period_s, bad}: online
         if kw:
             raise TypeError(f"unknown options: {', '.join(sorted(kw))}")
 
@@ -58,10 +59,7 @@ class Simulator:
         self.record, self.clock = record, clock
         self.stop_event = stop_event or threading.Event()
         self.out = out
-        for prefix in NODE_PREFIX.values():
-            check_against(proto, prefix)
-        check_ee_against(proto, "LeftArm")
-        check_ee_against(proto, "RightArm")
+        check_same(proto)  # the nodes use the value tables of the DBC read at import
         self.stats = {"tx": 0, "rx": 0, "tx_dropped": 0, "rx_dropped": 0, "tx_delayed": 0,
                       "rx_delayed": 0, "tx_silenced": 0, "tx_errors": 0, "ignored": 0,
                       **{f"rx_{r}": 0 for r in REJECT_REASONS}}
@@ -72,6 +70,13 @@ class Simulator:
                                    options.arm_start, options.cut_s, options.release_s, vpos)
                      for name in ("left_arm", "right_arm")}
         self.nodes = {"vehicle": self.vehicle, **self.arms}
+        self.camera = None
+        if options.camera:
+            from .camera import Camera
+            c = options.camera
+            self.camera = Camera(c["fruits"], model.camera_lead, model.camera_window,
+                                 model.row_length, c["url"], self._logger("camera"),
+                                 c.get("period_s", 0.5), c.get("bad", 0))
         self._build_wire_faults()
         self._build_schedule()
         self._tx_queue = []   # (release sim t, order, can.Message)
@@ -377,7 +382,11 @@ class Simulator:
         self._send_changes(t)
         while self._tx_queue and self._tx_queue[0][0] <= t:
             self._send(t, heapq.heappop(self._tx_queue)[2])
+        if self.camera:
+            self.camera.step(t, self.vehicle.positions(t)[0])
         deadlines = [e[0] for e in self._periodic]
+        if self.camera:
+            deadlines.append(self.camera.next_event())
         deadlines += [x for x in (n.next_event() for n in self.nodes.values()) if x is not None]
         deadlines += [at for at, _ in self._timed_estops[:1]]
         for q in (self._tx_queue, self._rx_queue):
@@ -427,7 +436,7 @@ class Simulator:
 
     def _progress(self):
         t = self.clock.sim()
-        states = " ".join(f"{n}={STATE_NAMES[self.nodes[n].state]}" for n in NODE_ORDER)
+        states = " ".join(f"{n}={State(self.nodes[n].state).name}" for n in NODE_ORDER)
         print(f"sim t={t:.1f}s vehicle={self.vehicle.positions(t)[0]:.3f}m "
               f"tx={self.stats['tx']} rx={self.stats['rx']} states[{states}]",
               file=self.out, flush=True)

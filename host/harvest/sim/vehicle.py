@@ -1,6 +1,7 @@
 """The vehicle drive (DBC node VEHICLE): moves along the row to the commanded position at
 the config's speed and acceleration, reports its position and "arrived"."""
-from .node import IDLE, MOVING, STATE_NAMES, Node
+from ..canbus.enums import State
+from .node import Node
 
 # FaultBits of VehicleStatus (DBC comment)
 BIT_DRIVE = 0
@@ -43,8 +44,8 @@ class VehicleNode(Node):
     def on_move(self, t, target_m, max_speed, seq):
         """Handle VehicleMove: drive to target_m at max_speed (0: the configured speed)."""
         reason, bits = "", 0
-        if self.state not in (IDLE, MOVING):
-            reason = f"state {STATE_NAMES[self.state]}"
+        if self.state not in (State.IDLE, State.MOVING):
+            reason = f"state {State(self.state).name}"
         elif self.travel and not self.travel[0] <= target_m <= self.travel[1]:
             reason = f"target {target_m:.4f} m outside travel [{self.travel[0]}, {self.travel[1]}]"
             bits = 1 << BIT_POSITION_LIMIT
@@ -63,7 +64,7 @@ class VehicleNode(Node):
         if seq != self.move_seq:
             self.move_seq = seq
             self.changed = True
-        self.set_state(t, MOVING, "move")
+        self.set_state(t, State.MOVING, "move")
         self.log(t, "move", seq=seq, target=target_m, max_speed=speed, accepted=True, reason="",
                  start=self.axes[0].p0, duration=motion["t_end"] - t)
 

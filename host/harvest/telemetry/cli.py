@@ -1,5 +1,6 @@
-"""`python -m harvest telemetry {log,gantt,summary}`: record the executor's LCM telemetry
-and turn a log into a Gantt timeline of both arms, planned against actual."""
+"""`python -m harvest telemetry {log,gantt,summary,mcap}`: record the executor's LCM
+telemetry, turn a log into a Gantt timeline of both arms, planned against actual, or export
+it to MCAP."""
 import argparse
 import json
 import sys
@@ -35,6 +36,13 @@ def _parser():
     g.add_argument("--title", default=None)
     s = sub.add_parser("summary", help="print what a log says about the run, as JSON")
     s.add_argument("log")
+    m = sub.add_parser("mcap", help="export a log to MCAP (JSON messages, a JSON Schema per "
+                                    "channel from the .lcm definitions) for robotics viewers")
+    m.add_argument("log", help="LCM log written by `telemetry log`")
+    m.add_argument("--out", required=True, help="MCAP file to write")
+    m.add_argument("--lcm-defs", default=None,
+                   help="folder of the .lcm definitions (default: lcm_types/ of the tree; "
+                        "installed: share/harvest/lcm)")
     return p
 
 
@@ -44,6 +52,12 @@ def main(argv=None):
         if args.cmd == "log":
             from . import logger
             return logger.run(args)
+        if args.cmd == "mcap":
+            from . import mcap_export
+            counts = mcap_export.export(args.log, args.out, args.lcm_python, args.lcm_defs)
+            print(f"telemetry mcap: wrote {args.out}: " + ", ".join(
+                f"{ch} {n}" for ch, n in sorted(counts.items())))
+            return 0
         from . import timeline
         tl = timeline.read(args.log, args.lcm_python)
         if tl.plan is None:

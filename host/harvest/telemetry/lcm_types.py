@@ -15,7 +15,7 @@ import os
 import harvest
 
 TYPES = ("plan_pick_t", "plan_stop_t", "plan_t", "exec_state_t", "arm_joint_state_t",
-         "fruit_event_t", "can_stats_t")
+         "fruit_event_t", "can_stats_t", "detection_t", "camera_frame_t", "plan_commit_t")
 
 CHANNELS = {
     "HARVEST_PLAN": "plan_t",
@@ -24,6 +24,8 @@ CHANNELS = {
     "HARVEST_ARM_LEFT": "arm_joint_state_t",
     "HARVEST_ARM_RIGHT": "arm_joint_state_t",
     "HARVEST_CAN_STATS": "can_stats_t",
+    "HARVEST_CAMERA": "camera_frame_t",
+    "HARVEST_PLAN_COMMIT": "plan_commit_t",
 }
 
 

@@ -1,15 +1,36 @@
 /* JSON tree -> hv_plan_t, checking the schema of docs/PLAN_FORMAT.md field by field.
- * Every field is required (except "horizon"), every unknown field is an error. */
+ * Every field is required (except "horizon"), every unknown field is an error.
+ * The JSON itself is parsed by jansson (strict: RFC 8259, duplicate keys and NUL in
+ * strings refused); this file is the schema. */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include <jansson.h>
+
 #include "hv/file_io.h"
 #include "hv/fruit_id.h"
 #include "hv/plan_io.h"
-#include "json_dom.h"
+
+/* What the schema asks a value to be (jansson's integer and real are both numbers). */
+typedef enum rd_kind { RD_NULL, RD_BOOL, RD_NUMBER, RD_STRING, RD_ARRAY, RD_OBJECT } rd_kind_t;
+
+static rd_kind_t rd_kind_of(const json_t *v)
+{
+    switch (json_typeof(v)) {
+    case JSON_OBJECT: return RD_OBJECT;
+    case JSON_ARRAY: return RD_ARRAY;
+    case JSON_STRING: return RD_STRING;
+    case JSON_INTEGER:
+    case JSON_REAL: return RD_NUMBER;
+    case JSON_TRUE:
+    case JSON_FALSE: return RD_BOOL;
+    case JSON_NULL: break;
+    }
+    return RD_NULL;
+}
 
 typedef struct rd {
     const char *name; /* file name for messages */
@@ -63,39 +84,41 @@ static void rd_fail_code(rd_t *r, hv_status_t code, const char *path, const char
 }
 
 /* Reject members of `obj` not in the NULL-terminated `allowed` list. */
-static void rd_only(rd_t *r, const json_value_t *obj, const char *path,
+static void rd_only(rd_t *r, const json_t *obj, const char *path,
                     const char *const *allowed)
 {
-    for (size_t i = 0; i < obj->n && !r->failed; ++i) {
+    /* jansson's iterators take a mutable object; nothing here changes it */
+    for (void *it = json_object_iter((json_t *)obj); it != NULL && !r->failed;
+         it = json_object_iter_next((json_t *)obj, it)) {
+        const char *key = json_object_iter_key(it);
         int ok = 0;
         for (const char *const *a = allowed; *a != NULL; ++a) {
-            if (strcmp(*a, obj->members[i].key) == 0) {
+            if (strcmp(*a, key) == 0) {
                 ok = 1;
                 break;
             }
         }
         if (!ok) {
             char p[160];
-            fmt_path(p, sizeof p, "%s%s%s", path, *path ? "." : "", obj->members[i].key);
+            fmt_path(p, sizeof p, "%s%s%s", path, *path ? "." : "", key);
             rd_fail(r, p, "unknown field");
         }
     }
 }
 
-static const json_value_t *rd_field(rd_t *r, const json_value_t *obj, const char *path,
-                                    const char *key, json_type_t type, char *full,
-                                    size_t fullcap)
+static const json_t *rd_field(rd_t *r, const json_t *obj, const char *path,
+                              const char *key, rd_kind_t type, char *full, size_t fullcap)
 {
     fmt_path(full, fullcap, "%s%s%s", path, *path ? "." : "", key);
     if (r->failed) {
         return NULL;
     }
-    const json_value_t *v = json_get(obj, key);
+    const json_t *v = json_object_get(obj, key);
     if (v == NULL) {
         rd_fail(r, full, "missing");
         return NULL;
     }
-    if (v->type != type) {
+    if (rd_kind_of(v) != type) {
         static const char *const names[] = {"null", "a boolean", "a number", "a string",
                                             "an array", "an object"};
         rd_fail(r, full, "expected %s", names[type]);
@@ -104,79 +127,81 @@ static const json_value_t *rd_field(rd_t *r, const json_value_t *obj, const char
     return v;
 }
 
-static double rd_num(rd_t *r, const json_value_t *obj, const char *path, const char *key)
+static double rd_num(rd_t *r, const json_t *obj, const char *path, const char *key)
 {
     char full[224];
-    const json_value_t *v = rd_field(r, obj, path, key, JSON_NUMBER, full, sizeof full);
-    return v ? v->number : 0.0;
+    const json_t *v = rd_field(r, obj, path, key, RD_NUMBER, full, sizeof full);
+    return v ? json_number_value(v) : 0.0;
 }
 
 /* A number >= 0 (times and costs). */
-static double rd_nonneg(rd_t *r, const json_value_t *obj, const char *path, const char *key)
+static double rd_nonneg(rd_t *r, const json_t *obj, const char *path, const char *key)
 {
     char full[224];
-    const json_value_t *v = rd_field(r, obj, path, key, JSON_NUMBER, full, sizeof full);
+    const json_t *v = rd_field(r, obj, path, key, RD_NUMBER, full, sizeof full);
     if (v == NULL) {
         return 0.0;
     }
-    if (!(v->number >= 0.0)) {
+    if (!(json_number_value(v) >= 0.0)) {
         rd_fail(r, full, "expected a number >= 0");
         return 0.0;
     }
-    return v->number;
+    return json_number_value(v);
 }
 
 /* A non-negative integer no larger than `max`. */
-static double rd_count(rd_t *r, const json_value_t *obj, const char *path, const char *key,
+static double rd_count(rd_t *r, const json_t *obj, const char *path, const char *key,
                        double max)
 {
     char full[224];
-    const json_value_t *v = rd_field(r, obj, path, key, JSON_NUMBER, full, sizeof full);
+    const json_t *v = rd_field(r, obj, path, key, RD_NUMBER, full, sizeof full);
     if (v == NULL) {
         return 0.0;
     }
-    if (!v->is_integer || v->number < 0 || v->number > max || floor(v->number) != v->number) {
+    /* an integer literal only (jansson keeps 1.0 a real) */
+    double x = json_number_value(v);
+    if (!json_is_integer(v) || x < 0 || x > max) {
         rd_fail(r, full, "expected an integer in [0, %.0f]", max);
         return 0.0;
     }
-    return v->number;
+    return json_number_value(v);
 }
 
-static void rd_str(rd_t *r, const json_value_t *obj, const char *path, const char *key,
+static void rd_str(rd_t *r, const json_t *obj, const char *path, const char *key,
                    char *dst, size_t cap)
 {
     char full[224];
-    const json_value_t *v = rd_field(r, obj, path, key, JSON_STRING, full, sizeof full);
+    const json_t *v = rd_field(r, obj, path, key, RD_STRING, full, sizeof full);
     if (v == NULL) {
         return;
     }
-    if (hv_plan_copy_str(dst, cap, v->string) != HV_OK) {
+    if (hv_plan_copy_str(dst, cap, json_string_value(v)) != HV_OK) {
         rd_fail(r, full, "longer than %zu bytes", cap - 1);
     }
 }
 
 /* A fruit id: a string inside the id set (hv/fruit_id.h), so that what the executor
  * journals reads back as the same fruit. */
-static void rd_id(rd_t *r, const json_value_t *obj, const char *path, char *dst, size_t cap)
+static void rd_id(rd_t *r, const json_t *obj, const char *path, char *dst, size_t cap)
 {
     char full[224];
-    const json_value_t *v = rd_field(r, obj, path, "id", JSON_STRING, full, sizeof full);
+    const json_t *v = rd_field(r, obj, path, "id", RD_STRING, full, sizeof full);
     if (v == NULL) {
         return;
     }
     hv_diag_t d;
-    if (hv_fruit_id_check(v->string, strlen(v->string), &d) != HV_OK) {
+    if (hv_fruit_id_check(json_string_value(v), strlen(json_string_value(v)), &d) != HV_OK) {
         rd_fail_code(r, HV_ERR_PLAN_ID, full, "%s", d.message);
-    } else if (hv_plan_copy_str(dst, cap, v->string) != HV_OK) {
+    } else if (hv_plan_copy_str(dst, cap, json_string_value(v)) != HV_OK) {
         rd_fail(r, full, "longer than %zu bytes", cap - 1);
     }
 }
 
-static const json_value_t *rd_obj(rd_t *r, const json_value_t *obj, const char *path,
+static const json_t *rd_obj(rd_t *r, const json_t *obj, const char *path,
                                   const char *key, const char *const *allowed)
 {
     char full[224];
-    const json_value_t *v = rd_field(r, obj, path, key, JSON_OBJECT, full, sizeof full);
+    const json_t *v = rd_field(r, obj, path, key, RD_OBJECT, full, sizeof full);
     if (v != NULL) {
         rd_only(r, v, full, allowed);
     }
@@ -193,27 +218,27 @@ static int one_of(const char *s, const char *const *list)
     return 0;
 }
 
-static hv_plan_pick_t *rd_picks(rd_t *r, const json_value_t *stop, const char *path,
+static hv_plan_pick_t *rd_picks(rd_t *r, const json_t *stop, const char *path,
                                 const char *key, size_t *n_out)
 {
     char full[192];
-    const json_value_t *arr = rd_field(r, stop, path, key, JSON_ARRAY, full, sizeof full);
+    const json_t *arr = rd_field(r, stop, path, key, RD_ARRAY, full, sizeof full);
     *n_out = 0;
-    if (arr == NULL || arr->n == 0) {
+    if (arr == NULL || json_array_size(arr) == 0) {
         return NULL;
     }
-    hv_plan_pick_t *picks = calloc(arr->n, sizeof *picks);
+    hv_plan_pick_t *picks = calloc(json_array_size(arr), sizeof *picks);
     if (picks == NULL) {
         rd_fail(r, full, "out of memory");
         return NULL;
     }
     static const char *const allowed[] = {"id", "x", "y", "z", "yaw", "cost_s", "start_s",
                                           NULL};
-    for (size_t k = 0; k < arr->n && !r->failed; ++k) {
+    for (size_t k = 0; k < json_array_size(arr) && !r->failed; ++k) {
         char p[224];
         fmt_path(p, sizeof p, "%s[%zu]", full, k);
-        const json_value_t *o = arr->items[k];
-        if (o->type != JSON_OBJECT) {
+        const json_t *o = json_array_get(arr, k);
+        if (!json_is_object(o)) {
             rd_fail(r, p, "expected an object");
             break;
         }
@@ -226,7 +251,7 @@ static hv_plan_pick_t *rd_picks(rd_t *r, const json_value_t *stop, const char *p
         picks[k].cost_s = rd_nonneg(r, o, p, "cost_s");
         picks[k].start_s = rd_nonneg(r, o, p, "start_s");
     }
-    *n_out = arr->n;
+    *n_out = json_array_size(arr);
     return picks;
 }
 
@@ -252,7 +277,7 @@ static void rd_stop_order(rd_t *r, const hv_plan_stop_t *stops, size_t s)
     }
 }
 
-static void rd_plan(rd_t *r, const json_value_t *root, hv_plan_t *plan)
+static void rd_plan(rd_t *r, const json_t *root, hv_plan_t *plan)
 {
     static const char *const top[] = {"format", "version", "method", "inputs", "params",
                                       "solver", "totals", "horizon", "stops", "unreachable",
@@ -261,14 +286,14 @@ static void rd_plan(rd_t *r, const json_value_t *root, hv_plan_t *plan)
     static const char *const statuses[] = {"optimal", "feasible", "infeasible", "time_limit",
                                            "error", "heuristic", NULL};
     char full[192];
-    if (root->type != JSON_OBJECT) {
+    if (!json_is_object(root)) {
         rd_fail(r, "(top)", "expected an object");
         return;
     }
     rd_only(r, root, "", top);
-    const json_value_t *f = rd_field(r, root, "", "format", JSON_STRING, full, sizeof full);
-    if (f != NULL && strcmp(f->string, "harvest-plan") != 0) {
-        rd_fail(r, "format", "expected \"harvest-plan\", got \"%s\"", f->string);
+    const json_t *f = rd_field(r, root, "", "format", RD_STRING, full, sizeof full);
+    if (f != NULL && strcmp(json_string_value(f), "harvest-plan") != 0) {
+        rd_fail(r, "format", "expected \"harvest-plan\", got \"%s\"", json_string_value(f));
     }
     double version = rd_count(r, root, "", "version", 1e9);
     if (!r->failed && version != HV_PLAN_FORMAT_VERSION) {
@@ -282,7 +307,7 @@ static void rd_plan(rd_t *r, const json_value_t *root, hv_plan_t *plan)
 
     static const char *const inputs_keys[] = {"fruit_map", "cost_table_left",
                                               "cost_table_right", "config", NULL};
-    const json_value_t *in = rd_obj(r, root, "", "inputs", inputs_keys);
+    const json_t *in = rd_obj(r, root, "", "inputs", inputs_keys);
     if (in != NULL) {
         rd_str(r, in, "inputs", "fruit_map", plan->fruit_map, sizeof plan->fruit_map);
         rd_str(r, in, "inputs", "cost_table_left", plan->cost_table_left,
@@ -296,7 +321,7 @@ static void rd_plan(rd_t *r, const json_value_t *root, hv_plan_t *plan)
                                               "stop_penalty_s", "vehicle_speed_mps",
                                               "travel_time_s", "stop_margin_m", "pick_time",
                                               NULL};
-    const json_value_t *pa = rd_obj(r, root, "", "params", params_keys);
+    const json_t *pa = rd_obj(r, root, "", "params", params_keys);
     if (pa != NULL) {
         plan->stop_step_m = rd_num(r, pa, "params", "stop_step_m");
         plan->row_start_m = rd_num(r, pa, "params", "row_start_m");
@@ -315,16 +340,16 @@ static void rd_plan(rd_t *r, const json_value_t *root, hv_plan_t *plan)
 
     static const char *const solver_keys[] = {"status", "gap", "nodes", "runtime_s",
                                               "time_limit_s", NULL};
-    const json_value_t *so = rd_obj(r, root, "", "solver", solver_keys);
+    const json_t *so = rd_obj(r, root, "", "solver", solver_keys);
     if (so != NULL) {
         rd_str(r, so, "solver", "status", plan->solver_status, sizeof plan->solver_status);
         if (!r->failed && !one_of(plan->solver_status, statuses)) {
             rd_fail(r, "solver.status", "unknown status \"%s\"", plan->solver_status);
         }
-        const json_value_t *g = json_get(so, "gap");
+        const json_t *g = json_object_get(so, "gap");
         if (!r->failed && g == NULL) {
             rd_fail(r, "solver.gap", "missing");
-        } else if (!r->failed && g->type == JSON_NULL) {
+        } else if (!r->failed && json_is_null(g)) {
             plan->gap = -1.0; /* unknown (heuristic plans) */
         } else if (!r->failed) {
             plan->gap = rd_num(r, so, "solver", "gap");
@@ -341,7 +366,7 @@ static void rd_plan(rd_t *r, const json_value_t *root, hv_plan_t *plan)
                                               "travel_time_s", "stops", "fruits_planned",
                                               "fruits_unreachable", "throughput_fruit_per_s",
                                               NULL};
-    const json_value_t *to = rd_obj(r, root, "", "totals", totals_keys);
+    const json_t *to = rd_obj(r, root, "", "totals", totals_keys);
     if (to != NULL) {
         plan->makespan_s = rd_num(r, to, "totals", "makespan_s");
         plan->pick_time_s = rd_num(r, to, "totals", "pick_time_s");
@@ -353,10 +378,10 @@ static void rd_plan(rd_t *r, const json_value_t *root, hv_plan_t *plan)
         plan->throughput_fruit_per_s = rd_num(r, to, "totals", "throughput_fruit_per_s");
     }
 
-    if (!r->failed && json_get(root, "horizon") != NULL) {
+    if (!r->failed && json_object_get(root, "horizon") != NULL) {
         static const char *const hz_keys[] = {"window_m", "commit_m", "windows",
                                               "windows_optimal", NULL};
-        const json_value_t *hz = rd_obj(r, root, "", "horizon", hz_keys);
+        const json_t *hz = rd_obj(r, root, "", "horizon", hz_keys);
         if (hz != NULL) {
             plan->horizon.used = 1;
             plan->horizon.window_m = rd_num(r, hz, "horizon", "window_m");
@@ -367,22 +392,22 @@ static void rd_plan(rd_t *r, const json_value_t *root, hv_plan_t *plan)
         }
     }
 
-    const json_value_t *stops = rd_field(r, root, "", "stops", JSON_ARRAY, full, sizeof full);
-    if (stops != NULL && stops->n > 0) {
-        plan->stops = calloc(stops->n, sizeof *plan->stops);
+    const json_t *stops = rd_field(r, root, "", "stops", RD_ARRAY, full, sizeof full);
+    if (stops != NULL && json_array_size(stops) > 0) {
+        plan->stops = calloc(json_array_size(stops), sizeof *plan->stops);
         if (plan->stops == NULL) {
             rd_fail(r, "stops", "out of memory");
             return;
         }
-        plan->n_stops = stops->n;
+        plan->n_stops = json_array_size(stops);
         static const char *const stop_keys[] = {"index", "y_m", "pass", "C_left_s",
                                                 "C_right_s", "C_s", "idle_left_s",
                                                 "idle_right_s", "left", "right", NULL};
-        for (size_t s = 0; s < stops->n && !r->failed; ++s) {
+        for (size_t s = 0; s < json_array_size(stops) && !r->failed; ++s) {
             char p[64];
             fmt_path(p, sizeof p, "stops[%zu]", s);
-            const json_value_t *o = stops->items[s];
-            if (o->type != JSON_OBJECT) {
+            const json_t *o = json_array_get(stops, s);
+            if (!json_is_object(o)) {
                 rd_fail(r, p, "expected an object");
                 break;
             }
@@ -404,21 +429,21 @@ static void rd_plan(rd_t *r, const json_value_t *root, hv_plan_t *plan)
         }
     }
 
-    const json_value_t *un =
-        rd_field(r, root, "", "unreachable", JSON_ARRAY, full, sizeof full);
-    if (un != NULL && un->n > 0) {
-        plan->unreachable = calloc(un->n, sizeof *plan->unreachable);
+    const json_t *un =
+        rd_field(r, root, "", "unreachable", RD_ARRAY, full, sizeof full);
+    if (un != NULL && json_array_size(un) > 0) {
+        plan->unreachable = calloc(json_array_size(un), sizeof *plan->unreachable);
         if (plan->unreachable == NULL) {
             rd_fail(r, "unreachable", "out of memory");
             return;
         }
-        plan->n_unreachable = un->n;
+        plan->n_unreachable = json_array_size(un);
         static const char *const un_keys[] = {"id", "side", "reason", NULL};
-        for (size_t u = 0; u < un->n && !r->failed; ++u) {
+        for (size_t u = 0; u < json_array_size(un) && !r->failed; ++u) {
             char p[64];
             fmt_path(p, sizeof p, "unreachable[%zu]", u);
-            const json_value_t *o = un->items[u];
-            if (o->type != JSON_OBJECT) {
+            const json_t *o = json_array_get(un, u);
+            if (!json_is_object(o)) {
                 rd_fail(r, p, "expected an object");
                 break;
             }
@@ -453,17 +478,18 @@ hv_status_t hv_plan_parse(const char *text, size_t len, const char *name, hv_pla
     if (name == NULL) {
         name = "(plan)";
     }
-    char jerr[200] = "";
-    json_value_t *root = json_parse(text, len, jerr, sizeof jerr);
+    json_error_t jerr;
+    json_t *root = json_loadb(text, len, JSON_REJECT_DUPLICATES, &jerr);
     if (root == NULL) {
         if (err != NULL && errlen > 0) {
-            snprintf(err, errlen, "%s: JSON: %s", name, jerr);
+            snprintf(err, errlen, "%s: JSON: line %d, column %d: %s", name, jerr.line,
+                     jerr.column, jerr.text);
         }
         return HV_ERR_PLAN_JSON;
     }
     rd_t r = {name, err, errlen, 0, HV_OK};
     rd_plan(&r, root, plan);
-    json_free(root);
+    json_decref(root);
     if (r.failed) {
         hv_plan_free(plan);
         return r.code;

@@ -1,0 +1,173 @@
+/* The online planner's committed stops over LCM (exec_feed.h). */
+#include "hv/exec_feed.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <lcm/lcm.h>
+
+#include "harvest_plan_commit_t.h"
+#include "hv/exec_status.h"
+
+#define COMMIT_CHANNEL "HARVEST_PLAN_COMMIT"
+
+typedef struct feed_lcm {
+    lcm_t *lcm;
+    harvest_plan_commit_t_subscription_t *sub;
+    hv_exec_plan_t *plan;
+    hv_arm_t arm[2];
+    hv_exec_timing_t timing;
+    double max_margin_m;
+    int course_set;
+    int pending, final;
+    double advance_m;
+    hv_exec_feed_stats_t st;
+    hv_exec_pick_t picks[HV_EXEC_MAX_PICKS]; /* one stop's, being appended */
+} feed_lcm_t;
+
+static void refuse(feed_lcm_t *f, const char *why)
+{
+    f->st.refused++;
+    snprintf(f->st.last_refusal, sizeof f->st.last_refusal, "%s", why);
+}
+
+static int same_course(const hv_exec_plan_t *p, const harvest_plan_commit_t *m)
+{
+    return fabs(p->row_start_m - m->row_start_m) < 1e-9 &&
+           fabs(p->row_length_m - m->row_length_m) < 1e-9 &&
+           fabs(p->stop_margin_m - m->stop_margin_m) < 1e-9;
+}
+
+/* Append stop s of the message (its picks from offset off). */
+static hv_status_t append_stop(feed_lcm_t *f, const harvest_plan_commit_t *m, int s, int off)
+{
+    int n = m->stop_picks[s], nl = m->stop_left[s];
+    if (n < 0 || nl < 0 || nl > n || off + n > m->n_picks || n > (int)HV_EXEC_MAX_PICKS)
+        return HV_ERR_EXEC_PLAN_RANGE;
+    for (int k = 0; k < n; k++) {
+        const harvest_detection_t *d = &m->picks[off + k];
+        hv_exec_pick_t *pk = &f->picks[k];
+        memset(pk, 0, sizeof *pk);
+        if (strlen(d->fruit_id) >= sizeof pk->id || (d->side != 0 && d->side != 1))
+            return HV_ERR_EXEC_PLAN_RANGE;
+        memcpy(pk->id, d->fruit_id, strlen(d->fruit_id) + 1);
+        pk->side = d->side ? HV_SIDE_RIGHT : HV_SIDE_LEFT;
+        pk->x_m = d->x_m;
+        pk->y_m = d->y_m;
+        pk->z_m = d->z_m;
+        pk->yaw_rad = d->yaw_rad;
+        pk->cost_s = m->cost_s[off + k];
+    }
+    return hv_exec_plan_append(f->plan, (uint32_t)m->stop_index[s], m->stop_y_m[s], f->picks,
+                               (uint16_t)nl, (uint16_t)(n - nl));
+}
+
+static void on_commit(const lcm_recv_buf_t *rbuf, const char *channel,
+                      const harvest_plan_commit_t *m, void *user)
+{
+    (void)rbuf;
+    (void)channel;
+    feed_lcm_t *f = user;
+    hv_exec_plan_t *p = f->plan;
+    f->st.messages++;
+    if (!f->course_set) {
+        if (!(m->row_length_m > 0) || !isfinite(m->row_start_m) || !(m->stop_margin_m >= 0) ||
+            m->stop_margin_m > f->max_margin_m + 1e-9) {
+            refuse(f, "the course: a stop margin beyond the arms' reach, or no row");
+            return;
+        }
+        p->row_start_m = m->row_start_m;
+        p->row_length_m = m->row_length_m;
+        p->stop_margin_m = m->stop_margin_m;
+        f->course_set = 1;
+    } else if (!same_course(p, m)) {
+        refuse(f, "another course than the first message's");
+        return;
+    }
+    if (m->n_stops < p->n_stops ||
+        (p->n_stops > 0 &&
+         (uint32_t)m->stop_index[p->n_stops - 1] != p->stops[p->n_stops - 1].plan_index)) {
+        refuse(f, "its stops do not begin with those already in the plan");
+        return;
+    }
+    int off = 0;
+    for (int s = 0; s < p->n_stops; s++)
+        off += m->stop_picks[s];
+    int grew = 0;
+    for (int s = p->n_stops; s < m->n_stops; s++) {
+        hv_status_t st = append_stop(f, m, s, off);
+        if (st != HV_OK) {
+            refuse(f, st == HV_ERR_EXEC_PLAN_CAPACITY ? "more stops or picks than the tables hold"
+                                                      : "a stop that does not follow, or a "
+                                                        "fruit planned twice");
+            break;
+        }
+        off += m->stop_picks[s];
+        f->st.appended_stops++;
+        grew = 1;
+    }
+    if (grew && hv_exec_plan_prepare(p, f->arm, &f->timing) != HV_OK)
+        refuse(f, "the grown plan could not be prepared");
+    f->pending = 1;
+    f->final = m->final && m->n_stops == p->n_stops;
+    f->advance_m = m->commit_y_m;
+}
+
+static int take(void *ctx, hv_exec_event_t *ev)
+{
+    feed_lcm_t *f = ctx;
+    while (lcm_handle_timeout(f->lcm, 0) > 0)
+        ;
+    if (!f->pending)
+        return 0;
+    f->pending = 0;
+    memset(ev, 0, sizeof *ev);
+    ev->kind = HV_EV_PLAN_GROWN;
+    ev->u.plan.final = f->final;
+    ev->u.plan.advance_m = isfinite(f->advance_m) ? f->advance_m : 0.0;
+    return 1;
+}
+
+hv_status_t hv_exec_feed_lcm_open(hv_exec_feed_t *feed, const char *url, hv_exec_plan_t *plan,
+                                  const hv_arm_t arm[2], const hv_exec_timing_t *timing,
+                                  double max_margin_m, char *err, size_t errlen)
+{
+    if (!feed || !url || !plan || !arm || !timing)
+        return HV_ERR_ARG;
+    feed_lcm_t *f = calloc(1, sizeof *f);
+    if (!f)
+        return HV_ERR_EXEC_TELEMETRY;
+    f->lcm = lcm_create(url);
+    if (!f->lcm) {
+        snprintf(err, errlen, "--lcm-url %s: LCM could not be opened", url);
+        free(f);
+        return HV_ERR_EXEC_TELEMETRY;
+    }
+    f->sub = harvest_plan_commit_t_subscribe(f->lcm, COMMIT_CHANNEL, on_commit, f);
+    f->plan = plan;
+    memcpy(f->arm, arm, sizeof f->arm);
+    f->timing = *timing;
+    f->max_margin_m = max_margin_m;
+    feed->fd = lcm_get_fileno(f->lcm);
+    feed->take = take;
+    feed->ctx = f;
+    return HV_OK;
+}
+
+const hv_exec_feed_stats_t *hv_exec_feed_lcm_stats(const hv_exec_feed_t *feed)
+{
+    return &((const feed_lcm_t *)feed->ctx)->st;
+}
+
+void hv_exec_feed_lcm_close(hv_exec_feed_t *feed)
+{
+    if (!feed || !feed->ctx)
+        return;
+    feed_lcm_t *f = feed->ctx;
+    harvest_plan_commit_t_unsubscribe(f->lcm, f->sub);
+    lcm_destroy(f->lcm);
+    free(f);
+    feed->ctx = NULL;
+}

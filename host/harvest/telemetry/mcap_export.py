@@ -1,0 +1,45 @@
+"""Export an executor telemetry log (LCM event log) to MCAP, the container robotics viewers
+open: one channel per LCM channel, JSON messages, and per channel the JSON Schema of its
+LCM type (lcm_schema), so every field is typed and documented in the viewer. The log time
+of each message is the LCM log's receive time.
+"""
+import json
+
+import lcm
+
+from . import lcm_schema, lcm_types
+
+
+def export(log_path, out_path, python_dir=None, lcm_defs=None):
+    """Write `out_path`; return {channel: messages written}. Channels the telemetry does not
+    define are refused (ValueError naming the channel), not dropped."""
+    from mcap.writer import Writer
+
+    types = lcm_types.load(python_dir)
+    structs = lcm_schema.load(lcm_defs)
+    counts = {}
+    with open(out_path, "wb") as f:
+        writer = Writer(f)
+        writer.start(profile="", library="harvest telemetry mcap")
+        schema_ids, channel_ids = {}, {}
+        for ev in lcm.EventLog(log_path, "r"):
+            type_name = lcm_types.CHANNELS.get(ev.channel)
+            if type_name is None:
+                raise ValueError(f"{log_path}: channel {ev.channel!r} is not a telemetry channel "
+                                 f"({', '.join(sorted(lcm_types.CHANNELS))})")
+            if type_name not in schema_ids:
+                schema = lcm_schema.json_schema(structs, type_name)
+                schema_ids[type_name] = writer.register_schema(
+                    name=f"harvest.{type_name}", encoding="jsonschema",
+                    data=json.dumps(schema).encode())
+            if ev.channel not in channel_ids:
+                channel_ids[ev.channel] = writer.register_channel(
+                    topic=ev.channel, message_encoding="json", schema_id=schema_ids[type_name])
+            msg = types[type_name].decode(ev.data)
+            t_ns = int(ev.timestamp) * 1000
+            writer.add_message(channel_ids[ev.channel], log_time=t_ns, publish_time=t_ns,
+                               data=json.dumps(lcm_schema.to_json(msg)).encode(),
+                               sequence=counts.get(ev.channel, 0))
+            counts[ev.channel] = counts.get(ev.channel, 0) + 1
+        writer.finish()
+    return counts

@@ -1,0 +1,535 @@
+/* harvest-plan-online: the online planner as its own process (DESIGN §5). It reads the
+ * camera's detections from LCM, plans horizon by horizon with hv_online_* and publishes
+ * the committed plan for harvest-exec --online, while the executor works what is already
+ * committed. `harvest-plan-online --help`. */
+#include <math.h>
+#include <signal.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <lcm/lcm.h>
+
+#include "harvest_camera_frame_t.h"
+#include "harvest_exec_state_t.h"
+#include "harvest_plan_commit_t.h"
+#include "hv/file_io.h"
+#include "hv/fruit_id.h"
+#include "hv/online.h"
+#include "hv/plan_build.h"
+#include "hv/plan_io.h"
+#include "hv/plan_paths.h"
+#include "hv/plan_status.h"
+#include "hv/pick_model.h"
+
+enum { EXIT_DONE = 0, EXIT_INPUT = 1, EXIT_USAGE = 2, EXIT_FAILED = 3, EXIT_EXEC_SAFE = 4,
+       EXIT_INTERRUPTED = 5 };
+#define MAX_HORIZONS 4096
+#define REPUBLISH_S 2.0 /* wall s between repeats of the committed plan (a lost one heals) */
+
+static const char k_usage[] =
+    "usage: harvest-plan-online --config CFG --lcm-url URL [options]\n"
+    "\n"
+    "The online planner (DESIGN §5): fruit is revealed by the camera ahead of the vehicle\n"
+    "(camera_frame_t on HARVEST_CAMERA, e.g. from `python -m harvest sim --fruits MAP`);\n"
+    "each horizon of --window m is solved by the MILP and its first --commit m committed\n"
+    "once the camera has seen all its stops can reach. The committed plan (plan_commit_t on\n"
+    "HARVEST_PLAN_COMMIT) goes to `harvest-exec --online`, after each horizon and every\n"
+    "2 s; committed stops never change. Each pick costs the executor's cycle (exact IK,\n"
+    "plan.pick_cycle of the config, whole ms).\n"
+    "\n"
+    "Bad detections are refused, logged with their reason and counted, never planned:\n"
+    "outside_row (y off the row or not a number), duplicate (a fruit id already known: the\n"
+    "first detection stands), late (every stop that reaches it is committed), bad_id (not\n"
+    "of the fruit id set). A lost camera frame (a gap in its seq) is logged and counted.\n"
+    "\n"
+    "options:\n"
+    "  --config CFG       harvest.cfg (row, arms, camera.lead / camera.window), required\n"
+    "  --lcm-url URL      LCM URL (udpm://...?ttl=0), required\n"
+    "  --window H         horizon solved per step, m (default 2)\n"
+    "  --commit M         committed per step, m (default 1, at most H)\n"
+    "  --time-limit S     MILP limit per horizon, s (default 10)\n"
+    "  --threads N        1 or 2 (default): the MILP's second thread; 1 leaves a core to the\n"
+"                     executor and the simulator on a 2-core machine\n"
+"  --progress S       a progress line every S s of wall time (default 5; 0: per horizon\n"
+    "                     only)\n"
+    "  --summary FILE     write a JSON summary at the end\n"
+"  --out PLAN.json    write the committed plan at the end, in the plan format\n"
+"                     (docs/PLAN_FORMAT.md, no fruit map named: the camera was the input);\n"
+"                     `harvest-plan check PLAN.json --fruits MAP.csv` verifies it\n"
+    "  --quiet            no progress lines (refusals and errors are still printed)\n"
+    "  --help             this text\n"
+    "\n"
+    "It ends once the whole row is committed and the executor reports row_done, when the\n"
+    "executor reports safe (HARVEST_EXEC_STATE), or on SIGINT / SIGTERM (which also stop a\n"
+    "horizon's solve).\n"
+    "exit codes: 0 done, 1 bad input, 2 usage, 3 planning failed, 4 the executor stopped in\n"
+    "the safe state, 5 interrupted before the row was planned.\n";
+
+static atomic_int g_stop; /* set by SIGINT / SIGTERM: the only process-wide state */
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    atomic_store(&g_stop, 1);
+}
+
+static int stop_requested(void *ctx)
+{
+    (void)ctx;
+    return atomic_load(&g_stop);
+}
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int64_t wall_utime(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
+}
+
+typedef struct app {
+    hv_online_t o;
+    lcm_t *lcm;
+    int quiet;
+    int32_t next_seq;
+    unsigned frames, frames_lost, bad_id;
+    /* the executor, as its state says */
+    int exec_seen, exec_stop, exec_picked;
+    double exec_vehicle_m;
+    char exec_phase[32];
+    double solve_s[MAX_HORIZONS];
+    size_t n_solves;
+} app_t;
+
+static void on_frame(const lcm_recv_buf_t *rbuf, const char *channel,
+                     const harvest_camera_frame_t *m, void *user)
+{
+    (void)rbuf;
+    (void)channel;
+    app_t *a = user;
+    if (a->frames > 0 && m->seq != a->next_seq) {
+        unsigned lost = (unsigned)(m->seq - a->next_seq);
+        a->frames_lost += m->seq > a->next_seq ? lost : 0;
+        fprintf(stderr, "harvest-plan-online: camera frame %d after %d: %s\n", m->seq,
+                a->next_seq - 1, m->seq > a->next_seq ? "frames lost" : "out of order");
+    }
+    a->frames++;
+    a->next_seq = m->seq + 1;
+    for (int i = 0; i < m->n; ++i) {
+        const harvest_detection_t *d = &m->fruits[i];
+        hv_fruit_t f;
+        memset(&f, 0, sizeof f);
+        size_t len = strlen(d->fruit_id);
+        if (len >= sizeof f.id || hv_fruit_id_check(d->fruit_id, len, NULL) != HV_OK ||
+            (d->side != 0 && d->side != 1)) {
+            a->bad_id++;
+            fprintf(stderr, "harvest-plan-online: detection \"%.40s\": refused: bad_id\n",
+                    d->fruit_id);
+            continue;
+        }
+        memcpy(f.id, d->fruit_id, len + 1);
+        f.side = d->side ? HV_SIDE_RIGHT : HV_SIDE_LEFT;
+        f.x_m = d->x_m;
+        f.y_m = d->y_m;
+        f.z_m = d->z_m;
+        f.yaw_rad = d->yaw_rad;
+        hv_online_verdict_t v;
+        if (hv_online_detect(&a->o, &f, &v) != HV_OK) {
+            fprintf(stderr, "harvest-plan-online: out of memory\n");
+            atomic_store(&g_stop, 1);
+            return;
+        }
+        if (v != HV_DET_ACCEPTED && v != HV_DET_UNREACHABLE) {
+            fprintf(stderr, "harvest-plan-online: detection %s (%c) at y %.3f m: refused: %s\n",
+                    f.id, d->side ? 'R' : 'L', f.y_m, hv_online_verdict_name(v));
+        }
+    }
+    hv_online_seen(&a->o, m->seen_to_m);
+}
+
+static void on_exec_state(const lcm_recv_buf_t *rbuf, const char *channel,
+                          const harvest_exec_state_t *m, void *user)
+{
+    (void)rbuf;
+    (void)channel;
+    app_t *a = user;
+    a->exec_seen = 1;
+    a->exec_stop = m->stop;
+    a->exec_picked = m->picked;
+    a->exec_vehicle_m = m->vehicle_position_m;
+    snprintf(a->exec_phase, sizeof a->exec_phase, "%s", m->phase);
+}
+
+/* The committed plan so far, whole (plan_commit_t.lcm says why). */
+static int publish(app_t *a)
+{
+    const hv_online_t *o = &a->o;
+    harvest_plan_commit_t m;
+    memset(&m, 0, sizeof m);
+    m.utime = wall_utime();
+    m.row_start_m = o->params.row_start_m;
+    m.row_length_m = o->params.row_length_m;
+    m.stop_margin_m = o->params.stop_margin_m;
+    m.commit_y_m = hv_online_commit_y(o);
+    m.final = (int8_t)o->done;
+    m.n_stops = (int32_t)o->n_stops;
+    m.n_picks = (int32_t)o->n_order;
+    size_t ns = o->n_stops ? o->n_stops : 1, np = o->n_order ? o->n_order : 1;
+    m.stop_index = malloc(ns * sizeof *m.stop_index);
+    m.stop_y_m = malloc(ns * sizeof *m.stop_y_m);
+    m.stop_left = malloc(ns * sizeof *m.stop_left);
+    m.stop_picks = malloc(ns * sizeof *m.stop_picks);
+    m.picks = calloc(np, sizeof *m.picks);
+    m.cost_s = malloc(np * sizeof *m.cost_s);
+    char *ids = calloc(np, HV_FRUIT_ID_LEN);
+    int rc = -1;
+    if (m.stop_index && m.stop_y_m && m.stop_left && m.stop_picks && m.picks && m.cost_s && ids) {
+        for (size_t s = 0; s < o->n_stops; ++s) {
+            const hv_online_stop_t *st = &o->stops[s];
+            m.stop_index[s] = (int32_t)st->index;
+            m.stop_y_m[s] = st->y_m;
+            m.stop_picks[s] = (int16_t)st->count;
+            m.stop_left[s] = 0;
+            for (size_t k = 0; k < st->count; ++k) {
+                size_t i = st->first + k;
+                const hv_fruit_t *f = &o->fruits[o->fruit_of[i]];
+                harvest_detection_t *d = &m.picks[i];
+                memcpy(ids + i * HV_FRUIT_ID_LEN, f->id, HV_FRUIT_ID_LEN);
+                d->fruit_id = ids + i * HV_FRUIT_ID_LEN;
+                d->side = f->side == HV_SIDE_LEFT ? 0 : 1;
+                d->x_m = f->x_m;
+                d->y_m = f->y_m;
+                d->z_m = f->z_m;
+                d->yaw_rad = f->yaw_rad;
+                hv_pick_why_t why;
+                double c = 0.0;
+                o->model->cost(o->model->ctx, f, st->y_m, &c, &why);
+                m.cost_s[i] = c;
+                m.stop_left[s] = (int16_t)(m.stop_left[s] + (f->side == HV_SIDE_LEFT));
+            }
+        }
+        rc = harvest_plan_commit_t_publish(a->lcm, "HARVEST_PLAN_COMMIT", &m);
+    }
+    free(m.stop_index);
+    free(m.stop_y_m);
+    free(m.stop_left);
+    free(m.stop_picks);
+    free(m.picks);
+    free(m.cost_s);
+    free(ids);
+    return rc;
+}
+
+static const char *solve_name(hv_solve_status_t s)
+{
+    switch (s) {
+    case HV_SOLVE_OPTIMAL: return "optimal";
+    case HV_SOLVE_FEASIBLE: return "feasible";
+    case HV_SOLVE_NO_SOLUTION: return "no solution";
+    default: return "error";
+    }
+}
+
+static void progress(const app_t *a, const char *what)
+{
+    const hv_online_t *o = &a->o;
+    char exec[128] = "executor not heard yet";
+    if (a->exec_seen) {
+        snprintf(exec, sizeof exec, "executor %s at stop %d of %zu, %d picked, vehicle at %.2f "
+                 "m (%.2f m behind the commit line)", a->exec_phase, a->exec_stop + 1,
+                 o->n_stops, a->exec_picked, a->exec_vehicle_m,
+                 hv_online_commit_y(o) - a->exec_vehicle_m);
+    }
+    fprintf(stderr, "harvest-plan-online: %s: seen to %.2f m, committed to %.2f m%s: %zu stops, "
+            "%zu fruits; refused %u outside_row, %u duplicate, %u late, %u bad_id; %s\n", what,
+            o->seen_to_m, hv_online_commit_y(o), o->done ? " (final)" : "", o->n_stops,
+            o->n_order, o->counts[HV_DET_OUTSIDE_ROW], o->counts[HV_DET_DUPLICATE],
+            o->counts[HV_DET_LATE], a->bad_id, exec);
+}
+
+static int cmp_double(const void *x, const void *y)
+{
+    double p = *(const double *)x, q = *(const double *)y;
+    return p < q ? -1 : p > q;
+}
+
+static void write_summary(const char *path, app_t *a)
+{
+    const hv_online_t *o = &a->o;
+    qsort(a->solve_s, a->n_solves, sizeof *a->solve_s, cmp_double);
+    char buf[2048], err[256];
+    int n = snprintf(buf, sizeof buf,
+        "{\n  \"done\": %s,\n  \"stops\": %zu,\n  \"fruits_committed\": %zu,\n"
+        "  \"detections\": {\"accepted\": %u, \"unreachable\": %u, \"outside_row\": %u, "
+        "\"duplicate\": %u, \"late\": %u, \"bad_id\": %u},\n"
+        "  \"frames\": %u,\n  \"frames_lost\": %u,\n  \"horizons\": %zu,\n"
+        "  \"horizons_optimal\": %u,\n  \"horizon_s_median\": %.6f,\n  \"horizon_s_max\": %.6f\n}\n",
+        o->done ? "true" : "false", o->n_stops, o->n_order, o->counts[HV_DET_ACCEPTED],
+        o->counts[HV_DET_UNREACHABLE], o->counts[HV_DET_OUTSIDE_ROW], o->counts[HV_DET_DUPLICATE],
+        o->counts[HV_DET_LATE], a->bad_id, a->frames, a->frames_lost, a->n_solves,
+        o->steps_optimal, a->n_solves ? a->solve_s[a->n_solves / 2] : 0.0,
+        a->n_solves ? a->solve_s[a->n_solves - 1] : 0.0);
+    if (n < 0 || (size_t)n >= sizeof buf ||
+        hv_file_write_atomic(path, buf, (size_t)n, err, sizeof err) != HV_OK) {
+        fprintf(stderr, "harvest-plan-online: %s: cannot write the summary\n", path);
+    }
+}
+
+/* The committed plan as a plan file (docs/PLAN_FORMAT.md). */
+static int write_plan(const char *out, const char *config, const hv_config_t *cfg,
+                      const app_t *a)
+{
+    const hv_online_t *o = &a->o;
+    char err[512] = "", cfg_rel[HV_PLAN_PATH_LEN];
+    hv_instance_t inst;
+    hv_assignment_t as = {0, NULL};
+    hv_plan_t plan;
+    memset(&plan, 0, sizeof plan);
+    hv_diag_t diag;
+    hv_status_t st = hv_plan_input_relative(out, config, cfg_rel, sizeof cfg_rel, err, sizeof err);
+    int built = 0;
+    if (st == HV_OK) {
+        st = hv_instance_build(&o->params, o->fruits, o->n_fruits, o->model, &inst, &diag);
+        built = st == HV_OK;
+    }
+    if (st == HV_OK) {
+        st = hv_assignment_alloc(&as, o->n_fruits);
+    }
+    if (st == HV_OK) {
+        st = hv_online_assignment(o, &as);
+    }
+    if (st == HV_OK) {
+        hv_plan_meta_t meta;
+        memset(&meta, 0, sizeof meta);
+        meta.method = "milp";
+        meta.fruit_map = "";
+        meta.cost_table_left = "";
+        meta.cost_table_right = "";
+        meta.config = cfg_rel;
+        meta.pick_time = hv_pick_model_name(cfg);
+        meta.params = o->params;
+        meta.vehicle_speed_mps = cfg->vehicle_speed_mps;
+        meta.solver_status = o->steps_optimal == o->steps ? "optimal" : "feasible";
+        meta.gap = -1.0;
+        meta.time_limit_s = o->opt.milp.time_limit_s;
+        meta.horizon.used = 1;
+        meta.horizon.window_m = o->opt.window_m;
+        meta.horizon.commit_m = o->opt.commit_m;
+        meta.horizon.windows = o->steps;
+        meta.horizon.windows_optimal = o->steps_optimal;
+        st = hv_plan_build(&inst, &as, NULL, &meta, &plan);
+    }
+    if (st == HV_OK) {
+        st = hv_plan_save(out, &plan, err, sizeof err);
+    }
+    if (st != HV_OK) {
+        fprintf(stderr, "harvest-plan-online: %s: the plan was not written: %s\n", out,
+                err[0] ? err : hv_plan_status_name(st));
+    }
+    hv_plan_free(&plan);
+    hv_assignment_free(&as);
+    if (built) {
+        hv_instance_free(&inst);
+    }
+    return st == HV_OK ? 0 : -1;
+}
+
+static int parse_pos(const char *flag, const char *text, double *out, int zero_ok)
+{
+    char *end = NULL;
+    double v = strtod(text, &end);
+    if (end == text || *end != '\0' || !isfinite(v) || v < 0 || (v == 0 && !zero_ok)) {
+        fprintf(stderr, "harvest-plan-online: %s: expected a positive number, got \"%s\"\n",
+                flag, text);
+        return -1;
+    }
+    *out = v;
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    const char *config = NULL, *url = NULL, *summary = NULL, *out = NULL;
+    double progress_s = 5.0;
+    int quiet = 0;
+    hv_online_options_t opt;
+    hv_online_options_default(&opt);
+    for (int i = 1; i < argc; ++i) {
+        const char *f = argv[i];
+        if (strcmp(f, "--help") == 0 || strcmp(f, "-h") == 0) {
+            fputs(k_usage, stdout);
+            return 0;
+        }
+        if (strcmp(f, "--quiet") == 0) {
+            quiet = 1;
+            continue;
+        }
+        if (i + 1 >= argc) {
+            fprintf(stderr, "harvest-plan-online: %s needs a value (see --help)\n", f);
+            return EXIT_USAGE;
+        }
+        const char *v = argv[++i];
+        int bad = 0;
+        if (strcmp(f, "--config") == 0) config = v;
+        else if (strcmp(f, "--lcm-url") == 0) url = v;
+        else if (strcmp(f, "--summary") == 0) summary = v;
+        else if (strcmp(f, "--out") == 0) out = v;
+        else if (strcmp(f, "--window") == 0) bad = parse_pos(f, v, &opt.window_m, 0);
+        else if (strcmp(f, "--commit") == 0) bad = parse_pos(f, v, &opt.commit_m, 0);
+        else if (strcmp(f, "--time-limit") == 0) bad = parse_pos(f, v, &opt.milp.time_limit_s, 0);
+        else if (strcmp(f, "--progress") == 0) bad = parse_pos(f, v, &progress_s, 1);
+        else if (strcmp(f, "--threads") == 0) {
+            bad = strcmp(v, "1") != 0 && strcmp(v, "2") != 0;
+            if (bad) {
+                fprintf(stderr, "harvest-plan-online: --threads must be 1 or 2, not %s\n", v);
+            } else if (v[0] == '1') {
+                opt.milp.helper_thread = 0;
+                opt.milp.tree_threads = 1;
+            }
+        }
+        else {
+            fprintf(stderr, "harvest-plan-online: unknown option %s (see --help)\n", f);
+            return EXIT_USAGE;
+        }
+        if (bad) {
+            return EXIT_USAGE;
+        }
+    }
+    if (config == NULL || url == NULL) {
+        fprintf(stderr, "harvest-plan-online: %s is required (see --help)\n",
+                config == NULL ? "--config" : "--lcm-url");
+        return EXIT_USAGE;
+    }
+    if (opt.commit_m > opt.window_m) {
+        fprintf(stderr, "harvest-plan-online: --commit must not exceed --window\n");
+        return EXIT_USAGE;
+    }
+    hv_config_t cfg;
+    char err[512];
+    if (hv_config_load(config, &cfg, err, sizeof err) != HV_OK) {
+        fprintf(stderr, "harvest-plan-online: %s\n", err);
+        return EXIT_INPUT;
+    }
+    hv_ik_model_t ik;
+    hv_pick_model_t model;
+    if (hv_pick_model_ik(&cfg, &ik, &model) != HV_OK) {
+        fprintf(stderr, "harvest-plan-online: %s: an arm reaches none of its fruit area\n",
+                config);
+        return EXIT_INPUT;
+    }
+    hv_instance_params_t par;
+    hv_instance_params_from_config(&cfg, &model, &par);
+    opt.milp.stop = stop_requested;
+    app_t *a = calloc(1, sizeof *a);
+    if (a == NULL || hv_online_init(&a->o, &par, &model, &opt) != HV_OK) {
+        fprintf(stderr, "harvest-plan-online: cannot start (out of memory or bad options)\n");
+        free(a);
+        return EXIT_INPUT;
+    }
+    a->quiet = quiet;
+    a->lcm = lcm_create(url);
+    if (a->lcm == NULL) {
+        fprintf(stderr, "harvest-plan-online: --lcm-url %s: LCM could not be opened\n", url);
+        hv_online_free(&a->o);
+        free(a);
+        return EXIT_INPUT;
+    }
+    harvest_camera_frame_t_subscription_t *cam_sub =
+        harvest_camera_frame_t_subscribe(a->lcm, "HARVEST_CAMERA", on_frame, a);
+    harvest_exec_state_t_subscription_t *exec_sub =
+        harvest_exec_state_t_subscribe(a->lcm, "HARVEST_EXEC_STATE", on_exec_state, a);
+    /* LCM drops what a subscription has queued beyond its capacity (30 by default); no
+     * frame may be lost while a horizon is solved */
+    harvest_camera_frame_t_subscription_set_queue_capacity(cam_sub, 0);
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+    if (!quiet) {
+        fprintf(stderr, "harvest-plan-online: row %.2f m, camera %.2f m from %.2f m ahead, "
+                "horizon %.2f m, commit %.2f m, %.1f s per horizon; waiting for the camera\n",
+                cfg.row_length_m, cfg.camera_window_m, cfg.camera_lead_m, opt.window_m,
+                opt.commit_m, opt.milp.time_limit_s);
+    }
+    int rc = EXIT_DONE;
+    double last_pub = 0.0, last_progress = now_s();
+    while (!atomic_load(&g_stop)) {
+        lcm_handle_timeout(a->lcm, 20);
+        while (lcm_handle_timeout(a->lcm, 0) > 0)
+            ;
+        while (hv_online_ready(&a->o) && !atomic_load(&g_stop)) {
+            double t0 = now_s();
+            hv_online_step_result_t r;
+            if (hv_online_step(&a->o, &r) != HV_OK) {
+                fprintf(stderr, "harvest-plan-online: a horizon failed to plan\n");
+                rc = EXIT_FAILED;
+                break;
+            }
+            double dt = now_s() - t0;
+            if (a->n_solves < MAX_HORIZONS) {
+                a->solve_s[a->n_solves++] = dt;
+            }
+            publish(a);
+            last_pub = now_s();
+            if (!quiet) {
+                char what[160];
+                snprintf(what, sizeof what, "horizon %zu (%zu fruits, %s%s, %.2f s) committed "
+                         "%zu stops", a->n_solves, r.window_fruits, solve_name(r.status),
+                         r.kept_heuristic ? ", kept the FOV plan" : "", dt,
+                         r.stops_to - r.stops_from);
+                progress(a, what);
+            }
+            /* what arrived meanwhile is taken before the next horizon */
+            while (lcm_handle_timeout(a->lcm, 0) > 0)
+                ;
+        }
+        if (rc != EXIT_DONE) {
+            break;
+        }
+        double t = now_s();
+        if (t - last_pub >= REPUBLISH_S) {
+            publish(a);
+            last_pub = t;
+        }
+        if (!quiet && progress_s > 0 && t - last_progress >= progress_s) {
+            progress(a, "progress");
+            last_progress = t;
+        }
+        if (a->exec_seen && strcmp(a->exec_phase, "safe") == 0) {
+            fprintf(stderr, "harvest-plan-online: the executor stopped in the safe state\n");
+            rc = EXIT_EXEC_SAFE;
+            break;
+        }
+        if (a->o.done && a->exec_seen && strcmp(a->exec_phase, "row_done") == 0) {
+            break;
+        }
+    }
+    if (rc == EXIT_DONE && atomic_load(&g_stop)) {
+        rc = a->o.done ? EXIT_DONE : EXIT_INTERRUPTED;
+    }
+    if (!quiet) {
+        progress(a, "end");
+    }
+    if (summary != NULL) {
+        write_summary(summary, a);
+    }
+    if (out != NULL && a->o.done && write_plan(out, config, &cfg, a) != 0 && rc == EXIT_DONE) {
+        rc = EXIT_FAILED;
+    }
+    harvest_camera_frame_t_unsubscribe(a->lcm, cam_sub);
+    harvest_exec_state_t_unsubscribe(a->lcm, exec_sub);
+    lcm_destroy(a->lcm);
+    hv_online_free(&a->o);
+    free(a);
+    return rc;
+}

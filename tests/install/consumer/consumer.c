@@ -1,0 +1,33 @@
+/* An out-of-tree program built against an installed harvest stack (tests/install): one
+ * call into each installed layer (core, planner, executor, CAN), so a missing library,
+ * header or link dependency fails the build or the run. Usage: consumer CONFIG */
+#include <stdio.h>
+
+#include "harvest_can.h"
+#include "hv/exec_status.h"
+#include "hv/file_io.h"
+#include "hv/pick.h"
+#include "hv/pick_model.h"
+
+int main(int argc, char **argv)
+{
+    if (argc != 2) {
+        fprintf(stderr, "usage: consumer CONFIG\n");
+        return 2;
+    }
+    static hv_config_t cfg;
+    char err[256];
+    if (hv_config_load(argv[1], &cfg, err, sizeof err) != HV_OK) {
+        fprintf(stderr, "consumer: %s\n", err);
+        return 1;
+    }
+    double margin_m = 0.0;
+    if (hv_pick_stop_margin(&cfg, &margin_m) != HV_OK)
+        return 1;
+    struct harvest_can_estop_t estop = {.estop_active = 1};
+    uint8_t frame[8];
+    int len = harvest_can_estop_pack(frame, &estop, sizeof frame);
+    printf("stop_margin_m %.3f pick_model %s estop_frame_bytes %d status %s\n", margin_m,
+           hv_pick_model_name(&cfg), len, hv_exec_status_name(HV_OK));
+    return len > 0 ? 0 : 1;
+}

@@ -1,0 +1,97 @@
+"""`cmake --install` into a temporary prefix, then an out-of-tree consumer built against it
+twice: with CMake's find_package(harvest) and with pkg-config. The installed tree is then
+moved, and the pkg-config build repeated, so the .pc files must not keep the prefix.
+"""
+import os
+import shutil
+import subprocess
+
+import pytest
+
+SOURCE_DIR = os.environ.get("HV_SOURCE_DIR", "")
+BUILD_DIR = os.environ.get("HV_BUILD_DIR", "")
+CONSUMER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "consumer")
+PROGRAMS = ["harvest-plan", "harvest-plan-online", "harvest-exec", "hv-can-tool", "costgen",
+            "mountopt"]
+
+
+def _cache(key):
+    with open(os.path.join(BUILD_DIR, "CMakeCache.txt")) as f:
+        for line in f:
+            if line.startswith(key + ":"):
+                return line.split("=", 1)[1].strip()
+    return ""
+
+
+def _run(cmd, **kw):
+    res = subprocess.run(cmd, capture_output=True, text=True, **kw)
+    assert res.returncode == 0, f"{cmd}\n{res.stdout}\n{res.stderr}"
+    return res.stdout
+
+
+@pytest.fixture(scope="module")
+def prefix(tmp_path_factory):
+    for tool in ("cmake", "pkg-config", "cc"):
+        if shutil.which(tool) is None:
+            pytest.skip(f"SKIPPED: {tool} not on PATH")
+    if _cache("HV_WITH_EXECUTOR") != "ON" or _cache("HV_WITH_GLPK") != "ON":
+        pytest.skip("SKIPPED: the build leaves out the executor or the planner")
+    root = tmp_path_factory.mktemp("install")
+    _run(["cmake", "--install", BUILD_DIR, "--prefix", str(root / "opt")])
+    return root / "opt"
+
+
+def _sanitize_flags():
+    # a sanitized build installs sanitized libraries: their consumer needs the runtimes
+    return ["-fsanitize=address,undefined"] if _cache("HV_SANITIZE") == "ON" else []
+
+
+def _check_output(out):
+    import cantools
+
+    estop = cantools.database.load_file(
+        os.path.join(SOURCE_DIR, "executor", "can", "harvest.dbc")).get_message_by_name("Estop")
+    fields = out.split()
+    assert fields[0] == "stop_margin_m" and float(fields[1]) > 0.0
+    assert fields[3] in ("cycle", "one_way")
+    assert int(fields[5]) == estop.length and fields[7] == "HV_OK"
+
+
+def test_install_tree_holds_what_a_vehicle_needs(prefix):
+    for prog in PROGRAMS:
+        assert os.access(prefix / "bin" / prog, os.X_OK), prog
+    share = prefix / "share" / "harvest"
+    assert (share / "harvest.dbc").is_file() and (share / "harvest.cfg").is_file()
+    assert sorted(p.name for p in (share / "lcm").iterdir()) == sorted(
+        p for p in os.listdir(os.path.join(SOURCE_DIR, "lcm_types")) if p.endswith(".lcm"))
+    cmake_dir = next(prefix.glob("lib*/cmake/harvest"))
+    targets = "".join(p.read_text() for p in cmake_dir.glob("harvestTargets*.cmake"))
+    assert "harvest::hv_exec_can" in targets and "harvest::hv_planner" in targets
+    # dependencies are imported targets, resolved on the consumer's machine
+    assert "libglpk" not in targets and "liblcm" not in targets and SOURCE_DIR not in targets
+
+
+def test_cmake_consumer(prefix, tmp_path):
+    flags = " ".join(_sanitize_flags())
+    _run(["cmake", "-S", CONSUMER, "-B", str(tmp_path / "b"), f"-DCMAKE_PREFIX_PATH={prefix}",
+          f"-DCMAKE_C_FLAGS={flags}", f"-DCMAKE_EXE_LINKER_FLAGS={flags}"])
+    _run(["cmake", "--build", str(tmp_path / "b")])
+    _check_output(_run([str(tmp_path / "b" / "consumer"),
+                        str(prefix / "share" / "harvest" / "harvest.cfg")]))
+
+
+def _pkgconfig_build(prefix, out):
+    env = dict(os.environ, PKG_CONFIG_PATH=str(next(prefix.glob("lib*/pkgconfig"))))
+    pc = _run(["pkg-config", "--cflags", "--libs", "harvest-planner", "harvest-executor"],
+              env=env).split()
+    _run(["cc", *_sanitize_flags(), "-o", str(out), os.path.join(CONSUMER, "consumer.c"), *pc])
+    _check_output(_run([str(out), str(prefix / "share" / "harvest" / "harvest.cfg")]))
+
+
+def test_pkgconfig_consumer_after_moving_the_tree(prefix, tmp_path):
+    _pkgconfig_build(prefix, tmp_path / "consumer_pc")
+    moved = tmp_path / "moved"
+    shutil.copytree(prefix, moved, symlinks=True)
+    for pc in moved.glob("lib*/pkgconfig/*.pc"):
+        assert str(prefix) not in pc.read_text(), pc.name
+    _pkgconfig_build(moved, tmp_path / "consumer_moved")
