@@ -5,12 +5,16 @@
 #define HV_FW_UPLOAD_H
 
 #include "hv/can_bus.h"
+#include "hv/can_enums.h"
 #include "plan_image.h"
 
-/* ExecutorPlanStatus.State (DBC) */
+/* ExecutorPlanStatus.State: the DBC's value table (hv/can_enums.h, generated) */
 typedef enum hv_fw_upload_state {
-    HV_UPLOAD_IDLE = 0, HV_UPLOAD_RECEIVING, HV_UPLOAD_ACCEPTED, HV_UPLOAD_REFUSED,
-    HV_UPLOAD_RUNNING
+    HV_UPLOAD_IDLE = HV_CAN_PLAN_STATE_IDLE,
+    HV_UPLOAD_RECEIVING = HV_CAN_PLAN_STATE_RECEIVING,
+    HV_UPLOAD_ACCEPTED = HV_CAN_PLAN_STATE_ACCEPTED,
+    HV_UPLOAD_REFUSED = HV_CAN_PLAN_STATE_REFUSED,
+    HV_UPLOAD_RUNNING = HV_CAN_PLAN_STATE_RUNNING
 } hv_fw_upload_state_t;
 
 typedef struct hv_fw_upload {

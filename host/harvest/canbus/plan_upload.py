@@ -13,7 +13,6 @@ import zlib
 from .buses import open_bus
 from .protocol import load
 
-STATES = {0: "IDLE", 1: "RECEIVING", 2: "ACCEPTED", 3: "REFUSED", 4: "RUNNING"}
 CHUNK = 6
 
 
@@ -52,9 +51,8 @@ def wait_status(bus, want, timeout):
         msg = bus.recv(max(0.0, deadline - time.monotonic()))
         if msg is None or msg.arbitration_id != m.frame_id:
             continue
-        s = m.decode(msg.data, decode_choices=False)
-        last = (STATES.get(int(s["State"]), str(s["State"])), int(s["BytesReceived"]),
-                int(s["Error"]))
+        s = m.decode(msg.data)  # State by the DBC's value table
+        last = (str(s["State"]), int(s["BytesReceived"]), int(s["Error"]))
         if last[0] == "REFUSED":
             raise UploadError(f"the executor refused the plan after {last[1]} bytes: error "
                               f"{last[2]} (firmware/fw_status.h)")
