@@ -16,8 +16,10 @@
 # scripts/demo.sh --target firmware [--out DIR] [--time-scale K] [--seed S] [--time-limit S]
 #
 # --target firmware: the executor as firmware (harvest-fw.elf, firmware/README.md) in
-# QEMU's mps2-an386 on the same bus over SLCAN, the plan uploaded over the bus (time scale
-# 10 unless given); adds the image's size and its worst step (QEMU icount).
+# QEMU's mps2-an386 on the same bus over SLCAN, the plan uploaded over the bus; adds the
+# image's size and its worst step (QEMU icount). Default time scale 2 (a row takes about
+# 7 min): each reply crosses the serial line and python-can's bridge (~10 ms), which the
+# time scale multiplies in simulated time.
 #
 # The bus is CAN carried over UDP multicast (python-can's udp_multicast wire format) on
 # loopback inside a private network namespace (unshare -rn): this machine's kernel has no
@@ -43,7 +45,7 @@ else
 fi
 while (($#)); do
   case "$1" in
-    -h|--help) sed -n '2,26p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,28p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     --row) row=$2; shift 2 ;;
     --alpha) alpha=$2; shift 2 ;;
     --target) target=$2; shift 2
@@ -59,7 +61,7 @@ done
 if [[ -n "$row" ]]; then
   time_scale=${time_scale:-20}; time_limit=${time_limit:-2}
 elif [[ "$target" == firmware ]]; then
-  time_scale=${time_scale:-10}; time_limit=${time_limit:-60}
+  time_scale=${time_scale:-2}; time_limit=${time_limit:-60}
 else
   time_scale=${time_scale:-20}; time_limit=${time_limit:-60}
 fi

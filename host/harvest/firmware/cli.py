@@ -104,8 +104,8 @@ def main(argv=None):
     r.add_argument("--image", required=True, help="harvest-fw.elf")
     r.add_argument("--plan", required=True, help="the plan file (for the fruit count)")
     r.add_argument("--plan-image", required=True, help="harvest-fw-plan's image of that plan")
-    r.add_argument("--time-scale", type=float, default=10.0,
-                   help="simulated s per wall s; must match the image's (10)")
+    r.add_argument("--time-scale", type=float, default=2.0,
+                   help="simulated s per wall s; must match the image's (2)")
     r.add_argument("--timeout", type=float, default=1800.0, help="wall s for the row (1800)")
     r.add_argument("--no-icount", dest="icount", action="store_false",
                    help="QEMU's clock follows the host's; the worst step is then in host "
