@@ -13,6 +13,13 @@
 # works what is committed; both print progress (stops done of known, fruits picked, the
 # robot time committed ahead, the waits for the planner). Default time scale 20 (a 50 m
 # row then takes about 15 min). No telemetry plots in this mode.
+# scripts/demo.sh --target firmware [--out DIR] [--time-scale K] [--seed S] [--time-limit S]
+#
+# --target firmware: the executor as firmware (harvest-fw.elf, firmware/README.md) in
+# QEMU's mps2-an386 on the same bus over SLCAN, the plan uploaded over the bus; adds the
+# image's size and its worst step (QEMU icount). Default time scale 2 (a row takes about
+# 7 min): each reply crosses the serial line and python-can's bridge (~10 ms), which the
+# time scale multiplies in simulated time.
 #
 # The bus is CAN carried over UDP multicast (python-can's udp_multicast wire format) on
 # loopback inside a private network namespace (unshare -rn): this machine's kernel has no
@@ -27,6 +34,7 @@ seed=0
 time_limit=
 row=
 alpha=1
+target=linux
 
 if [[ "${1:-}" == "--inner" ]]; then
   inner=1; shift
@@ -37,9 +45,11 @@ else
 fi
 while (($#)); do
   case "$1" in
-    -h|--help) sed -n '2,21p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,28p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     --row) row=$2; shift 2 ;;
     --alpha) alpha=$2; shift 2 ;;
+    --target) target=$2; shift 2
+              [[ "$target" == linux || "$target" == firmware ]] || { echo "demo: --target: linux or firmware, got '$target'" >&2; exit 2; } ;;
     --out) out=$2; shift 2 ;;
     --time-scale) time_scale=$2; shift 2 ;;
     --seed) seed=$2; shift 2 ;;
@@ -50,6 +60,8 @@ done
 
 if [[ -n "$row" ]]; then
   time_scale=${time_scale:-20}; time_limit=${time_limit:-2}
+elif [[ "$target" == firmware ]]; then
+  time_scale=${time_scale:-2}; time_limit=${time_limit:-60}
 else
   time_scale=${time_scale:-20}; time_limit=${time_limit:-60}
 fi
@@ -105,6 +117,10 @@ fi
 # ---- inside the private network namespace: simulator, logger, executor ------------------
 if ((inner == 1)); then
   netns_up
+  if [[ "$target" == firmware ]]; then
+    exec "$py" -m harvest firmware run --image "$root/build-fw/firmware/harvest-fw.elf" \
+        --plan "$out/plan.json" --plan-image "$out/plan.img" --time-scale "$time_scale" --out "$out/firmware"
+  fi
   # the vehicle waits at the start of its course (docs/PLAN_FORMAT.md: row start - stop margin)
   vstart=$("$py" -c "import json, sys; p = json.load(open(sys.argv[1]))['params']; print(p['row_start_m'] - p['stop_margin_m'])" "$out/plan.json")
   "$py" -m harvest sim --interface udp_multicast --channel "$group" --time-scale "$time_scale" --vehicle-start "$vstart" \
@@ -204,8 +220,51 @@ step "MILP plan (harvest-plan --method milp, time limit ${time_limit} s)"
     --left "$out/tables/costtab_left.bin" --right "$out/tables/costtab_right.bin" \
     --fruits "$out/fruits.csv" --method milp --time-limit "$time_limit" --out "$out/plan.json"
 
-step "simulator + executor on CAN over UDP multicast in a private network namespace (time scale $time_scale)"
 command -v unshare >/dev/null || missing "unshare (util-linux) for the private network namespace"
+if [[ "$target" == firmware ]]; then
+  step "firmware: cross build in build-fw/, plan image (harvest-fw-plan)"
+  command -v arm-none-eabi-gcc >/dev/null || missing "arm-none-eabi-gcc (scripts/setup.sh installs gcc-arm-none-eabi)"
+  command -v qemu-system-arm >/dev/null || missing "qemu-system-arm (scripts/setup.sh installs it)"
+  cmake -S "$root" -B "$root/build-fw" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$root/cmake/arm-none-eabi.cmake" \
+        -DHV_FIRMWARE=ON -DHV_PYTHON="$py" >/dev/null
+  cmake --build "$root/build-fw" -j2
+  "$build/firmware/harvest-fw-plan" --plan "$out/plan.json" --config "$root/config/harvest.cfg" \
+      --out "$out/plan.img" --time-scale "$time_scale"
+  step "simulator + harvest-fw.elf in QEMU over SLCAN, bridged to CAN over UDP multicast in a private network namespace (time scale $time_scale)"
+  set +e
+  unshare -rn bash "$0" --inner --target firmware --out "$out" --time-scale "$time_scale"
+  exec_rc=$?
+  set -e
+  step "result"
+  "$py" - "$out" "$exec_rc" "$(arm-none-eabi-size "$root/build-fw/firmware/harvest-fw.elf" | tail -1)" <<'PY'
+import json, os, sys
+out, rc, size = sys.argv[1], int(sys.argv[2]), sys.argv[3].split()
+s = json.load(open(os.path.join(out, "firmware", "firmware.json")))
+p = json.load(open(os.path.join(out, "plan.json")))
+print("ran on: harvest-fw.elf in QEMU mps2-an386 (Cortex-M4F), SLCAN over its UART, python-can "
+      "slcan + can.bridge to CAN over UDP multicast in a private network namespace")
+print(f"plan: {p['method']}, solver {p['solver']['status']}, gap {p['solver']['gap']:.4g}, "
+      f"{p['totals']['stops']} stops, {p['totals']['fruits_planned']} fruits "
+      f"({p['totals']['fruits_unreachable']} unreachable)")
+print(f"firmware ended in: {s['phase']}")
+print(f"fruits picked: {s['picked']} of {s['fruits_planned']} planned (the simulator's record)")
+ex = s["executed_makespan_s"]
+print(f"makespan: planned {s['planned_makespan_s']:.1f} s; expected by the executor "
+      f"{s['expected_makespan_s']:.1f} s; executed " + ("n/a" if ex is None else
+      f"{ex:.1f} s ({(ex / s['expected_makespan_s'] - 1) * 100:+.2f} % vs expected, "
+      f"{(ex / s['planned_makespan_s'] - 1) * 100:+.2f} % vs planned)"))
+print(f"faults: {s['faults']} injected" + ("" if rc == 0 else f", firmware run exit {rc}"))
+print(f"image (arm-none-eabi-size): text {size[0]} B, data {size[1]} B, bss {size[2]} B")
+print(f"worst step: {s['worst_step_cycles']} SysTick cycles under QEMU -icount shift=5 "
+      f"(= {s['worst_step_instructions']} instructions; QEMU counts instructions, not M4 cycles), "
+      f"{s['steps']} steps")
+for f in ("firmware/firmware.json", "firmware/sim.jsonl", "firmware/uart0.log", "plan.img"):
+    print(f"  {os.path.join(out, f)}")
+PY
+  exit "$exec_rc"
+fi
+
+step "simulator + executor on CAN over UDP multicast in a private network namespace (time scale $time_scale)"
 set +e
 unshare -rn bash "$0" --inner --out "$out" --time-scale "$time_scale"
 exec_rc=$?

@@ -22,6 +22,8 @@ apt_pkgs=(
   python3 python3-venv python3-dev               # host/ package and pytest
   iproute2 can-utils                             # network namespaces, vcan tools
   qemu-system-x86 busybox-static cpio kmod       # the vcan test-bed guest (DESIGN §6)
+  gcc-arm-none-eabi libnewlib-arm-none-eabi      # firmware/: the Cortex-M4F cross build
+  qemu-system-arm                                # firmware/: harvest-fw.elf on mps2-an386
 )
 missing=()
 for p in "${apt_pkgs[@]}"; do

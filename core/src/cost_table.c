@@ -20,6 +20,7 @@
  *   464 u32      CRC-32 of the payload
  *   468 u32      CRC-32 of header bytes [0, 468)
  */
+#include <inttypes.h> /* PRIu32: uint32_t is unsigned long on arm-none-eabi */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -226,18 +227,18 @@ hv_status_t hv_costtab_open(hv_costtab_t *tab, const void *buf, size_t len, hv_d
     }
     uint32_t version = get_u32(h + OFF_VERSION);
     if (version != HV_COSTTAB_VERSION) {
-        snprintf(msg, sizeof msg, "format version %u, this build reads %u", version,
+        snprintf(msg, sizeof msg, "format version %" PRIu32 ", this build reads %u", version,
                  HV_COSTTAB_VERSION);
         return fail(diag, HV_ERR_TAB_VERSION, "version", msg);
     }
     if (get_u32(h + OFF_HEADER_BYTES) != HV_COSTTAB_HEADER_BYTES) {
-        snprintf(msg, sizeof msg, "header size %u, expected %u", get_u32(h + OFF_HEADER_BYTES),
+        snprintf(msg, sizeof msg, "header size %" PRIu32 ", expected %u", get_u32(h + OFF_HEADER_BYTES),
                  HV_COSTTAB_HEADER_BYTES);
         return fail(diag, HV_ERR_TAB_HEADER, "header_bytes", msg);
     }
     uint32_t hcrc = hv_crc32(0, h, OFF_HEADER_CRC);
     if (hcrc != get_u32(h + OFF_HEADER_CRC)) {
-        snprintf(msg, sizeof msg, "header CRC-32 is %08x, stored %08x: header corrupted", hcrc,
+        snprintf(msg, sizeof msg, "header CRC-32 is %08" PRIx32 ", stored %08" PRIx32 ": header corrupted", hcrc,
                  get_u32(h + OFF_HEADER_CRC));
         return fail(diag, HV_ERR_TAB_CRC, "header_crc32", msg);
     }
@@ -287,7 +288,7 @@ hv_status_t hv_costtab_open(hv_costtab_t *tab, const void *buf, size_t len, hv_d
     const uint8_t *payload = h + HV_COSTTAB_HEADER_BYTES;
     uint32_t pcrc = hv_crc32(0, payload, 2u * t.cells);
     if (pcrc != get_u32(h + OFF_PAYLOAD_CRC)) {
-        snprintf(msg, sizeof msg, "payload CRC-32 is %08x, header says %08x: payload corrupted",
+        snprintf(msg, sizeof msg, "payload CRC-32 is %08" PRIx32 ", header says %08" PRIx32 ": payload corrupted",
                  pcrc, get_u32(h + OFF_PAYLOAD_CRC));
         return fail(diag, HV_ERR_TAB_CRC, "payload_crc32", msg);
     }
@@ -344,7 +345,7 @@ hv_status_t hv_costtab_expect(const hv_costtab_t *tab, hv_side_t side,
                 char field[32], msg[160];
                 snprintf(field, sizeof field, "grid.%s", axis_name[a]);
                 snprintf(msg, sizeof msg,
-                         "table has origin %.6g step %.6g count %u, expected %.6g %.6g %u",
+                         "table has origin %.6g step %.6g count %" PRIu32 ", expected %.6g %.6g %" PRIu32,
                          tab->grid.axis[a].origin, tab->grid.axis[a].step,
                          tab->grid.axis[a].count, expected->axis[a].origin,
                          expected->axis[a].step, expected->axis[a].count);

@@ -7,6 +7,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "hv/exec_port_linux.h"
 #include "hv/exec_status.h"
 
 uint64_t hv_exec_now_ns(void)
@@ -89,22 +90,7 @@ static hv_status_t journal_action(hv_exec_loop_t *L, const hv_exec_action_t *a, 
 {
     if (!L->journal)
         return HV_OK;
-    hv_status_t st = HV_ERR_ARG;
-    switch (a->u.jr.kind) {
-    case HV_JR_STOP: st = hv_exec_journal_stop(L->journal, a->u.jr.stop, t); break;
-    case HV_JR_CUT: st = hv_exec_journal_cut(L->journal, a->u.jr.pick, a->u.jr.attempt, t); break;
-    case HV_JR_RELEASE:
-        st = hv_exec_journal_release(L->journal, a->u.jr.pick, a->u.jr.attempt, t);
-        break;
-    case HV_JR_OUTCOME:
-        st = hv_exec_journal_outcome(L->journal, a->u.jr.pick, a->u.jr.outcome, a->u.jr.reason,
-                                     a->u.jr.attempt, t);
-        break;
-    case HV_JR_DONE: st = hv_exec_journal_done(L->journal, t); break;
-    case HV_JR_ESTOP_CLEAR:
-        st = hv_exec_journal_estop_clear(L->journal, L->clear_by, a->u.jr.nodes, t);
-        break;
-    }
+    hv_status_t st = hv_exec_journal_action(L->journal, a, L->clear_by, t);
     if (st == HV_OK)
         L->st.journal_records++;
     return st;

@@ -8,6 +8,7 @@ COMMANDS = {
     "scenario": "generate fruit maps (paper's uniform rows, clusters, gradients, long rows)",
     "experiments": "run the paper's comparison (FOV, Serial, MILP), plots and report",
     "telemetry": "log LCM telemetry and turn a log into a timeline plot",
+    "firmware": "a row with harvest-fw.elf in QEMU on the simulator's bus",
 }
 
 

@@ -24,7 +24,8 @@ CONTRACT = {("Command", "Command"): ("CMD", enums.Command),
             ("Heartbeat", "Health"): ("HEALTH", enums.Health),
             ("EeCommand", "Action"): ("EE_ACTION", enums.EeAction),
             ("EeStatus", "Action"): ("EE_ACTION", enums.EeAction),
-            ("EeStatus", "State"): ("EE_STATE", enums.EeState)}
+            ("EeStatus", "State"): ("EE_STATE", enums.EeState),
+            ("PlanStatus", "State"): ("PLAN_STATE", enums.PlanState)}
 NODE_PREFIXES = [prefix for _, prefix in protocol.NODES.values()]
 
 

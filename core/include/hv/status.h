@@ -6,6 +6,7 @@
  *   -100..-199  planner
  *   -200..-299  executor
  *   -300..-399  CAN protocol and transports
+ *   -400..-499  firmware (board, UART, SLCAN; firmware/fw_status.h)
  */
 #ifndef HV_STATUS_H
 #define HV_STATUS_H
@@ -43,7 +44,12 @@ typedef enum hv_status {
     HV_ERR_CFG_UNKNOWN = -31, /* unknown key (never silently ignored) */
     HV_ERR_CFG_MISSING = -32, /* a required key is absent */
     HV_ERR_CFG_RANGE = -33,   /* a value is outside its allowed range */
-    HV_ERR_CFG_DUPLICATE = -34
+    HV_ERR_CFG_DUPLICATE = -34,
+
+    /* not a code: keeps hv_status_t as wide as an int where the ABI sizes an enum by its
+     * values (arm-none-eabi: 1 byte for -34..0), since the other modules' codes down to
+     * -499 are cast to it */
+    HV_STATUS_INT_WIDTH_ = -0x7FFFFFFF
 } hv_status_t;
 
 /* Short, stable, human-readable name of a status code ("HV_ERR_TAB_CRC"). Never NULL. */

@@ -28,8 +28,13 @@
 extern "C" {
 #endif
 
+/* Capacities of the tables; a build may set smaller ones for all its code (firmware/). */
+#ifndef HV_EXEC_MAX_STOPS
 #define HV_EXEC_MAX_STOPS 1024u /* a 50 m row at the paper's densities takes ~600 */
+#endif
+#ifndef HV_EXEC_MAX_PICKS
 #define HV_EXEC_MAX_PICKS 4096u /* both arms together */
+#endif
 #define HV_EXEC_ID_LEN 32u       /* fruit id incl. its NUL */
 
 typedef struct hv_exec_pick {

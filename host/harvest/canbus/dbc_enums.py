@@ -23,6 +23,7 @@ SPEC = (
     ("Health", "HEALTH", (("Heartbeat", "Health"),)),
     ("EeAction", "EE_ACTION", (("EeCommand", "Action"), ("EeStatus", "Action"))),
     ("EeState", "EE_STATE", (("EeStatus", "State"),)),
+    ("PlanState", "PLAN_STATE", (("PlanStatus", "State"),)),  # the firmware's plan upload
 )
 
 

@@ -1,5 +1,6 @@
 """The protocol's value tables as IntEnums, read from the DBC (executor/can/harvest.dbc,
-the source of truth) at import: Command, State, Health, EeAction, EeState.
+the source of truth) at import: Command, State, Health, EeAction, EeState, PlanState (the
+firmware's plan upload).
 
     from harvest.canbus.enums import Command, State
     node.on_command(t, Command.CLEAR_ESTOP, seq)
@@ -25,6 +26,7 @@ State = _ENUMS["State"]
 Health = _ENUMS["Health"]
 EeAction = _ENUMS["EeAction"]
 EeState = _ENUMS["EeState"]
+PlanState = _ENUMS["PlanState"]
 
 
 def member(kind, value):

@@ -43,6 +43,9 @@ COMMANDS = {
     "joint_velocity": (6, "JointVelocity"),
     "ee_command": (7, "EeCommand"),
     "ee_status": (8, "EeStatus"),
+    "plan_begin": (9, "PlanBegin"),    # executor: the plan upload (firmware/)
+    "plan_data": (10, "PlanData"),
+    "plan_status": (11, "PlanStatus"),
 }
 
 

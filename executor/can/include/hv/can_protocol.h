@@ -29,7 +29,10 @@ enum hv_can_cmd {
     HV_CAN_CMD_JOINT_STATE = 5,
     HV_CAN_CMD_JOINT_VELOCITY = 6,
     HV_CAN_CMD_EE_COMMAND = 7,
-    HV_CAN_CMD_EE_STATUS = 8
+    HV_CAN_CMD_EE_STATUS = 8,
+    HV_CAN_CMD_PLAN_BEGIN = 9,  /* executor: a plan upload starts (firmware/) */
+    HV_CAN_CMD_PLAN_DATA = 10,  /* executor: 6 bytes of it */
+    HV_CAN_CMD_PLAN_STATUS = 11 /* executor: how the upload stands */
 };
 
 #define HV_CAN_ID(node, cmd) ((((unsigned)(node)) << 5) | ((unsigned)(cmd) & 0x1Fu))

@@ -1,0 +1,53 @@
+/* The port: what a board gives the executor, as one small struct of function pointers (a
+ * driver interface). The state machine (hv/exec_sm.h) stays pure; the loop around it asks
+ * the port for the time and the frames, and carries out each step's actions through it
+ * (hv_exec_port_carry_out). Two implementations:
+ *   - Linux (exec_port_linux.c, hv_exec_port_linux): CLOCK_MONOTONIC, an hv_can_bus_t
+ *     (SocketCAN or udp), the journal file (hv/exec_journal.h);
+ *   - the firmware (firmware/fw_port.c): the SysTick, SLCAN on the UART, journal records
+ *     counted in RAM (QEMU's mps2-an386 has no storage that outlives a reset).
+ */
+#ifndef HV_EXEC_PORT_H
+#define HV_EXEC_PORT_H
+
+#include <stdint.h>
+
+#include "hv/can_bus.h"
+#include "hv/exec_can.h"
+#include "hv/exec_sm.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct hv_exec_port {
+    void *ctx; /* the implementation's state, passed to every call */
+    /* monotonic time, ns; never goes back */
+    uint64_t (*now_ns)(void *ctx);
+    /* queue one frame for the bus; HV_OK or the transport's error (the frame is lost: the
+     * state machine resends what must arrive) */
+    hv_status_t (*can_send)(void *ctx, const hv_can_frame_t *f);
+    /* the next received frame without waiting; HV_CAN_ERR_TIMEOUT when none waits */
+    hv_status_t (*can_recv)(void *ctx, hv_can_frame_t *f);
+    /* store one journal record (an HV_ACT_JOURNAL action; t_s: the run's plan time)
+     * durably before returning: the next action must not happen without it */
+    hv_status_t (*journal_append)(void *ctx, const hv_exec_action_t *record, double t_s);
+} hv_exec_port_t;
+
+typedef struct hv_exec_port_stats {
+    uint64_t frames_tx, send_failures, encode_errors, journal_records;
+} hv_exec_port_stats_t;
+
+/* Carry out a step's actions in order: frames encoded (hv_exec_can) and sent, journal
+ * records appended; telemetry actions (fruit events, phases) are the caller's and skipped
+ * here. Stops at a journal record that could not be stored and returns its status (the
+ * caller then steps HV_EV_JOURNAL_FAILED); HV_OK otherwise. *done (may be NULL): the
+ * actions carried out. */
+hv_status_t hv_exec_port_carry_out(const hv_exec_port_t *port, hv_exec_can_tx_t *tx,
+                                   const hv_exec_actions_t *out, double t_s,
+                                   hv_exec_port_stats_t *st, unsigned *done);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* HV_EXEC_PORT_H */

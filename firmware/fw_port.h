@@ -1,0 +1,26 @@
+/* The executor's port on mps2-an386 (hv/exec_port.h): the SysTick clock, CAN as SLCAN
+ * lines on UART0 (slcan.h), journal records counted in RAM (QEMU's board keeps nothing
+ * over a reset, so a restart starts the row afresh). */
+#ifndef HV_FW_PORT_H
+#define HV_FW_PORT_H
+
+#include <stdint.h>
+
+#include "fw_board.h"
+#include "hv/exec_port.h"
+#include "slcan.h"
+
+typedef struct hv_fw_port {
+    hv_fw_clock_t clock;
+    hv_slcan_rx_t rx;
+    int open;                   /* the host opened the SLCAN channel (O) */
+    uint32_t frames_rx, frames_tx, bad_lines, overruns, journal_records;
+} hv_fw_port_t;
+
+/* Set up the board's clock and UART and fill `port` with the firmware's functions. */
+void hv_fw_port_init(hv_exec_port_t *port, hv_fw_port_t *ctx);
+
+/* A named error on the UART: Lawicel's BELL, then "harvest-fw: error NAME". */
+void hv_fw_port_report_error(int status);
+
+#endif /* HV_FW_PORT_H */

@@ -1,0 +1,64 @@
+"""The firmware on the simulator's bus: harvest-fw.elf in QEMU, its UART0 carried onto
+python-can's udp_multicast bus by python-can's own pieces (the slcan interface over a
+pyserial socket:// URL, bridged with `python -m can.bridge`), the simulator (exec_hil.Sim)
+on the same bus, the plan uploaded over the bus (harvest.canbus.plan_upload). Callers are
+inside a private network namespace (fw_qemu.enter_netns)."""
+import os
+import subprocess
+import sys
+import time
+
+import fw_qemu
+from harvest.firmware import rig
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                                "executor"))
+import exec_hil as H  # noqa: E402
+
+PLAN_TOOL = os.path.join(H.BUILD, "firmware", "harvest-fw-plan")
+
+
+def missing():
+    """Reasons the bus tests cannot run, beside QEMU and the image (empty when none)."""
+    out = H.missing_pieces()
+    if not os.access(PLAN_TOOL, os.X_OK):
+        out.append(f"harvest-fw-plan not built at {PLAN_TOOL}")
+    try:
+        import serial  # noqa: F401  (pyserial: python-can's slcan needs it)
+    except ImportError:
+        out.append("pyserial is not installed (host/requirements.txt)")
+    return out
+
+
+def plan_image(workdir, plan_path, time_scale):
+    out = os.path.join(workdir, "plan.img")
+    subprocess.run([PLAN_TOOL, "--plan", str(plan_path), "--config", H.CONFIG, "--out", out,
+                    "--time-scale", str(time_scale),
+                    "--heartbeat-timeout", str(H.HEARTBEAT_TIMEOUT_S)],
+                   check=True, capture_output=True, text=True)
+    with open(out, "rb") as f:
+        return f.read()
+
+
+class Rig:
+    """QEMU (serial on TCP, waiting for the bridge), the bridge, the simulator."""
+
+    def __init__(self, workdir, time_scale, faults=(), sim=True):
+        self.qemu = fw_qemu.Qemu(str(workdir))
+        self.qemu.wait_listening()
+        self.bridge = rig.Bridge(str(workdir), self.qemu.port, H.GROUP, H.env())
+        self.sim = H.Sim(str(workdir), time_scale, faults) if sim else None
+
+    def stop(self):
+        for part in (self.sim, self.bridge, self.qemu):
+            if part is not None:
+                part.stop()
+
+
+def wait_until(predicate, timeout, period=0.5):
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        if predicate():
+            return True
+        time.sleep(period)
+    return predicate()
