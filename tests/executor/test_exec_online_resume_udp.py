@@ -6,7 +6,9 @@ namespace) is interrupted by SIGKILL and restarted on the same journals:
   journal and the running planner's next message agrees with them;
 - harvest-exec and then harvest-plan-online are killed (the planner once the vehicle stood,
   so it missed no camera frame): the planner's restart replays its own journal and commits
-  nothing differently, the executor's rebuilds its stops.
+  nothing differently, the executor's rebuilds its stops;
+- both killed, the planner restarted without its journal: the executor refuses its plan
+  (HV_ERR_EXEC_PLAN_CONFLICT) and never grows its journalled one.
 
 Judged by the simulator's record: every fruit of the committed plan (which the checker
 finds holds every reachable fruit of the map exactly once) was cut exactly once at its
@@ -47,23 +49,23 @@ class Row:
                                                        str(self.fruits), "--lcm-url", URL])
         self.procs = []
 
-    def planner(self, n):
+    def planner(self, n, journal="planner.journal"):
         p = subprocess.Popen(
             [PLAN_ONLINE, "--config", str(self.cfg), "--lcm-url", URL, "--time-limit", "2",
-             "--threads", "1", "--journal", str(self.dir / "planner.journal"),
+             "--threads", "1", "--journal", str(self.dir / journal),
              "--summary", str(self.dir / f"planner{n}.json"),
              "--out", str(self.dir / "plan.json")],
             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         self.procs.append(p)
         return p
 
-    def executor(self, n):
+    def executor(self, n, stderr=subprocess.PIPE):
         p = subprocess.Popen(
             [H.EXEC, "--online", "--lcm-url", URL, "--config", str(self.cfg), "--journal",
              str(self.dir / "exec.journal"), "--summary", str(self.dir / f"exec{n}.json"),
              "--transport", "udp", "--channel", H.GROUP, "--time-scale", str(SCALE),
              "--heartbeat-timeout", str(H.HEARTBEAT_TIMEOUT_S)],
-            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+            stdout=subprocess.PIPE, stderr=stderr, text=True)
         self.procs.append(p)
         return p
 
@@ -142,16 +144,48 @@ def test_executor_killed_mid_row(row):
     judge(row, ex2, planner, n_cut, planner_resumed=False)
 
 
-def test_executor_and_planner_killed(row):
+def kill_both(row):
+    """Start both, kill harvest-exec after a third of the fruit, then the planner once the
+    vehicle stood (so no camera frame was lost to it); the cuts so far."""
     pl1, ex1 = row.planner(1), row.executor(1)
     assert H.wait_for(lambda: row.cuts() >= row.n_map // 3, 300), "no harvest under way"
     stood = sum(e["node"] == "vehicle" for e in row.sim.events("comm_timeout"))
     kill(ex1)
-    # the planner goes on until the vehicle has stopped: no camera frame is lost to it
     assert H.wait_for(lambda: vehicle_stood(row, stood), 30), "the vehicle never stopped"
     H.wait_for(lambda: False, 0.5)  # the last camera frame taken
     kill(pl1)
-    n_cut = row.cuts()
+    return row.cuts()
+
+
+def test_executor_and_planner_killed(row):
+    n_cut = kill_both(row)
     pl2 = row.planner(2)
     ex2 = row.executor(2)
     judge(row, ex2, pl2, n_cut, planner_resumed=True)
+
+
+def stop_records(path):
+    with open(path) as f:
+        return sum(line.startswith("P ") for line in f)
+
+
+def test_a_planner_that_forgot_is_refused(row):
+    """The planner restarted without its journal commits from scratch: the restarted
+    executor refuses its plan by name and never grows its journalled one."""
+    kill_both(row)
+    before = stop_records(row.dir / "exec.journal")
+    pl2 = row.planner(2, journal="fresh.journal")
+    err_path = row.dir / "exec2.err"
+    with open(err_path, "w") as err:
+        ex2 = row.executor(2, stderr=err)
+        said = H.wait_for(lambda: "HV_ERR_EXEC_PLAN_CONFLICT" in err_path.read_text(), 60)
+        ex2.send_signal(signal.SIGTERM)
+        ex2.communicate(timeout=30)
+    pl2.communicate(timeout=30)
+    assert said, err_path.read_text()[-2000:]
+    assert ex2.returncode == 3  # stopped safe by the signal, as any run
+    assert stop_records(row.dir / "exec.journal") == before
+    with open(row.dir / "exec2.json") as f:
+        assert json.load(f)["plan_refused"] > 0
+    picks = H.sim_picks(row.sim)
+    assert len(set(picks)) == len(picks), "a fruit was cut twice"
