@@ -14,6 +14,7 @@
 #define COMMIT_CHANNEL "HARVEST_PLAN_COMMIT"
 
 typedef struct feed_lcm {
+    FILE *log;
     lcm_t *lcm;
     harvest_lcm_plan_commit_t_subscription_t *sub;
     hv_exec_plan_t *plan;
@@ -24,12 +25,15 @@ typedef struct feed_lcm {
     int pending, final;
     double advance_m;
     hv_exec_feed_stats_t st;
+    char why[160];
     hv_exec_pick_t picks[HV_EXEC_MAX_PICKS]; /* one stop's, being appended */
 } feed_lcm_t;
 
 static void refuse(feed_lcm_t *f, const char *why)
 {
     f->st.refused++;
+    if (f->log && strcmp(why, f->st.last_refusal) != 0)
+        fprintf(f->log, "harvest-exec: the planner's committed plan refused: %s\n", why);
     snprintf(f->st.last_refusal, sizeof f->st.last_refusal, "%s", why);
 }
 
@@ -40,8 +44,9 @@ static int same_course(const hv_exec_plan_t *p, const harvest_lcm_plan_commit_t 
            fabs(p->stop_margin_m - m->stop_margin_m) < 1e-9;
 }
 
-/* Append stop s of the message (its picks from offset off). */
-static hv_status_t append_stop(feed_lcm_t *f, const harvest_lcm_plan_commit_t *m, int s, int off)
+/* Stop s of the message (its picks from offset off) into f->picks; its left count. */
+static hv_status_t read_stop(feed_lcm_t *f, const harvest_lcm_plan_commit_t *m, int s, int off,
+                             int *n_left)
 {
     int n = m->stop_picks[s], nl = m->stop_left[s];
     if (n < 0 || nl < 0 || nl > n || off + n > m->n_picks || n > (int)HV_EXEC_MAX_PICKS)
@@ -60,8 +65,26 @@ static hv_status_t append_stop(feed_lcm_t *f, const harvest_lcm_plan_commit_t *m
         pk->yaw_rad = d->yaw_rad;
         pk->cost_s = m->cost_s[off + k];
     }
+    *n_left = nl;
+    return HV_OK;
+}
+
+/* Stop s of the message: appended (s beyond the plan's last), or, for a stop the plan holds
+ * already (from an earlier message or the journal of a run before a restart), checked to be
+ * the very same: HV_ERR_EXEC_PLAN_CONFLICT when not. */
+static hv_status_t take_stop(feed_lcm_t *f, const harvest_lcm_plan_commit_t *m, int s, int off)
+{
+    int nl = 0;
+    hv_status_t st = read_stop(f, m, s, off, &nl);
+    if (st != HV_OK)
+        return st;
+    uint16_t left = (uint16_t)nl, right = (uint16_t)(m->stop_picks[s] - nl);
+    if (s < f->plan->n_stops)
+        return hv_exec_plan_stop_matches(f->plan, (uint16_t)s, (uint32_t)m->stop_index[s],
+                                         m->stop_y_m[s], f->picks, left, right)
+                   ? HV_OK : HV_ERR_EXEC_PLAN_CONFLICT;
     return hv_exec_plan_append(f->plan, (uint32_t)m->stop_index[s], m->stop_y_m[s], f->picks,
-                               (uint16_t)nl, (uint16_t)(n - nl));
+                               left, right);
 }
 
 static void on_commit(const lcm_recv_buf_t *rbuf, const char *channel,
@@ -86,27 +109,32 @@ static void on_commit(const lcm_recv_buf_t *rbuf, const char *channel,
         refuse(f, "another course than the first message's");
         return;
     }
-    if (m->n_stops < p->n_stops ||
-        (p->n_stops > 0 &&
-         (uint32_t)m->stop_index[p->n_stops - 1] != p->stops[p->n_stops - 1].plan_index)) {
-        refuse(f, "its stops do not begin with those already in the plan");
+    if (m->n_stops < p->n_stops) {
+        refuse(f, "HV_ERR_EXEC_PLAN_CONFLICT: fewer stops than the plan (journal) holds");
         return;
     }
-    int off = 0;
-    for (int s = 0; s < p->n_stops; s++)
-        off += m->stop_picks[s];
-    int grew = 0;
-    for (int s = p->n_stops; s < m->n_stops; s++) {
-        hv_status_t st = append_stop(f, m, s, off);
+    int off = 0, grew = 0;
+    for (int s = 0; s < m->n_stops; s++) {
+        int had = s < p->n_stops;
+        hv_status_t st = take_stop(f, m, s, off);
         if (st != HV_OK) {
-            refuse(f, st == HV_ERR_EXEC_PLAN_CAPACITY ? "more stops or picks than the tables hold"
-                                                      : "a stop that does not follow, or a "
-                                                        "fruit planned twice");
+            snprintf(f->why, sizeof f->why, "%s: stop %d (candidate %d at %.3f m): %s",
+                     hv_exec_status_name(st), s + 1, (int)m->stop_index[s], m->stop_y_m[s],
+                     st == HV_ERR_EXEC_PLAN_CONFLICT
+                         ? "not the stop the plan (journal) holds there"
+                     : st == HV_ERR_EXEC_PLAN_CAPACITY
+                         ? "more stops or picks than the tables hold"
+                         : "a stop that does not follow, or a fruit planned twice");
+            refuse(f, f->why);
+            if (st == HV_ERR_EXEC_PLAN_CONFLICT)
+                return; /* nothing of a plan that contradicts the journal */
             break;
         }
         off += m->stop_picks[s];
-        f->st.appended_stops++;
-        grew = 1;
+        if (!had) {
+            f->st.appended_stops++;
+            grew = 1;
+        }
     }
     if (grew && hv_exec_plan_prepare(p, f->arm, &f->timing) != HV_OK)
         refuse(f, "the grown plan could not be prepared");
@@ -150,9 +178,11 @@ hv_status_t hv_exec_feed_lcm_open(hv_exec_feed_t *feed, const char *url, hv_exec
     memcpy(f->arm, arm, sizeof f->arm);
     f->timing = *timing;
     f->max_margin_m = max_margin_m;
+    f->course_set = plan->row_length_m > 0; /* rebuilt from the journal of an earlier start */
     feed->fd = lcm_get_fileno(f->lcm);
     feed->take = take;
     feed->ctx = f;
+    f->log = feed->log;
     return HV_OK;
 }
 

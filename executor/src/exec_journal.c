@@ -4,6 +4,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <libgen.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -16,6 +17,7 @@
 #include "hv/exec_sm.h"     /* node indices and names */
 #include "hv/exec_status.h"
 #include "hv/fruit_id.h"
+#include "hv/record_line.h"
 
 #define JOURNAL_VERSION 1
 #define LINE_MAX_BYTES 256
@@ -42,30 +44,36 @@ static char side_char(hv_side_t s)
     return s == HV_SIDE_LEFT ? 'L' : 'R';
 }
 
-/* Append " *<crc>\n" and write the line with one write(), then fdatasync(). */
-static hv_status_t append(hv_exec_journal_t *j, char *line, size_t len)
+/* Frame and write one record (hv/record_line.h); fdatasync() unless the caller syncs a
+ * batch of lines once at its end. */
+static hv_status_t append_line(hv_exec_journal_t *j, char *line, size_t len, int sync)
 {
-    if (j->fd < 0)
-        return HV_ERR_EXEC_JOURNAL_IO;
-    uint32_t crc = hv_crc32(0, line, len);
-    int n = snprintf(line + len, LINE_MAX_BYTES - len, " *%08x\n", (unsigned)crc);
-    if (n < 0 || (size_t)n >= LINE_MAX_BYTES - len)
-        return HV_ERR_EXEC_JOURNAL_IO;
-    len += (size_t)n;
-    size_t off = 0;
-    while (off < len) {
-        ssize_t w = write(j->fd, line + off, len - off);
-        if (w < 0) {
-            if (errno == EINTR)
-                continue;
-            return HV_ERR_EXEC_JOURNAL_IO;
-        }
-        off += (size_t)w;
-    }
-    if (fdatasync(j->fd) != 0)
+    if (j->fd < 0 || hv_record_write(j->fd, line, len, LINE_MAX_BYTES, sync) != HV_OK)
         return HV_ERR_EXEC_JOURNAL_IO;
     j->records++;
     return HV_OK;
+}
+
+static hv_status_t vfmt_line(hv_exec_journal_t *j, int sync, const char *fmt, va_list ap)
+{
+    char line[LINE_MAX_BYTES];
+    int n = vsnprintf(line, LINE_MAX_BYTES - 16, fmt, ap);
+    if (n < 0 || n >= LINE_MAX_BYTES - 16)
+        return HV_ERR_EXEC_JOURNAL_IO;
+    return append_line(j, line, (size_t)n, sync);
+}
+
+/* One line of a batch: written, not yet synced. */
+static hv_status_t fmt_line(hv_exec_journal_t *j, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+
+static hv_status_t fmt_line(hv_exec_journal_t *j, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    hv_status_t st = vfmt_line(j, 0, fmt, ap);
+    va_end(ap);
+    return st;
 }
 
 static hv_status_t fmt_append(hv_exec_journal_t *j, const char *fmt_prefix, ...)
@@ -73,14 +81,11 @@ static hv_status_t fmt_append(hv_exec_journal_t *j, const char *fmt_prefix, ...)
 
 static hv_status_t fmt_append(hv_exec_journal_t *j, const char *fmt_prefix, ...)
 {
-    char line[LINE_MAX_BYTES];
     va_list ap;
     va_start(ap, fmt_prefix);
-    int n = vsnprintf(line, LINE_MAX_BYTES - 16, fmt_prefix, ap);
+    hv_status_t st = vfmt_line(j, 1, fmt_prefix, ap);
     va_end(ap);
-    if (n < 0 || n >= LINE_MAX_BYTES - 16)
-        return HV_ERR_EXEC_JOURNAL_IO;
-    return append(j, line, (size_t)n);
+    return st;
 }
 
 static int pick_ok(const hv_exec_journal_t *j, int pick)
@@ -167,6 +172,46 @@ hv_status_t hv_exec_journal_estop_clear(hv_exec_journal_t *j, const char *operat
     return fmt_append(j, "E %s nodes=%s t=%.3f", operator_name, list, t_s);
 }
 
+/* ---- online: the plan's stops ---------------------------------------------------- */
+
+#define ONLINE_HEADER "HVJ 1 online"
+
+hv_status_t hv_exec_journal_stops(hv_exec_journal_t *j)
+{
+    if (!j || !j->online || !j->grow)
+        return HV_ERR_ARG;
+    const hv_exec_plan_t *p = j->grow;
+    if (j->stops_journalled >= p->n_stops)
+        return HV_OK;
+    /* every id first: a stop goes into the journal whole or not at all */
+    for (unsigned i = p->stops[j->stops_journalled].first[HV_SIDE_LEFT]; i < p->n_picks; i++)
+        if (id_ok(&p->picks[i]) != HV_OK)
+            return HV_ERR_EXEC_JOURNAL_ID;
+    hv_status_t st = HV_OK;
+    if (!j->course_journalled)
+        st = fmt_line(j, "O start=%.17g length=%.17g margin=%.17g", p->row_start_m,
+                      p->row_length_m, p->stop_margin_m);
+    for (uint16_t s = j->stops_journalled; s < p->n_stops && st == HV_OK; s++) {
+        const hv_exec_stop_t *sp = &p->stops[s];
+        st = fmt_line(j, "P %u y=%.17g left=%u right=%u", (unsigned)sp->plan_index, sp->y_m,
+                      (unsigned)sp->count[HV_SIDE_LEFT], (unsigned)sp->count[HV_SIDE_RIGHT]);
+        for (int side = 0; side < 2 && st == HV_OK; side++)
+            for (unsigned k = 0; k < sp->count[side] && st == HV_OK; k++) {
+                const hv_exec_pick_t *pk = &p->picks[sp->first[side] + k];
+                st = fmt_line(j, "Q %c %s x=%.17g y=%.17g z=%.17g yaw=%.17g cost=%.17g",
+                              side_char(pk->side), pk->id, pk->x_m, pk->y_m, pk->z_m,
+                              pk->yaw_rad, pk->cost_s);
+            }
+    }
+    if (st == HV_OK && fdatasync(j->fd) != 0)
+        st = HV_ERR_EXEC_JOURNAL_IO;
+    if (st == HV_OK) {
+        j->course_journalled = 1;
+        j->stops_journalled = p->n_stops;
+    }
+    return st;
+}
+
 /* "vehicle,right_arm" -> 1 << HV_EXEC_*; 0 for an empty list, a repeat or an unknown name. */
 static unsigned parse_nodes(char *list)
 {
@@ -200,6 +245,13 @@ typedef struct replay {
     char *err;
     size_t errlen;
     int line;
+    size_t line_off;        /* where the current line starts in the file */
+    /* online: the stop being read (its P record seen, its Q records coming) */
+    hv_exec_pick_t *picks;  /* HV_EXEC_MAX_PICKS */
+    int group_open;
+    size_t group_off;       /* where its P record starts */
+    unsigned g_index, g_left, g_right, g_got;
+    double g_y;
 } replay_t;
 
 static hv_status_t bad(replay_t *r, hv_status_t code, const char *what)
@@ -215,46 +267,82 @@ static int find_pick(replay_t *r, const char *side, const char *id)
     return hv_exec_plan_find(r->j->plan, side[0] == 'L' ? HV_SIDE_LEFT : HV_SIDE_RIGHT, id);
 }
 
-/* The checksum field exactly as written ("%08x": 8 lowercase hex digits, nothing after).
- * strtoul would also take a sign, spaces, "0x" and upper case, so a damaged field could
- * still read as the right value and the damage go unseen. */
-static int crc_field(const char *s, uint32_t *out)
+/* Online: O, P and Q records (the plan's course and stops). */
+static hv_status_t replay_plan_record(replay_t *r, char kind, const char *line)
 {
-    uint32_t v = 0;
-    for (int i = 0; i < 8; i++) {
-        char ch = s[i];
-        if (ch >= '0' && ch <= '9')
-            v = (v << 4) | (uint32_t)(ch - '0');
-        else if (ch >= 'a' && ch <= 'f')
-            v = (v << 4) | (uint32_t)(ch - 'a' + 10);
-        else
-            return -1;
+    hv_exec_plan_t *p = r->j->grow;
+    int end = 0;
+    if (!p)
+        return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "a record of an online plan in the journal "
+                   "of a plan file");
+    if (kind == 'O') {
+        double y0, len, margin;
+        if (sscanf(line, "O start=%lf length=%lf margin=%lf%n", &y0, &len, &margin, &end) != 3 ||
+            line[end] != '\0' || !isfinite(y0) || !(len > 0) || !isfinite(len) ||
+            !(margin >= 0) || !isfinite(margin))
+            return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "bad course record");
+        if (r->j->course_journalled &&
+            (y0 != p->row_start_m || len != p->row_length_m || margin != p->stop_margin_m))
+            return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "a second, other course");
+        p->row_start_m = y0;
+        p->row_length_m = len;
+        p->stop_margin_m = margin;
+        r->j->course_journalled = 1;
+        return HV_OK;
     }
-    if (s[8] != '\0')
-        return -1;
-    *out = v;
-    return 0;
+    if (kind == 'P') {
+        if (!r->j->course_journalled)
+            return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "a stop before the course record");
+        if (sscanf(line, "P %u y=%lf left=%u right=%u%n", &r->g_index, &r->g_y, &r->g_left,
+                   &r->g_right, &end) != 4 || line[end] != '\0' ||
+            r->g_left + r->g_right > HV_EXEC_MAX_PICKS)
+            return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "bad stop record");
+        r->group_open = 1;
+        r->group_off = r->line_off;
+        r->g_got = 0;
+    } else {
+        char side[4], id[40];
+        hv_exec_pick_t *pk = &r->picks[r->g_got];
+        memset(pk, 0, sizeof *pk);
+        if (!r->group_open)
+            return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "a pick record outside a stop");
+        if (sscanf(line, "Q %3s %39s x=%lf y=%lf z=%lf yaw=%lf cost=%lf%n", side, id, &pk->x_m,
+                   &pk->y_m, &pk->z_m, &pk->yaw_rad, &pk->cost_s, &end) != 7 ||
+            line[end] != '\0' || strlen(id) >= sizeof pk->id ||
+            hv_fruit_id_check(id, strlen(id), NULL) != HV_OK)
+            return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "bad pick record");
+        hv_side_t want = r->g_got < r->g_left ? HV_SIDE_LEFT : HV_SIDE_RIGHT;
+        if (strcmp(side, want == HV_SIDE_LEFT ? "L" : "R") != 0)
+            return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "a stop's picks out of side order");
+        pk->side = want;
+        memcpy(pk->id, id, strlen(id) + 1);
+        r->g_got++;
+    }
+    if (r->g_got < r->g_left + r->g_right)
+        return HV_OK;
+    r->group_open = 0;
+    if (hv_exec_plan_append(p, r->g_index, r->g_y, r->picks, (uint16_t)r->g_left,
+                            (uint16_t)r->g_right) != HV_OK)
+        return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "a stop that does not follow the last one, "
+                   "a fruit planned twice, or more than the plan's tables hold");
+    r->j->stops_journalled = p->n_stops;
+    return HV_OK;
 }
 
 /* One complete line (without its newline). */
 static hv_status_t replay_line(replay_t *r, char *line, size_t len)
 {
-    char *star = NULL;
-    for (size_t i = len; i >= 2; i--)
-        if (line[i - 2] == ' ' && line[i - 1] == '*') {
-            star = line + i - 2;
-            break;
-        }
-    if (!star)
-        return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "no checksum");
-    uint32_t want;
-    if (crc_field(star + 2, &want) != 0)
-        return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "bad checksum field");
-    if (hv_crc32(0, line, (size_t)(star - line)) != want)
-        return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "checksum mismatch (corrupt record)");
-    *star = '\0';
+    hv_record_check_t rc = hv_record_check(line, len);
+    if (rc != HV_RECORD_OK)
+        return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, hv_record_check_name(rc));
 
     char kind[8], a[40], b[40], c[24], d[32];
+    if (r->line == 1 && (strcmp(line, ONLINE_HEADER) == 0) != (r->j->online != 0))
+        return bad(r, HV_ERR_EXEC_JOURNAL_PLAN, r->j->online
+                   ? "the journal of a plan file's run (--plan), not of an online one"
+                   : "the journal of an online run (harvest-exec --online), not of a plan file");
+    if (r->line == 1 && r->j->online)
+        return HV_OK;
     if (r->line == 1) {
         unsigned version, hash, picks, stops;
         if (sscanf(line, "HVJ %u plan=%x picks=%u stops=%u", &version, &hash, &picks, &stops) != 4)
@@ -268,9 +356,15 @@ static hv_status_t replay_line(replay_t *r, char *line, size_t len)
     }
     if (sscanf(line, "%7s", kind) != 1 || kind[1] != '\0')
         return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "unknown record");
+    if (r->group_open && kind[0] != 'Q')
+        return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "a stop's pick records end too early");
     int attempt;
     double t;
     switch (kind[0]) {
+    case 'O':
+    case 'P':
+    case 'Q':
+        return replay_plan_record(r, kind[0], line);
     case 'S': {
         int stop;
         if (sscanf(line, "S %d t=%lf", &stop, &t) != 2 || stop < 0 ||
@@ -339,9 +433,10 @@ static void sync_dir(const char *path)
     }
 }
 
-hv_status_t hv_exec_journal_open(hv_exec_journal_t *j, const char *path,
-                                 const hv_exec_plan_t *plan, hv_exec_progress_t *progress,
-                                 char *err, size_t errlen)
+/* Open and replay; `grow` set for an online journal (the plan it rebuilds). */
+static hv_status_t open_journal(hv_exec_journal_t *j, const char *path,
+                                const hv_exec_plan_t *plan, hv_exec_plan_t *grow,
+                                hv_exec_progress_t *progress, char *err, size_t errlen)
 {
     if (!j || !path || !plan || !progress || !err || errlen == 0)
         return HV_ERR_ARG;
@@ -349,9 +444,10 @@ hv_status_t hv_exec_journal_open(hv_exec_journal_t *j, const char *path,
     memset(progress, 0, sizeof *progress);
     j->fd = -1;
     j->plan = plan;
+    j->grow = grow;
+    j->online = grow != NULL;
     j->plan_hash = hv_exec_plan_hash(plan);
     snprintf(j->path, sizeof j->path, "%s", path);
-
     int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (fd < 0) {
         snprintf(err, errlen, "%s: cannot open the journal: %s", path, strerror(errno));
@@ -382,7 +478,18 @@ hv_status_t hv_exec_journal_open(hv_exec_journal_t *j, const char *path,
         }
         got += (size_t)n;
     }
-    replay_t r = {j, progress, err, errlen, 0};
+    replay_t r;
+    memset(&r, 0, sizeof r);
+    r.j = j;
+    r.prog = progress;
+    r.err = err;
+    r.errlen = errlen;
+    if (grow && !(r.picks = malloc(HV_EXEC_MAX_PICKS * sizeof *r.picks))) {
+        snprintf(err, errlen, "%s: out of memory", path);
+        free(buf);
+        close(fd);
+        return HV_ERR_NOMEM;
+    }
     size_t start = 0, complete = 0;
     hv_status_t st = HV_OK;
     for (size_t i = 0; i < size && st == HV_OK; i++) {
@@ -392,17 +499,22 @@ hv_status_t hv_exec_journal_open(hv_exec_journal_t *j, const char *path,
         buf[i] = '\0';
         if (i - start >= LINE_MAX_BYTES)
             st = bad(&r, HV_ERR_EXEC_JOURNAL_FORMAT, "line too long");
-        else
+        else {
+            r.line_off = start;
             st = replay_line(&r, buf + start, i - start);
+        }
         start = i + 1;
         complete = start;
         j->records++;
     }
     free(buf);
+    free(r.picks);
     if (st != HV_OK) {
         close(fd);
         return st;
     }
+    if (r.group_open) /* a stop whose picks were not all written: never acted on */
+        complete = r.group_off;
     if (complete < size) {
         /* torn by a crash during a write: that record never counted, drop its bytes */
         j->torn_bytes = (unsigned)(size - complete);
@@ -420,9 +532,10 @@ hv_status_t hv_exec_journal_open(hv_exec_journal_t *j, const char *path,
     }
     j->fd = fd;
     if (complete == 0) {
-        st = fmt_append(j, "HVJ %d plan=%08x picks=%u stops=%u", JOURNAL_VERSION,
-                        (unsigned)j->plan_hash, (unsigned)plan->n_picks,
-                        (unsigned)plan->n_stops);
+        st = grow ? fmt_append(j, "%s", ONLINE_HEADER)
+                  : fmt_append(j, "HVJ %d plan=%08x picks=%u stops=%u", JOURNAL_VERSION,
+                               (unsigned)j->plan_hash, (unsigned)plan->n_picks,
+                               (unsigned)plan->n_stops);
         if (st != HV_OK) {
             snprintf(err, errlen, "%s: cannot write the journal header: %s", path,
                      strerror(errno));
@@ -432,4 +545,20 @@ hv_status_t hv_exec_journal_open(hv_exec_journal_t *j, const char *path,
         sync_dir(path);
     }
     return HV_OK;
+}
+
+hv_status_t hv_exec_journal_open(hv_exec_journal_t *j, const char *path,
+                                 const hv_exec_plan_t *plan, hv_exec_progress_t *progress,
+                                 char *err, size_t errlen)
+{
+    return open_journal(j, path, plan, NULL, progress, err, errlen);
+}
+
+hv_status_t hv_exec_journal_open_online(hv_exec_journal_t *j, const char *path,
+                                        hv_exec_plan_t *plan, hv_exec_progress_t *progress,
+                                        char *err, size_t errlen)
+{
+    if (!plan || plan->n_stops || plan->n_picks)
+        return HV_ERR_ARG;
+    return open_journal(j, path, plan, plan, progress, err, errlen);
 }

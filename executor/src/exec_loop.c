@@ -203,6 +203,27 @@ static void handle_frame(hv_exec_loop_t *L, const hv_can_frame_t *f, uint64_t no
     }
 }
 
+/* Online: what the planner committed meanwhile. The stops appended are journalled before
+ * the state machine hears of them, so a restart rebuilds every stop it may have acted on;
+ * a failed write stops the run like any journal failure. */
+static void take_plan(hv_exec_loop_t *L)
+{
+    hv_exec_event_t ev;
+    int grown = L->feed->take(L->feed->ctx, &ev);
+    uint64_t now = hv_exec_now_ns();
+    if (L->journal && L->journal->online && hv_exec_journal_stops(L->journal) != HV_OK) {
+        if (L->progress)
+            fprintf(L->progress, "harvest-exec: %s: journal write of the committed stops "
+                    "failed: %s\n", L->journal->path, strerror(errno));
+        memset(&ev, 0, sizeof ev);
+        ev.kind = HV_EV_JOURNAL_FAILED;
+        step(L, &ev, now);
+        return;
+    }
+    if (grown)
+        step(L, &ev, now);
+}
+
 hv_status_t hv_exec_loop_run(hv_exec_loop_t *L)
 {
     if (!L || !L->sm || !L->bus)
@@ -234,11 +255,8 @@ hv_status_t hv_exec_loop_run(hv_exec_loop_t *L)
         int pr = poll(pfd, L->feed ? 2 : 1, wait_ms);
         if (pr < 0 && errno != EINTR)
             return HV_ERR_IO;
-        if (pr > 0 && L->feed && (pfd[1].revents & POLLIN)) {
-            hv_exec_event_t ev;
-            if (L->feed->take(L->feed->ctx, &ev))
-                step(L, &ev, hv_exec_now_ns());
-        }
+        if (pr > 0 && L->feed && (pfd[1].revents & POLLIN))
+            take_plan(L);
         if (pr > 0 && (pfd[0].revents & POLLIN)) {
             /* drain what is waiting; each frame is one event */
             for (int k = 0; k < 256; k++) {

@@ -142,3 +142,24 @@ hv_status_t hv_exec_plan_append(hv_exec_plan_t *plan, uint32_t plan_index, doubl
     plan->n_stops = (uint16_t)(s + 1);
     return HV_OK;
 }
+
+int hv_exec_plan_stop_matches(const hv_exec_plan_t *plan, uint16_t s, uint32_t plan_index,
+                              double y_m, const hv_exec_pick_t *picks, uint16_t n_left,
+                              uint16_t n_right)
+{
+    if (!plan || s >= plan->n_stops || (!picks && n_left + n_right > 0))
+        return 0;
+    const hv_exec_stop_t *st = &plan->stops[s];
+    if (st->plan_index != plan_index || !(fabs(st->y_m - y_m) <= 1e-9) ||
+        st->count[HV_SIDE_LEFT] != n_left || st->count[HV_SIDE_RIGHT] != n_right)
+        return 0;
+    for (unsigned k = 0; k < (unsigned)n_left + n_right; k++) {
+        int side = k < n_left ? HV_SIDE_LEFT : HV_SIDE_RIGHT;
+        const hv_exec_pick_t *pk =
+            &plan->picks[st->first[side] + (side == HV_SIDE_LEFT ? k : k - n_left)];
+        if (picks[k].side != (hv_side_t)side ||
+            strncmp(pk->id, picks[k].id, sizeof pk->id) != 0)
+            return 0;
+    }
+    return 1;
+}

@@ -61,9 +61,10 @@ static void usage(FILE *out)
 "                          ahead the vehicle waits (or drives on to the commit line); the\n"
 "                          row ends once the planner's plan is final. Progress lines show\n"
 "                          stops done of those known, fruits picked, the robot time\n"
-"                          committed ahead and the waits. Needs a new journal (a restart of\n"
-"                          an online run is refused: its journal names fruits the empty\n"
-"                          plan of a new start does not have)\n"
+"                          committed ahead and the waits. The committed stops go into the\n"
+"                          journal before any is acted on: a restart with the same journal\n"
+"                          rebuilds them and resumes; a planner's message that contradicts\n"
+"                          them is refused (HV_ERR_EXEC_PLAN_CONFLICT)\n"
 "bus:\n"
 "  --transport T           socketcan | udp (default udp)\n"
 "  --channel C             socketcan: interface (vcan0); udp: multicast group\n"
@@ -381,8 +382,24 @@ int main(int argc, char **argv)
         return rc;
     }
 
-    if ((st = hv_exec_journal_open(&w->journal, o.journal, &w->plan, &w->prog, err, sizeof err)) != HV_OK) {
+    st = o.online ? hv_exec_journal_open_online(&w->journal, o.journal, &w->plan, &w->prog, err,
+                                                sizeof err)
+                  : hv_exec_journal_open(&w->journal, o.journal, &w->plan, &w->prog, err,
+                                         sizeof err);
+    if (st != HV_OK) {
         fprintf(stderr, "harvest-exec: %s\n", err);
+        free(w);
+        return EXIT_USAGE;
+    }
+    /* online: the stops committed before a restart, rebuilt from the journal, are checked
+     * and prepared as the planner's messages are */
+    if (o.online && w->plan.n_stops &&
+        (w->plan.stop_margin_m > margin_m + 1e-9 ||
+         (st = hv_exec_plan_prepare(&w->plan, arms, &timing)) != HV_OK)) {
+        fprintf(stderr, "harvest-exec: %s: the committed stops it holds cannot be run with %s "
+                "(a stop margin beyond the arms' reach, or a stop off the course)\n",
+                o.journal, o.config);
+        hv_exec_journal_close(&w->journal);
         free(w);
         return EXIT_USAGE;
     }
@@ -398,7 +415,8 @@ int main(int argc, char **argv)
     }
     if (done || w->journal.records > 1)
         fprintf(stderr, "harvest-exec: resuming from %s: %u of %u fruits already have an "
-                "outcome%s\n", o.journal, done, (unsigned)w->plan.n_picks,
+                "outcome%s%s\n", o.journal, done, (unsigned)w->plan.n_picks,
+                o.online ? "; the committed stops rebuilt from it" : "",
                 w->journal.torn_bytes ? " (a torn last record was cut off)" : "");
 
     hv_exec_params_t prm;
@@ -449,6 +467,7 @@ int main(int argc, char **argv)
     }
     if (o.online) {
 #ifdef HV_WITH_LCM
+        w->feed.log = o.quiet ? NULL : stderr;
         st = hv_exec_feed_lcm_open(&w->feed, o.lcm_url, &w->plan, arms, &timing, margin_m, err,
                                    sizeof err);
 #else

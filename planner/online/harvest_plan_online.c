@@ -2,6 +2,7 @@
  * camera's detections from LCM, plans horizon by horizon with hv_online_* and publishes
  * the committed plan for harvest-exec --online, while the executor works what is already
  * committed. `harvest-plan-online --help`. */
+#include <errno.h>
 #include <math.h>
 #include <signal.h>
 #include <stdatomic.h>
@@ -23,6 +24,7 @@
 #include "hv/plan_paths.h"
 #include "hv/plan_status.h"
 #include "hv/pick_model.h"
+#include "hv/online_journal.h"
 
 enum { EXIT_DONE = 0, EXIT_INPUT = 1, EXIT_USAGE = 2, EXIT_FAILED = 3, EXIT_EXEC_SAFE = 4,
        EXIT_INTERRUPTED = 5 };
@@ -55,6 +57,12 @@ static const char k_usage[] =
 "                     executor and the simulator on a 2-core machine\n"
 "  --progress S       a progress line every S s of wall time (default 5; 0: per horizon\n"
     "                     only)\n"
+    "  --journal FILE     what the planner saw and committed, durable before the plan is\n"
+    "                     published (created, or resumed): a restart with the same file\n"
+    "                     goes on from there and never commits a stop differently, so the\n"
+    "                     executor's journalled stops stay valid. Without it a restart\n"
+    "                     starts over: the camera's earlier fruit is lost to it, and\n"
+    "                     harvest-exec refuses a plan that contradicts its journal\n"
     "  --summary FILE     write a JSON summary at the end\n"
 "  --out PLAN.json    write the committed plan at the end, in the plan format\n"
 "                     (docs/PLAN_FORMAT.md, no fruit map named: the camera was the input);\n"
@@ -65,7 +73,8 @@ static const char k_usage[] =
     "It ends once the whole row is committed and the executor reports row_done, when the\n"
     "executor reports safe (HARVEST_EXEC_STATE), or on SIGINT / SIGTERM (which also stop a\n"
     "horizon's solve).\n"
-    "exit codes: 0 done, 1 bad input, 2 usage, 3 planning failed, 4 the executor stopped in\n"
+    "exit codes: 0 done, 1 bad input (a journal too), 2 usage, 3 planning failed (or the journal\n"
+    "could not be written), 4 the executor stopped in\n"
     "the safe state, 5 interrupted before the row was planned.\n";
 
 static atomic_int g_stop; /* set by SIGINT / SIGTERM: the only process-wide state */
@@ -108,7 +117,17 @@ typedef struct app {
     char exec_phase[32];
     double solve_s[MAX_HORIZONS];
     size_t n_solves;
+    hv_online_journal_t *journal; /* or NULL */
+    int journal_failed;
 } app_t;
+
+static void journal_failed(app_t *a)
+{
+    fprintf(stderr, "harvest-plan-online: %s: journal write failed: %s\n", a->journal->path,
+            strerror(errno));
+    a->journal_failed = 1;
+    atomic_store(&g_stop, 1);
+}
 
 static void on_frame(const lcm_recv_buf_t *rbuf, const char *channel,
                      const harvest_lcm_camera_frame_t *m, void *user)
@@ -143,6 +162,10 @@ static void on_frame(const lcm_recv_buf_t *rbuf, const char *channel,
         f.z_m = d->z_m;
         f.yaw_rad = d->yaw_rad;
         hv_online_verdict_t v;
+        if (a->journal != NULL && hv_online_journal_detection(a->journal, &f) != HV_OK) {
+            journal_failed(a);
+            return;
+        }
         if (hv_online_detect(&a->o, &f, &v) != HV_OK) {
             fprintf(stderr, "harvest-plan-online: out of memory\n");
             atomic_store(&g_stop, 1);
@@ -152,6 +175,12 @@ static void on_frame(const lcm_recv_buf_t *rbuf, const char *channel,
             fprintf(stderr, "harvest-plan-online: detection %s (%c) at y %.3f m: refused: %s\n",
                     f.id, d->side ? 'R' : 'L', f.y_m, hv_online_verdict_name(v));
         }
+    }
+    /* synced once per frame with news (a standing vehicle's camera repeats its view) */
+    if (a->journal != NULL && (m->n > 0 || m->seen_to_m > a->o.seen_to_m) &&
+        hv_online_journal_seen(a->journal, m->seen_to_m) != HV_OK) {
+        journal_failed(a);
+        return;
     }
     hv_online_seen(&a->o, m->seen_to_m);
 }
@@ -358,7 +387,7 @@ static int parse_pos(const char *flag, const char *text, double *out, int zero_o
 
 int main(int argc, char **argv)
 {
-    const char *config = NULL, *url = NULL, *summary = NULL, *out = NULL;
+    const char *config = NULL, *url = NULL, *summary = NULL, *out = NULL, *journal_path = NULL;
     double progress_s = 5.0;
     int quiet = 0;
     hv_online_options_t opt;
@@ -383,6 +412,7 @@ int main(int argc, char **argv)
         else if (strcmp(f, "--lcm-url") == 0) url = v;
         else if (strcmp(f, "--summary") == 0) summary = v;
         else if (strcmp(f, "--out") == 0) out = v;
+        else if (strcmp(f, "--journal") == 0) journal_path = v;
         else if (strcmp(f, "--window") == 0) bad = parse_pos(f, v, &opt.window_m, 0);
         else if (strcmp(f, "--commit") == 0) bad = parse_pos(f, v, &opt.commit_m, 0);
         else if (strcmp(f, "--time-limit") == 0) bad = parse_pos(f, v, &opt.milp.time_limit_s, 0);
@@ -436,9 +466,27 @@ int main(int argc, char **argv)
         return EXIT_INPUT;
     }
     a->quiet = quiet;
+    hv_online_journal_t journal;
+    if (journal_path != NULL) {
+        if (hv_online_journal_open(&journal, journal_path, &a->o, err, sizeof err) != HV_OK) {
+            fprintf(stderr, "harvest-plan-online: %s\n", err);
+            hv_online_free(&a->o);
+            free(a);
+            return EXIT_INPUT;
+        }
+        a->journal = &journal;
+        if (journal.detections > 0 && !quiet) {
+            fprintf(stderr, "harvest-plan-online: resumed from %s: %u detections, %u horizons "
+                    "(%zu stops, committed to %.2f m%s) as they were%s\n", journal_path,
+                    journal.detections, journal.horizons, a->o.n_stops,
+                    hv_online_commit_y(&a->o), a->o.done ? ", final" : "",
+                    journal.torn_bytes ? "; a torn end was cut off" : "");
+        }
+    }
     a->lcm = lcm_create(url);
     if (a->lcm == NULL) {
         fprintf(stderr, "harvest-plan-online: --lcm-url %s: LCM could not be opened\n", url);
+        hv_online_journal_close(a->journal);
         hv_online_free(&a->o);
         free(a);
         return EXIT_INPUT;
@@ -470,8 +518,16 @@ int main(int argc, char **argv)
         while (hv_online_ready(&a->o) && !atomic_load(&g_stop)) {
             double t0 = now_s();
             hv_online_step_result_t r;
+            size_t pos = a->o.pos;
             if (hv_online_step(&a->o, &r) != HV_OK) {
                 fprintf(stderr, "harvest-plan-online: a horizon failed to plan\n");
+                rc = EXIT_FAILED;
+                break;
+            }
+            /* durable before anyone may act on it */
+            if (a->journal != NULL && a->o.pos != pos &&
+                hv_online_journal_horizon(a->journal, &a->o, r.stops_from) != HV_OK) {
+                journal_failed(a);
                 rc = EXIT_FAILED;
                 break;
             }
@@ -514,7 +570,9 @@ int main(int argc, char **argv)
             break;
         }
     }
-    if (rc == EXIT_DONE && atomic_load(&g_stop)) {
+    if (a->journal_failed) {
+        rc = EXIT_FAILED;
+    } else if (rc == EXIT_DONE && atomic_load(&g_stop)) {
         rc = a->o.done ? EXIT_DONE : EXIT_INTERRUPTED;
     }
     if (!quiet) {
@@ -529,6 +587,7 @@ int main(int argc, char **argv)
     harvest_lcm_camera_frame_t_unsubscribe(a->lcm, cam_sub);
     harvest_lcm_exec_state_t_unsubscribe(a->lcm, exec_sub);
     lcm_destroy(a->lcm);
+    hv_online_journal_close(a->journal);
     hv_online_free(&a->o);
     free(a);
     return rc;

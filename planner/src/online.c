@@ -342,6 +342,43 @@ hv_status_t hv_online_step(hv_online_t *o, hv_online_step_result_t *r)
     return st;
 }
 
+hv_status_t hv_online_recommit(hv_online_t *o, size_t commit_end, const uint32_t *fruits,
+                               const uint32_t *stops, size_t n)
+{
+    if (o == NULL || (n > 0 && (fruits == NULL || stops == NULL)) || o->done ||
+        commit_end <= o->pos || commit_end > o->n_course_stops) {
+        return HV_ERR_ARG;
+    }
+    for (size_t k = 0; k < n; ++k) {
+        if (fruits[k] >= o->n_fruits || o->why[fruits[k]] != 0 ||
+            o->fruit_stop[fruits[k]] != HV_NO_STOP || stops[k] < o->pos ||
+            stops[k] >= commit_end) {
+            return HV_ERR_ARG;
+        }
+        for (size_t i = 0; i < k; ++i) {
+            if (fruits[i] == fruits[k]) {
+                return HV_ERR_ARG;
+            }
+        }
+        /* the stop must reach the fruit, as a step's solve ensured */
+        hv_pick_why_t why;
+        double cost = 0.0;
+        if (o->model->cost(o->model->ctx, &o->fruits[fruits[k]], stop_y(o, stops[k]), &cost,
+                           &why) != HV_OK) {
+            return HV_ERR_ARG;
+        }
+    }
+    for (size_t k = 0; k < n; ++k) {
+        o->fruit_stop[fruits[k]] = stops[k];
+    }
+    hv_status_t st = record_stops(o, fruits, n);
+    if (st == HV_OK) {
+        o->pos = commit_end;
+        o->done = commit_end == o->n_course_stops;
+    }
+    return st;
+}
+
 hv_status_t hv_online_assignment(const hv_online_t *o, hv_assignment_t *a)
 {
     if (o == NULL || a == NULL || a->n_fruits != o->n_fruits) {

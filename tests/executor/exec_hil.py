@@ -53,6 +53,19 @@ def enter_udp_netns():
     return reasons
 
 
+# Online mode: the planner's process and the checker, and the LCM URL the tests use.
+PLAN_ONLINE = os.path.join(BUILD, "planner", "online", "harvest-plan-online")
+HARVEST_PLAN = os.path.join(BUILD, "planner", "harvest-plan")
+ONLINE_URL = "udpm://239.255.76.67:7667?ttl=0"
+
+
+def enter_online_netns():
+    """enter_udp_netns() for the online tests, which need the planner's programs too."""
+    missing = [f"harvest-plan-online not built at {PLAN_ONLINE} (needs GLPK and LCM)"
+               for p in (PLAN_ONLINE, HARVEST_PLAN) if not os.access(p, os.X_OK)][:1]
+    return missing or enter_udp_netns()
+
+
 def make_plan(path, stops, per_arm, seed=1):
     subprocess.run([MAKE_PLAN, CONFIG, str(path), str(stops), str(per_arm), str(seed)],
                    check=True)

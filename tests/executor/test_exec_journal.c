@@ -374,6 +374,216 @@ static void test_unreadable_ids_never_written(void **state)
     free(fx);
 }
 
+/* ---- online: the committed stops in the journal ---------------------------------- */
+
+/* An online start's plan: empty, no course (what harvest-exec has before a message). */
+static void empty_plan(fx_t *fx)
+{
+    fx->plan.n_stops = 0;
+    fx->plan.n_picks = 0;
+    fx->plan.row_start_m = fx->plan.row_length_m = fx->plan.stop_margin_m = 0.0;
+}
+
+/* The planner's course and stop s of src, as the feed appends them. */
+static void grow(fx_t *fx, const fx_t *src, int s)
+{
+    fx->plan.row_start_m = src->plan.row_start_m;
+    fx->plan.row_length_m = src->plan.row_length_m;
+    fx->plan.stop_margin_m = src->plan.stop_margin_m;
+    assert_int_equal(fx_append_stop(fx, &src->plan, s), HV_OK);
+}
+
+static void assert_same_stops(const hv_exec_plan_t *a, const hv_exec_plan_t *b, int n)
+{
+    assert_int_equal(a->n_stops, n);
+    assert_true(a->row_start_m == b->row_start_m && a->row_length_m == b->row_length_m &&
+                a->stop_margin_m == b->stop_margin_m);
+    for (int s = 0; s < n; s++) {
+        const hv_exec_stop_t *x = &a->stops[s], *y = &b->stops[s];
+        assert_int_equal(x->plan_index, y->plan_index);
+        assert_true(x->y_m == y->y_m); /* 17 digits: the same double */
+        for (int side = 0; side < 2; side++) {
+            assert_int_equal(x->count[side], y->count[side]);
+            for (unsigned k = 0; k < x->count[side]; k++) {
+                const hv_exec_pick_t *p = &a->picks[x->first[side] + k];
+                const hv_exec_pick_t *q = &b->picks[y->first[side] + k];
+                assert_string_equal(p->id, q->id);
+                assert_int_equal(p->side, q->side);
+                assert_true(p->x_m == q->x_m && p->y_m == q->y_m && p->z_m == q->z_m &&
+                            p->yaw_rad == q->yaw_rad && p->cost_s == q->cost_s);
+            }
+        }
+    }
+}
+
+/* The file's text (at most cap - 1 bytes), NUL-terminated; its length. */
+static size_t read_text(const char *path, char *text, size_t cap)
+{
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    size_t n = fread(text, 1, cap - 1, f);
+    fclose(f);
+    text[n] = '\0';
+    return n;
+}
+
+static void truncate_by(const char *path, long bytes)
+{
+    assert_int_equal(truncate(path, file_size(path) - bytes), 0);
+}
+
+/* Stops written before they are acted on read back as the same plan; outcomes replay onto
+ * it; a stop whose pick records a crash cut short is dropped whole, a torn line too. */
+static void test_online_stops_rebuilt(void **state)
+{
+    (void)state;
+    fx_t *src = malloc(sizeof *src), *fx = malloc(sizeof *fx), *re = malloc(sizeof *re);
+    assert_true(src && fx && re);
+    fx_plan(src, 3, 2);
+    fx_plan(fx, 3, 2);
+    fx_plan(re, 3, 2);
+    empty_plan(fx);
+    char path[128], err[256];
+    path_of(path, sizeof path, "online.journal");
+    hv_exec_journal_t j;
+    hv_exec_progress_t prog;
+    assert_int_equal(hv_exec_journal_open_online(&j, path, &fx->plan, &prog, err, sizeof err),
+                     HV_OK);
+    assert_int_equal(hv_exec_journal_stops(&j), HV_OK); /* nothing yet: nothing written */
+    assert_int_equal(j.records, 1);
+    grow(fx, src, 0);
+    grow(fx, src, 1);
+    assert_int_equal(hv_exec_journal_stops(&j), HV_OK);
+    assert_int_equal(j.records, 1 + 1 + 2 * 5); /* course, 2 x (stop + 4 picks) */
+    assert_int_equal(hv_exec_journal_stop(&j, 0, 1.0), HV_OK);
+    assert_int_equal(hv_exec_journal_outcome(&j, 0, HV_OUT_PICKED, HV_RSN_OK, 1, 2.0), HV_OK);
+    assert_int_equal(hv_exec_journal_cut(&j, 1, 1, 3.0), HV_OK);
+    grow(fx, src, 2);
+    assert_int_equal(hv_exec_journal_stops(&j), HV_OK);
+    hv_exec_journal_close(&j);
+
+    /* a restart: the plan rebuilt, the progress on it */
+    empty_plan(re);
+    assert_int_equal(hv_exec_journal_open_online(&j, path, &re->plan, &prog, err, sizeof err),
+                     HV_OK);
+    assert_same_stops(&re->plan, &fx->plan, 3);
+    assert_int_equal(j.stops_journalled, 3);
+    assert_int_equal(prog.stop_reached[0], 1);
+    assert_int_equal(prog.pick[0], HV_PROG_DONE);
+    assert_int_equal(prog.pick[1], HV_PROG_CUT);
+    assert_int_equal(prog.pick[4], HV_PROG_PENDING);
+    hv_exec_journal_close(&j);
+
+    /* the last stop's last pick record lost in a crash: that stop was never acted on */
+    char text[4096];
+    size_t n = read_text(path, text, sizeof text);
+    const char *last_q = strrchr(text, 'Q');
+    assert_non_null(last_q);
+    long q_bytes = (long)(text + n - last_q);
+    truncate_by(path, q_bytes);
+    empty_plan(re);
+    assert_int_equal(hv_exec_journal_open_online(&j, path, &re->plan, &prog, err, sizeof err),
+                     HV_OK);
+    assert_same_stops(&re->plan, &fx->plan, 2);
+    assert_true(j.torn_bytes > (unsigned)q_bytes); /* its P and other Q records too */
+    /* written again when the planner's next message brings it */
+    assert_int_equal(fx_append_stop(re, &src->plan, 2), HV_OK);
+    assert_int_equal(hv_exec_journal_stops(&j), HV_OK);
+    hv_exec_journal_close(&j);
+    /* a torn line (no newline) inside a stop's records: the same */
+    truncate_by(path, 5);
+    empty_plan(re);
+    assert_int_equal(hv_exec_journal_open_online(&j, path, &re->plan, &prog, err, sizeof err),
+                     HV_OK);
+    assert_same_stops(&re->plan, &fx->plan, 2);
+    hv_exec_journal_close(&j);
+    free(src);
+    free(fx);
+    free(re);
+}
+
+/* Corrupt or misplaced online records are refused with the line named; an online journal
+ * is no plan file's, and the other way round. */
+static void test_online_records_refused(void **state)
+{
+    (void)state;
+    fx_t *fx = malloc(sizeof *fx), *src = malloc(sizeof *src);
+    assert_true(fx && src);
+    fx_plan(src, 2, 1);
+    fx_plan(fx, 2, 1);
+    empty_plan(fx);
+    char path[128], err[256];
+    path_of(path, sizeof path, "bad-online.journal");
+    hv_exec_journal_t j;
+    hv_exec_progress_t prog;
+    assert_int_equal(hv_exec_journal_open_online(&j, path, &fx->plan, &prog, err, sizeof err),
+                     HV_OK);
+    grow(fx, src, 0);
+    assert_int_equal(hv_exec_journal_stops(&j), HV_OK);
+    hv_exec_journal_close(&j);
+    /* a plan file's run may not take it, nor an online run a plan file's journal */
+    assert_int_equal(hv_exec_journal_open(&j, path, &src->plan, &prog, err, sizeof err),
+                     HV_ERR_EXEC_JOURNAL_PLAN);
+    assert_non_null(strstr(err, "online"));
+    char offline[128];
+    path_of(offline, sizeof offline, "offline.journal");
+    assert_int_equal(hv_exec_journal_open(&j, offline, &src->plan, &prog, err, sizeof err),
+                     HV_OK);
+    hv_exec_journal_close(&j);
+    empty_plan(fx);
+    assert_int_equal(hv_exec_journal_open_online(&j, offline, &fx->plan, &prog, err,
+                                                 sizeof err), HV_ERR_EXEC_JOURNAL_PLAN);
+    /* a flipped digit in a pick record: its checksum fails, line 4 named */
+    char text[2048];
+    read_text(path, text, sizeof text);
+    char *x = strstr(text, "Q L L0_0 x=");
+    assert_non_null(x);
+    long at = (long)(x - text) + 11;
+    FILE *f = fopen(path, "r+b");
+    assert_non_null(f);
+    fseek(f, at, SEEK_SET);
+    fputc(text[at] == '1' ? '2' : '1', f);
+    fclose(f);
+    empty_plan(fx);
+    assert_int_equal(hv_exec_journal_open_online(&j, path, &fx->plan, &prog, err, sizeof err),
+                     HV_ERR_EXEC_JOURNAL_FORMAT);
+    assert_non_null(strstr(err, "line 4"));
+    /* a stop before any course, and a pick record outside a stop, each with a good sum */
+    path_of(path, sizeof path, "misplaced.journal");
+    append_record(path, "HVJ 1 online");
+    append_record(path, "P 3 y=0.5 left=0 right=0");
+    empty_plan(fx);
+    assert_int_equal(hv_exec_journal_open_online(&j, path, &fx->plan, &prog, err, sizeof err),
+                     HV_ERR_EXEC_JOURNAL_FORMAT);
+    assert_non_null(strstr(err, "line 2: a stop before the course"));
+    free(fx);
+    free(src);
+}
+
+/* A message that commits again the stops the plan holds must bring the very same ones. */
+static void test_online_stop_matches(void **state)
+{
+    (void)state;
+    fx_t *fx = malloc(sizeof *fx);
+    fx_plan(fx, 2, 2);
+    const hv_exec_plan_t *p = &fx->plan;
+    const hv_exec_stop_t *st = &p->stops[1];
+    hv_exec_pick_t picks[4];
+    memcpy(picks, &p->picks[st->first[HV_SIDE_LEFT]], sizeof picks);
+    assert_true(hv_exec_plan_stop_matches(p, 1, st->plan_index, st->y_m, picks, 2, 2));
+    assert_false(hv_exec_plan_stop_matches(p, 1, st->plan_index + 1, st->y_m, picks, 2, 2));
+    assert_false(hv_exec_plan_stop_matches(p, 1, st->plan_index, st->y_m + 0.01, picks, 2, 2));
+    assert_false(hv_exec_plan_stop_matches(p, 1, st->plan_index, st->y_m, picks, 2, 1));
+    assert_false(hv_exec_plan_stop_matches(p, 0, st->plan_index, st->y_m, picks, 2, 2));
+    assert_false(hv_exec_plan_stop_matches(p, 2, st->plan_index, st->y_m, picks, 2, 2));
+    hv_exec_pick_t swapped[4];
+    memcpy(swapped, picks, sizeof swapped);
+    swapped[0] = picks[1];
+    swapped[1] = picks[0];
+    assert_false(hv_exec_plan_stop_matches(p, 1, st->plan_index, st->y_m, swapped, 2, 2));
+    free(fx);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -383,6 +593,9 @@ int main(void)
         cmocka_unit_test(test_estop_clear_record),
         cmocka_unit_test(test_kill_and_resume),
         cmocka_unit_test(test_unreadable_ids_never_written),
+        cmocka_unit_test(test_online_stops_rebuilt),
+        cmocka_unit_test(test_online_records_refused),
+        cmocka_unit_test(test_online_stop_matches),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

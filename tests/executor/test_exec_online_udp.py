@@ -18,15 +18,11 @@ import pytest
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import exec_hil as H  # noqa: E402
 
-PLAN_ONLINE = os.path.join(H.BUILD, "planner", "online", "harvest-plan-online")
-HARVEST_PLAN = os.path.join(H.BUILD, "planner", "harvest-plan")
-_skip = [f"harvest-plan-online not built at {PLAN_ONLINE} (needs GLPK and LCM)"
-         for p in (PLAN_ONLINE, HARVEST_PLAN) if not os.access(p, os.X_OK)][:1]
-_skip = _skip or H.enter_udp_netns()
+PLAN_ONLINE, HARVEST_PLAN, URL = H.PLAN_ONLINE, H.HARVEST_PLAN, H.ONLINE_URL
+_skip = H.enter_online_netns()
 pytestmark = pytest.mark.skipif(bool(_skip), reason="SKIPPED: " + "; ".join(_skip))
 
 SCALE = 20.0
-URL = "udpm://239.255.76.67:7667?ttl=0"
 LENGTH_M = 5.0
 
 

@@ -4,6 +4,8 @@
 #ifndef HV_EXEC_FEED_H
 #define HV_EXEC_FEED_H
 
+#include <stdio.h>
+
 #include "hv/exec_plan.h"
 #include "hv/exec_sm.h"
 
@@ -17,6 +19,7 @@ typedef struct hv_exec_feed {
      * HV_EV_PLAN_GROWN) when the state machine must hear of it, else 0. */
     int (*take)(void *ctx, hv_exec_event_t *ev);
     void *ctx;
+    FILE *log; /* a refused message is said here at once (a new reason only), or NULL */
 } hv_exec_feed_t;
 
 /* What the LCM feed counts. */

@@ -11,6 +11,20 @@
  *   E <operator> nodes=<node>[,<node>] t=<s>   an operator cleared the e-stop latched on
  *                                       these nodes (vehicle, left_arm, right_arm)
  * <operator>: 1 to 32 of A-Z a-z 0-9 . _ - (hv_exec_journal_operator_ok).
+ *
+ * Online (harvest-exec --online) the plan is not a file: it grows from the planner's
+ * committed stops, and the journal holds them, so a restart rebuilds the plan before it
+ * replays the outcomes. Its header is "HVJ 1 online"; then, interleaved with the records
+ * above, in the order the stops were appended:
+ *   O start=<m> length=<m> margin=<m>   the course (the row and its stop margin), once,
+ *                                       before the first stop
+ *   P <candidate index> y=<m> left=<n> right=<n>   a committed stop appended, followed by
+ *   Q <L|R> <fruit id> x=<m> y=<m> z=<m> yaw=<rad> cost=<s>   its left + right picks, left
+ *                                       first, one record each
+ * Numbers are printed with 17 significant digits, so they read back to the same double.
+ * The stops of one batch are written before the state machine hears of them and synced
+ * once; a stop whose Q records are incomplete at the end of the file (a crash while the
+ * batch was written) was never acted on and is cut off like a torn line.
  * t is the executor's run time (s, informational). Each record is written with one
  * write() and made durable with fdatasync() before the call returns, so the program
  * carries out the next action only after the record is on disk.
@@ -39,6 +53,10 @@ typedef struct hv_exec_journal {
     int fd;              /* -1 when closed */
     uint32_t plan_hash;
     const hv_exec_plan_t *plan;
+    int online;          /* 1: the plan grows, its stops are journalled (O, P, Q) */
+    hv_exec_plan_t *grow;      /* online: the plan replay rebuilds (== plan) */
+    uint16_t stops_journalled; /* online: plan stops [0, this) are in the journal */
+    int course_journalled;     /* online: the O record is in the journal */
     unsigned records;    /* records replayed + written */
     unsigned torn_bytes; /* bytes of a torn last line removed at open */
     char path[512];
@@ -53,6 +71,22 @@ uint32_t hv_exec_plan_hash(const hv_exec_plan_t *plan);
 hv_status_t hv_exec_journal_open(hv_exec_journal_t *j, const char *path,
                                  const hv_exec_plan_t *plan, hv_exec_progress_t *progress,
                                  char *err, size_t errlen);
+
+/* Online: open (create when absent) the journal at `path` of a plan that grows. An
+ * existing journal first rebuilds `plan` (empty on entry: course 0, no stops) from its O,
+ * P and Q records, in their order, with hv_exec_plan_append, then replays the rest into
+ * `progress` as above; run hv_exec_plan_prepare() on the rebuilt plan afterwards. Codes as
+ * hv_exec_journal_open, and HV_ERR_EXEC_JOURNAL_PLAN for a plan file's journal. */
+hv_status_t hv_exec_journal_open_online(hv_exec_journal_t *j, const char *path,
+                                        hv_exec_plan_t *plan, hv_exec_progress_t *progress,
+                                        char *err, size_t errlen);
+
+/* Online: journal the plan's stops not yet journalled (the course first, when it is not
+ * yet), one record per line, synced once at the end. Call it after the plan grew and
+ * before the state machine hears of it. HV_OK when there is nothing new;
+ * HV_ERR_EXEC_JOURNAL_IO on failure; HV_ERR_EXEC_JOURNAL_ID for a fruit id that could not
+ * be read back (nothing of that stop written); HV_ERR_ARG on a journal not opened online. */
+hv_status_t hv_exec_journal_stops(hv_exec_journal_t *j);
 
 /* Append one record and make it durable. HV_ERR_EXEC_JOURNAL_IO on failure;
  * HV_ERR_EXEC_JOURNAL_ID, with nothing written, for a fruit whose id is outside the set of

@@ -110,6 +110,14 @@ double hv_exec_course_end(const hv_exec_plan_t *plan);
 hv_status_t hv_exec_plan_append(hv_exec_plan_t *plan, uint32_t plan_index, double y_m,
                                 const hv_exec_pick_t *picks, uint16_t n_left, uint16_t n_right);
 
+/* Online: 1 when stop s of the plan is the stop (plan_index, y_m, its picks as for
+ * hv_exec_plan_append: the same ids on the same sides in the same order, y within 1e-9 m),
+ * else 0. A planner that commits again what the plan holds (after a restart of either
+ * program) must commit the very same stops. */
+int hv_exec_plan_stop_matches(const hv_exec_plan_t *plan, uint16_t s, uint32_t plan_index,
+                              double y_m, const hv_exec_pick_t *picks, uint16_t n_left,
+                              uint16_t n_right);
+
 /* Index of a pick by (side, id); -1 when the plan has no such pick. */
 int hv_exec_plan_find(const hv_exec_plan_t *plan, hv_side_t side, const char *id);
 

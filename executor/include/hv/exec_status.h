@@ -19,6 +19,7 @@ extern "C" {
 #define HV_ERR_EXEC_PLAN_CAPACITY ((hv_status_t)(-203)) /* more stops or picks than the static tables hold */
 #define HV_ERR_EXEC_PLAN_ID ((hv_status_t)(-204)) /* a fruit id outside the id set (hv/fruit_id.h) */
 #define HV_ERR_EXEC_PLAN_ORDER ((hv_status_t)(-205)) /* stops not by pass, then increasing y_m */
+#define HV_ERR_EXEC_PLAN_CONFLICT ((hv_status_t)(-206)) /* online: committed stops that contradict those already in the plan (journalled) */
 #define HV_ERR_EXEC_JOURNAL_IO ((hv_status_t)(-210)) /* journal could not be opened, written or synced */
 #define HV_ERR_EXEC_JOURNAL_FORMAT ((hv_status_t)(-211)) /* a complete journal line is corrupt */
 #define HV_ERR_EXEC_JOURNAL_PLAN ((hv_status_t)(-212)) /* the journal belongs to another plan */

@@ -122,6 +122,17 @@ int hv_online_ready(const hv_online_t *o);
 /* Solve the next window and commit (nothing when not ready: r->stops_from == stops_to). */
 hv_status_t hv_online_step(hv_online_t *o, hv_online_step_result_t *r);
 
+/* Restore a horizon committed before a restart, from the planner's own record of it
+ * (harvest-plan-online --journal): fruit fruits[k] (an index into o->fruits) at candidate
+ * stop stops[k], and the course committed up to candidate stop commit_end (exclusive), as
+ * hv_online_step left them; no solve. The detections and views before it must have been
+ * replayed first, in their order, so that o->fruits is what it was. HV_ERR_ARG when it
+ * cannot be what a step committed: commit_end not beyond the committed part or past the
+ * course's end, a fruit unknown, unreachable or committed already, or a stop outside
+ * [committed part, commit_end) or that does not reach the fruit. */
+hv_status_t hv_online_recommit(hv_online_t *o, size_t commit_end, const uint32_t *fruits,
+                               const uint32_t *stops, size_t n);
+
 /* The y up to which the course is committed: the vehicle may drive this far (m). */
 double hv_online_commit_y(const hv_online_t *o);
 
