@@ -3,6 +3,7 @@
  * the committed plan for harvest-exec --online, while the executor works what is already
  * committed. `harvest-plan-online --help`. */
 #include <errno.h>
+#include <getopt.h>
 #include <math.h>
 #include <signal.h>
 #include <stdatomic.h>
@@ -392,32 +393,43 @@ int main(int argc, char **argv)
     int quiet = 0;
     hv_online_options_t opt;
     hv_online_options_default(&opt);
-    for (int i = 1; i < argc; ++i) {
-        const char *f = argv[i];
-        if (strcmp(f, "--help") == 0 || strcmp(f, "-h") == 0) {
-            fputs(k_usage, stdout);
-            return 0;
-        }
-        if (strcmp(f, "--quiet") == 0) {
-            quiet = 1;
-            continue;
-        }
-        if (i + 1 >= argc) {
-            fprintf(stderr, "harvest-plan-online: %s needs a value (see --help)\n", f);
-            return EXIT_USAGE;
-        }
-        const char *v = argv[++i];
+    enum { O_CONFIG = 256, O_LCM_URL, O_SUMMARY, O_OUT, O_JOURNAL, O_WINDOW, O_COMMIT,
+           O_TIME_LIMIT, O_PROGRESS, O_THREADS, O_QUIET };
+    static const struct option longopts[] = {
+        {"config", required_argument, NULL, O_CONFIG},
+        {"lcm-url", required_argument, NULL, O_LCM_URL},
+        {"summary", required_argument, NULL, O_SUMMARY},
+        {"out", required_argument, NULL, O_OUT},
+        {"journal", required_argument, NULL, O_JOURNAL},
+        {"window", required_argument, NULL, O_WINDOW},
+        {"commit", required_argument, NULL, O_COMMIT},
+        {"time-limit", required_argument, NULL, O_TIME_LIMIT},
+        {"progress", required_argument, NULL, O_PROGRESS},
+        {"threads", required_argument, NULL, O_THREADS},
+        {"quiet", no_argument, NULL, O_QUIET},
+        {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0},
+    };
+    opterr = 0;
+    int o, idx = 0;
+    while ((o = getopt_long(argc, argv, ":h", longopts, &idx)) != -1) {
+        const char *v = optarg;
+        char f[32]; /* the option's name for messages, also when written --name=value */
+        snprintf(f, sizeof f, "--%s", o >= O_CONFIG ? longopts[idx].name : "");
         int bad = 0;
-        if (strcmp(f, "--config") == 0) config = v;
-        else if (strcmp(f, "--lcm-url") == 0) url = v;
-        else if (strcmp(f, "--summary") == 0) summary = v;
-        else if (strcmp(f, "--out") == 0) out = v;
-        else if (strcmp(f, "--journal") == 0) journal_path = v;
-        else if (strcmp(f, "--window") == 0) bad = parse_pos(f, v, &opt.window_m, 0);
-        else if (strcmp(f, "--commit") == 0) bad = parse_pos(f, v, &opt.commit_m, 0);
-        else if (strcmp(f, "--time-limit") == 0) bad = parse_pos(f, v, &opt.milp.time_limit_s, 0);
-        else if (strcmp(f, "--progress") == 0) bad = parse_pos(f, v, &progress_s, 1);
-        else if (strcmp(f, "--threads") == 0) {
+        switch (o) {
+        case 'h': fputs(k_usage, stdout); return 0;
+        case O_QUIET: quiet = 1; break;
+        case O_CONFIG: config = v; break;
+        case O_LCM_URL: url = v; break;
+        case O_SUMMARY: summary = v; break;
+        case O_OUT: out = v; break;
+        case O_JOURNAL: journal_path = v; break;
+        case O_WINDOW: bad = parse_pos(f, v, &opt.window_m, 0); break;
+        case O_COMMIT: bad = parse_pos(f, v, &opt.commit_m, 0); break;
+        case O_TIME_LIMIT: bad = parse_pos(f, v, &opt.milp.time_limit_s, 0); break;
+        case O_PROGRESS: bad = parse_pos(f, v, &progress_s, 1); break;
+        case O_THREADS:
             bad = strcmp(v, "1") != 0 && strcmp(v, "2") != 0;
             if (bad) {
                 fprintf(stderr, "harvest-plan-online: --threads must be 1 or 2, not %s\n", v);
@@ -425,14 +437,19 @@ int main(int argc, char **argv)
                 opt.milp.helper_thread = 0;
                 opt.milp.tree_threads = 1;
             }
-        }
-        else {
-            fprintf(stderr, "harvest-plan-online: unknown option %s (see --help)\n", f);
+            break;
+        default:
+            fprintf(stderr, "harvest-plan-online: %s %s (see --help)\n",
+                    o == ':' ? "a value is needed for" : "unknown option", argv[optind - 1]);
             return EXIT_USAGE;
         }
         if (bad) {
             return EXIT_USAGE;
         }
+    }
+    if (optind < argc) {
+        fprintf(stderr, "harvest-plan-online: unexpected argument %s (see --help)\n", argv[optind]);
+        return EXIT_USAGE;
     }
     if (config == NULL || url == NULL) {
         fprintf(stderr, "harvest-plan-online: %s is required (see --help)\n",
