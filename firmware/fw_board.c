@@ -6,42 +6,42 @@
 #include "fw_status.h"
 
 /* SysTick (ARMv7-M system control space) */
-#define SYST_CSR 0xE000E010u
-#define SYST_RVR 0xE000E014u
-#define SYST_CVR 0xE000E018u
+#define SYST_CSR        0xE000E010u
+#define SYST_RVR        0xE000E014u
+#define SYST_CVR        0xE000E018u
 #define SYST_CSR_ENABLE 0x1u
 #define SYST_CSR_CPUCLK 0x4u /* count the processor clock, no interrupt */
-#define SYST_MASK 0x00FFFFFFu
+#define SYST_MASK       0x00FFFFFFu
 
 /* CMSDK APB UART registers (Arm CMSDK TRM) */
-#define UART0_BASE 0x40004000u
-#define UART_DATA (UART0_BASE + 0x00u)
-#define UART_STATE (UART0_BASE + 0x04u)
-#define UART_CTRL (UART0_BASE + 0x08u)
-#define UART_INTCLEAR (UART0_BASE + 0x0Cu)
-#define UART_BAUDDIV (UART0_BASE + 0x10u)
-#define UART_STATE_TX_FULL 0x1u
-#define UART_STATE_RX_FULL 0x2u
+#define UART0_BASE            0x40004000u
+#define UART_DATA             (UART0_BASE + 0x00u)
+#define UART_STATE            (UART0_BASE + 0x04u)
+#define UART_CTRL             (UART0_BASE + 0x08u)
+#define UART_INTCLEAR         (UART0_BASE + 0x0Cu)
+#define UART_BAUDDIV          (UART0_BASE + 0x10u)
+#define UART_STATE_TX_FULL    0x1u
+#define UART_STATE_RX_FULL    0x2u
 #define UART_STATE_RX_OVERRUN 0x8u /* write 1 to clear */
-#define UART_CTRL_TX_EN 0x1u
-#define UART_CTRL_RX_EN 0x2u
-#define UART_CTRL_RX_IRQ 0x8u
-#define UART_INT_RX 0x2u
+#define UART_CTRL_TX_EN       0x1u
+#define UART_CTRL_RX_EN       0x2u
+#define UART_CTRL_RX_IRQ      0x8u
+#define UART_INT_RX           0x2u
 
 /* CMSDK APB timer 0: the idle loop's wake-up every millisecond */
-#define TIMER0_BASE 0x40000000u
-#define TIMER_CTRL (TIMER0_BASE + 0x00u)
-#define TIMER_VALUE (TIMER0_BASE + 0x04u)
-#define TIMER_RELOAD (TIMER0_BASE + 0x08u)
+#define TIMER0_BASE    0x40000000u
+#define TIMER_CTRL     (TIMER0_BASE + 0x00u)
+#define TIMER_VALUE    (TIMER0_BASE + 0x04u)
+#define TIMER_RELOAD   (TIMER0_BASE + 0x08u)
 #define TIMER_INTCLEAR (TIMER0_BASE + 0x0Cu)
-#define TIMER_CTRL_EN 0x1u
+#define TIMER_CTRL_EN  0x1u
 #define TIMER_CTRL_IRQ 0x8u
-#define WAKE_HZ 1000u
+#define WAKE_HZ        1000u
 
 /* NVIC: the AN386's interrupt numbers (QEMU hw/arm/mps2.c) */
-#define NVIC_ISER0 0xE000E100u
+#define NVIC_ISER0   0xE000E100u
 #define IRQ_UART0_RX 0u
-#define IRQ_TIMER0 8u
+#define IRQ_TIMER0   8u
 
 void hv_fw_clock_init(hv_fw_clock_t *c)
 {

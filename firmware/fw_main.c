@@ -15,7 +15,7 @@
 #include "hv/exec_sm.h"
 #include "hv/exec_status.h"
 
-#define TICK_NS 10000000u     /* the state machine's timer tick, like harvest-exec's */
+#define TICK_NS   10000000u   /* the state machine's timer tick, like harvest-exec's */
 #define REPORT_NS 1000000000u /* status line period */
 
 typedef struct hv_fw {
@@ -29,7 +29,7 @@ typedef struct hv_fw {
     hv_exec_can_tx_t tx;
     hv_exec_port_stats_t st;
     hv_exec_arm_sample_t samples[2];
-    int running;     /* a plan is loaded and the state machine runs */
+    int running; /* a plan is loaded and the state machine runs */
     uint64_t next_tick_ns, next_report_ns, next_upload_status_ns;
     uint64_t steps, step_cycles_max;
 } hv_fw_t;
@@ -87,8 +87,8 @@ static void step(hv_fw_t *fw, const hv_exec_event_t *ev, uint64_t now)
         fw->step_cycles_max = dc;
     hv_status_t rc = HV_OK;
     if (st == HV_OK || st == HV_ERR_EXEC_ACTIONS_FULL) /* else: out of its domain, ignored */
-        rc = hv_exec_port_carry_out(&fw->port, &fw->tx, &fw->out,
-                                    hv_exec_executed_s(&fw->sm, now), &fw->st, NULL);
+        rc = hv_exec_port_carry_out(&fw->port, &fw->tx, &fw->out, hv_exec_executed_s(&fw->sm, now),
+                                    &fw->st, NULL);
     fw->out.n = 0;
     if (rc != HV_OK) {
         hv_exec_event_t jf;

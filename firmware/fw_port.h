@@ -13,7 +13,7 @@
 typedef struct hv_fw_port {
     hv_fw_clock_t clock;
     hv_slcan_rx_t rx;
-    int open;                   /* the host opened the SLCAN channel (O) */
+    int open; /* the host opened the SLCAN channel (O) */
     uint32_t frames_rx, frames_tx, bad_lines, overruns, journal_records;
 } hv_fw_port_t;
 

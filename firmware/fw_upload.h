@@ -20,7 +20,7 @@ typedef enum hv_fw_upload_state {
 typedef struct hv_fw_upload {
     hv_fw_image_reader_t rd;
     hv_fw_upload_state_t state;
-    hv_status_t error;         /* of the last upload that failed, HV_OK otherwise */
+    hv_status_t error; /* of the last upload that failed, HV_OK otherwise */
 } hv_fw_upload_t;
 
 /* Take a frame. Returns 0 when it is not an upload frame, 1 when it was taken; *answer is

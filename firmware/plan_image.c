@@ -10,19 +10,40 @@
 #include "hv/fruit_id.h"
 
 #define HEADER_F64 29u
-#define STOP_F64 5u
-#define PICK_F64 12u
+#define STOP_F64   5u
+#define PICK_F64   12u
 
 static void header_f64(hv_exec_plan_t *pl, hv_exec_params_t *p, double *f[HEADER_F64])
 {
-    double *list[HEADER_F64] = {
-        &p->time_scale, &p->margin, &p->slack_s, &p->latency_s, &p->heartbeat_timeout_s,
-        &p->heartbeat_period_s, &p->startup_timeout_s, &p->command_timeout_s, &p->home_max_s,
-        &p->cut_s, &p->release_s, &p->vehicle_speed_mps, &p->vehicle_accel_mps2, &p->resend_s,
-        &pl->row_start_m, &pl->row_length_m, &pl->stop_margin_m, &pl->planned_makespan_s,
-        &pl->planned_pick_s, &pl->final_drive_s, &pl->expected_makespan_s,
-        &pl->home[0][0], &pl->home[0][1], &pl->home[0][2], &pl->home[0][3],
-        &pl->home[1][0], &pl->home[1][1], &pl->home[1][2], &pl->home[1][3]};
+    double *list[HEADER_F64] = {&p->time_scale,
+                                &p->margin,
+                                &p->slack_s,
+                                &p->latency_s,
+                                &p->heartbeat_timeout_s,
+                                &p->heartbeat_period_s,
+                                &p->startup_timeout_s,
+                                &p->command_timeout_s,
+                                &p->home_max_s,
+                                &p->cut_s,
+                                &p->release_s,
+                                &p->vehicle_speed_mps,
+                                &p->vehicle_accel_mps2,
+                                &p->resend_s,
+                                &pl->row_start_m,
+                                &pl->row_length_m,
+                                &pl->stop_margin_m,
+                                &pl->planned_makespan_s,
+                                &pl->planned_pick_s,
+                                &pl->final_drive_s,
+                                &pl->expected_makespan_s,
+                                &pl->home[0][0],
+                                &pl->home[0][1],
+                                &pl->home[0][2],
+                                &pl->home[0][3],
+                                &pl->home[1][0],
+                                &pl->home[1][1],
+                                &pl->home[1][2],
+                                &pl->home[1][3]};
     memcpy(f, list, sizeof list);
 }
 
@@ -34,8 +55,8 @@ static void stop_f64(hv_exec_stop_t *s, double *f[STOP_F64])
 
 static void pick_f64(hv_exec_pick_t *k, double *f[PICK_F64])
 {
-    double *list[PICK_F64] = {&k->q[0], &k->q[1], &k->q[2], &k->q[3], &k->move_s, &k->cycle_s,
-                              &k->cost_s, &k->start_s, &k->x_m, &k->y_m, &k->z_m, &k->yaw_rad};
+    double *list[PICK_F64] = {&k->q[0],   &k->q[1],    &k->q[2], &k->q[3], &k->move_s, &k->cycle_s,
+                              &k->cost_s, &k->start_s, &k->x_m,  &k->y_m,  &k->z_m,    &k->yaw_rad};
     memcpy(f, list, sizeof list);
 }
 
@@ -88,8 +109,8 @@ size_t hv_fw_image_size(unsigned n_stops, unsigned n_picks)
            (size_t)n_picks * HV_FW_IMAGE_PICK;
 }
 
-size_t hv_fw_image_write(const hv_exec_plan_t *plan, const hv_exec_params_t *prm,
-                         uint8_t *buf, size_t len)
+size_t hv_fw_image_write(const hv_exec_plan_t *plan, const hv_exec_params_t *prm, uint8_t *buf,
+                         size_t len)
 {
     size_t need = hv_fw_image_size(plan->n_stops, plan->n_picks);
     if (len < need)

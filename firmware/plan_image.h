@@ -24,11 +24,11 @@
 
 #include "hv/exec_sm.h"
 
-#define HV_FW_IMAGE_MAGIC 0x57465648u /* "HVFW" */
-#define HV_FW_IMAGE_VERSION 1u
-#define HV_FW_IMAGE_HEADER (12u + 29u * 8u)
-#define HV_FW_IMAGE_STOP (12u + 5u * 8u)
-#define HV_FW_IMAGE_PICK (36u + 12u * 8u)
+#define HV_FW_IMAGE_MAGIC      0x57465648u /* "HVFW" */
+#define HV_FW_IMAGE_VERSION    1u
+#define HV_FW_IMAGE_HEADER     (12u + 29u * 8u)
+#define HV_FW_IMAGE_STOP       (12u + 5u * 8u)
+#define HV_FW_IMAGE_PICK       (36u + 12u * 8u)
 #define HV_FW_IMAGE_RECORD_MAX HV_FW_IMAGE_HEADER
 
 /* Bytes of the image of a plan with these counts. */
@@ -36,18 +36,18 @@ size_t hv_fw_image_size(unsigned n_stops, unsigned n_picks);
 
 /* Host: the image of a prepared plan and its parameters into buf (len >= its size);
  * returns the bytes written, 0 when buf is too small. */
-size_t hv_fw_image_write(const hv_exec_plan_t *plan, const hv_exec_params_t *prm,
-                         uint8_t *buf, size_t len);
+size_t hv_fw_image_write(const hv_exec_plan_t *plan, const hv_exec_params_t *prm, uint8_t *buf,
+                         size_t len);
 
 /* Firmware: the image decoded as it arrives, record by record. */
 typedef struct hv_fw_image_reader {
-    hv_exec_plan_t *plan;      /* filled as records complete */
+    hv_exec_plan_t *plan; /* filled as records complete */
     hv_exec_params_t *prm;
-    uint32_t total, crc_want;  /* from ExecutorPlanBegin */
-    uint32_t received;         /* bytes so far */
-    uint32_t crc;              /* CRC-32 of what arrived */
-    unsigned record;           /* records done: 0 header, then stops, then picks */
-    unsigned fill;             /* bytes of the record under way */
+    uint32_t total, crc_want; /* from ExecutorPlanBegin */
+    uint32_t received;        /* bytes so far */
+    uint32_t crc;             /* CRC-32 of what arrived */
+    unsigned record;          /* records done: 0 header, then stops, then picks */
+    unsigned fill;            /* bytes of the record under way */
     uint8_t buf[HV_FW_IMAGE_RECORD_MAX];
 } hv_fw_image_reader_t;
 

@@ -96,8 +96,7 @@ static hv_status_t parse_frame(const char *line, size_t len, hv_can_frame_t *f)
     return HV_OK;
 }
 
-hv_status_t hv_slcan_parse(const char *line, size_t len, hv_slcan_cmd_t *cmd,
-                           hv_can_frame_t *frame)
+hv_status_t hv_slcan_parse(const char *line, size_t len, hv_slcan_cmd_t *cmd, hv_can_frame_t *frame)
 {
     if (!line || !cmd || !frame)
         return HV_ERR_ARG;
@@ -105,18 +104,28 @@ hv_status_t hv_slcan_parse(const char *line, size_t len, hv_slcan_cmd_t *cmd,
     if (len == 0)
         return HV_OK;
     switch (line[0]) {
-    case 't': case 'T': case 'r': case 'R': {
+    case 't':
+    case 'T':
+    case 'r':
+    case 'R': {
         hv_status_t st = parse_frame(line, len, frame);
         if (st == HV_OK)
             *cmd = HV_SLCAN_FRAME;
         return st;
     }
-    case 'O': case 'L': case 'C': case 'V': case 'N': case 'F':
+    case 'O':
+    case 'L':
+    case 'C':
+    case 'V':
+    case 'N':
+    case 'F':
         if (len != 1)
             return HV_ERR_SLCAN_LENGTH;
-        *cmd = line[0] == 'C' ? HV_SLCAN_CLOSE : line[0] == 'V' ? HV_SLCAN_VERSION
-             : line[0] == 'N' ? HV_SLCAN_SERIAL : line[0] == 'F' ? HV_SLCAN_FLAGS
-             : HV_SLCAN_OPEN;
+        *cmd = line[0] == 'C'   ? HV_SLCAN_CLOSE
+               : line[0] == 'V' ? HV_SLCAN_VERSION
+               : line[0] == 'N' ? HV_SLCAN_SERIAL
+               : line[0] == 'F' ? HV_SLCAN_FLAGS
+                                : HV_SLCAN_OPEN;
         return HV_OK;
     case 'S':
         if (len != 2)
@@ -141,8 +150,7 @@ hv_status_t hv_slcan_parse(const char *line, size_t len, hv_slcan_cmd_t *cmd,
             return HV_ERR_SLCAN_HEX;
         *cmd = HV_SLCAN_TIMESTAMP;
         return HV_OK;
-    default:
-        return HV_ERR_SLCAN_COMMAND;
+    default: return HV_ERR_SLCAN_COMMAND;
     }
 }
 

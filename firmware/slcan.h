@@ -25,8 +25,8 @@
 
 typedef struct hv_slcan_rx {
     char line[HV_SLCAN_LINE_MAX + 1]; /* the line under way; once complete NUL-terminated */
-    unsigned len;  /* bytes of the line under way */
-    unsigned done; /* length of the line completed by the last CR */
+    unsigned len;                     /* bytes of the line under way */
+    unsigned done;                    /* length of the line completed by the last CR */
     int too_long; /* the line outgrew line[]: its bytes are dropped up to the CR */
 } hv_slcan_rx_t;
 

@@ -27,8 +27,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         for (int a = 0; a < HV_NAXES; a++) {
             const hv_axis_t *ax = &g->axis[a];
             double last = ax->origin + ax->step * (double)(ax->count - 1);
-            v[a] = k == -1 ? ax->origin - ax->step : k == 0 ? ax->origin
-                 : k == 1 ? last : k == 2 ? last + ax->step : (ax->origin + last) / 2;
+            v[a] = k == -1  ? ax->origin - ax->step
+                   : k == 0 ? ax->origin
+                   : k == 1 ? last
+                   : k == 2 ? last + ax->step
+                            : (ax->origin + last) / 2;
         }
         uint16_t ms;
         (void)hv_costtab_lookup(&tab, v[HV_AX_X], v[HV_AX_Y], v[HV_AX_Z], v[HV_AX_YAW], &ms);

@@ -36,8 +36,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (!plan)
         abort();
     char err[512] = "";
-    hv_status_t st = hv_exec_plan_parse_json("in.json", (const char *)data, size, plan, err,
-                                             sizeof err);
+    hv_status_t st =
+        hv_exec_plan_parse_json("in.json", (const char *)data, size, plan, err, sizeof err);
     if (st != HV_OK) {
         if (strncmp(err, "in.json", 7) != 0)
             hv_fuzz_fail("refused (%s) without naming the file: '%s'", hv_status_name(st), err);

@@ -74,8 +74,8 @@ static void check_actions(run_t *R, hv_exec_phase_t before, const hv_exec_action
         if (R->latched_without_clear && commanding)
             hv_fuzz_fail("command to a latched node without the operator's clear");
         R->commanded |= commanding;
-        if (a->kind == HV_ACT_JOURNAL && a->u.jr.kind != HV_JR_STOP &&
-            a->u.jr.kind != HV_JR_DONE && a->u.jr.kind != HV_JR_ESTOP_CLEAR) {
+        if (a->kind == HV_ACT_JOURNAL && a->u.jr.kind != HV_JR_STOP && a->u.jr.kind != HV_JR_DONE &&
+            a->u.jr.kind != HV_JR_ESTOP_CLEAR) {
             int p = a->u.jr.pick;
             if (p < 0 || p >= R->sm.plan->n_picks)
                 hv_fuzz_fail("journal record of pick %d", p);
@@ -139,14 +139,14 @@ static void send_packed(run_t *R, uint32_t id, const uint8_t *buf, int len)
     frame_in(R, &f);
 }
 
-#define PACK_HB(MSG, ID)                                                                  \
-    do {                                                                                  \
-        struct harvest_can_##MSG##_t m;                                                   \
-        memset(&m, 0, sizeof m);                                                          \
-        m.health = health;                                                                \
-        m.time_scale = harvest_can_##MSG##_time_scale_encode(scale);                      \
-        m.protocol_version = 1;                                                           \
-        send_packed(R, ID, buf, harvest_can_##MSG##_pack(buf, &m, sizeof buf));           \
+#define PACK_HB(MSG, ID)                                                                           \
+    do {                                                                                           \
+        struct harvest_can_##MSG##_t m;                                                            \
+        memset(&m, 0, sizeof m);                                                                   \
+        m.health = health;                                                                         \
+        m.time_scale = harvest_can_##MSG##_time_scale_encode(scale);                               \
+        m.protocol_version = 1;                                                                    \
+        send_packed(R, ID, buf, harvest_can_##MSG##_pack(buf, &m, sizeof buf));                    \
     } while (0)
 
 static void heartbeat(run_t *R, int node, uint8_t health, double scale)
@@ -167,17 +167,17 @@ static int wanted_cmd_seq(const run_t *R, int node)
     return n->wait_cmd_seq >= 0 ? n->wait_cmd_seq : n->cmd_seq;
 }
 
-#define PACK_ARM_STATUS(MSG, ID)                                                          \
-    do {                                                                                  \
-        struct harvest_can_##MSG##_t m;                                                   \
-        memset(&m, 0, sizeof m);                                                          \
-        m.state = state;                                                                  \
-        m.target_reached = flags & 1;                                                     \
-        m.homed = (flags >> 1) & 1;                                                       \
-        m.setpoint_seq = (uint8_t)sp_seq;                                                 \
-        m.command_seq = (uint8_t)cmd_seq;                                                 \
-        m.fault_bits = fault_bits;                                                        \
-        send_packed(R, ID, buf, harvest_can_##MSG##_pack(buf, &m, sizeof buf));           \
+#define PACK_ARM_STATUS(MSG, ID)                                                                   \
+    do {                                                                                           \
+        struct harvest_can_##MSG##_t m;                                                            \
+        memset(&m, 0, sizeof m);                                                                   \
+        m.state = state;                                                                           \
+        m.target_reached = flags & 1;                                                              \
+        m.homed = (flags >> 1) & 1;                                                                \
+        m.setpoint_seq = (uint8_t)sp_seq;                                                          \
+        m.command_seq = (uint8_t)cmd_seq;                                                          \
+        m.fault_bits = fault_bits;                                                                 \
+        send_packed(R, ID, buf, harvest_can_##MSG##_pack(buf, &m, sizeof buf));                    \
     } while (0)
 
 static void status(run_t *R, int node, uint8_t state, uint8_t flags, int seq_byte,
@@ -196,8 +196,8 @@ static void status(run_t *R, int node, uint8_t state, uint8_t flags, int seq_byt
         m.move_seq = (uint8_t)(echo ? R->sm.node[node].next_move_seq - 1 : seq_byte);
         m.command_seq = (uint8_t)cmd_seq;
         m.position = harvest_can_vehicle_status_position_encode(
-            R->sm.stop >= 0 && R->sm.stop < R->sm.plan->n_stops
-                ? R->sm.plan->stops[R->sm.stop].y_m : 0.0);
+            R->sm.stop >= 0 && R->sm.stop < R->sm.plan->n_stops ? R->sm.plan->stops[R->sm.stop].y_m
+                                                                : 0.0);
         send_packed(R, HARVEST_CAN_VEHICLE_STATUS_FRAME_ID, buf,
                     harvest_can_vehicle_status_pack(buf, &m, sizeof buf));
         return;
@@ -210,15 +210,15 @@ static void status(run_t *R, int node, uint8_t state, uint8_t flags, int seq_byt
         PACK_ARM_STATUS(right_arm_status, HARVEST_CAN_RIGHT_ARM_STATUS_FRAME_ID);
 }
 
-#define PACK_EE(MSG, ID)                                                                  \
-    do {                                                                                  \
-        struct harvest_can_##MSG##_t m;                                                   \
-        memset(&m, 0, sizeof m);                                                          \
-        m.state = state;                                                                  \
-        m.action = action;                                                                \
-        m.ee_seq = (uint8_t)seq;                                                          \
-        m.fruit_held = flags & 1;                                                         \
-        send_packed(R, ID, buf, harvest_can_##MSG##_pack(buf, &m, sizeof buf));           \
+#define PACK_EE(MSG, ID)                                                                           \
+    do {                                                                                           \
+        struct harvest_can_##MSG##_t m;                                                            \
+        memset(&m, 0, sizeof m);                                                                   \
+        m.state = state;                                                                           \
+        m.action = action;                                                                         \
+        m.ee_seq = (uint8_t)seq;                                                                   \
+        m.fruit_held = flags & 1;                                                                  \
+        send_packed(R, ID, buf, harvest_can_##MSG##_pack(buf, &m, sizeof buf));                    \
     } while (0)
 
 static void ee_status(run_t *R, int node, uint8_t state, uint8_t action, uint8_t flags,
@@ -240,8 +240,8 @@ static void good_round(run_t *R)
         status(R, n, HV_CAN_STATE_IDLE, 1 | 2 | 4, 0, 0);
         if (n != HV_EXEC_VEHICLE) {
             const hv_exec_arm_t *arm = &R->sm.arm[n == HV_EXEC_LEFT ? 0 : 1];
-            uint8_t action = arm->phase == HV_ARM_RELEASE ? HV_CAN_EE_ACTION_RELEASE
-                                                          : HV_CAN_EE_ACTION_CUT;
+            uint8_t action =
+                arm->phase == HV_ARM_RELEASE ? HV_CAN_EE_ACTION_RELEASE : HV_CAN_EE_ACTION_CUT;
             ee_status(R, n, HV_CAN_EE_STATE_DONE, action,
                       (uint8_t)(2 | (action == HV_CAN_EE_ACTION_CUT)), 0);
         }

@@ -18,8 +18,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     const hv_fruitmap_limits_t *use = (data[0] & 1) ? NULL : &lim;
     hv_fruitmap_t map;
     char err[512] = "";
-    hv_status_t st = hv_fruitmap_parse((const char *)data + 1, size - 1, "in.csv", use, &map,
-                                       err, sizeof err);
+    hv_status_t st =
+        hv_fruitmap_parse((const char *)data + 1, size - 1, "in.csv", use, &map, err, sizeof err);
     if (st != HV_OK) {
         if (strncmp(err, "in.csv", 6) != 0 || map.n != 0)
             hv_fuzz_fail("refused (%s) without naming the file, or kept fruit: '%s'",

@@ -71,8 +71,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     hv_status_t st = hv_exec_journal_open(&j, path, plan, &prog, err, sizeof err);
     if (st != HV_OK) {
         if (strncmp(err, path, strlen(path)) != 0 || !strstr(err, "line"))
-            hv_fuzz_fail("refused (%s) without naming the file and line: '%s'",
-                         hv_status_name(st), err);
+            hv_fuzz_fail("refused (%s) without naming the file and line: '%s'", hv_status_name(st),
+                         err);
         close(fd);
         free(text);
         return 0;

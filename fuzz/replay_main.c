@@ -54,15 +54,17 @@ static int run_dir(const char *dir)
 int main(int argc, char **argv)
 {
     if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
-        fprintf(stderr, "usage: %s CORPUS_DIR|FILE ...\n"
-                        "Runs the fuzz target once on each input (the build without "
-                        "libFuzzer).\n", argv[0]);
+        fprintf(stderr,
+                "usage: %s CORPUS_DIR|FILE ...\n"
+                "Runs the fuzz target once on each input (the build without "
+                "libFuzzer).\n",
+                argv[0]);
         return argc < 2 ? 2 : 0;
     }
     for (int i = 1; i < argc; i++) {
         struct stat sb;
-        int n = stat(argv[i], &sb) == 0 && S_ISDIR(sb.st_mode) ? run_dir(argv[i])
-                                                               : run_file(argv[i]);
+        int n =
+            stat(argv[i], &sb) == 0 && S_ISDIR(sb.st_mode) ? run_dir(argv[i]) : run_file(argv[i]);
         if (n <= 0) {
             fprintf(stderr, "replay: %s: %s\n", argv[i], n == 0 ? "no inputs" : "failed");
             return 1;

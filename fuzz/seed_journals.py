@@ -2,6 +2,7 @@
 the plan of fuzz/data/plan.json run against the simulator over udp_multicast in a
 private network namespace, once to the end and once stopped (SIGTERM) after three
 outcomes. Usage: python fuzz/seed_journals.py OUT_DIR (HV_BUILD_DIR: the build to use)."""
+
 import os
 import signal
 import sys
@@ -38,8 +39,9 @@ def main():
         try:
             part = os.path.join(tmp, "stopped.journal")
             p = H.start_exec(plan, part, os.path.join(tmp, "s2.json"), SCALE)
-            H.wait_for(lambda: os.path.exists(part) and open(part, "rb").read().count(b"\nF ") >= 3,
-                       60)
+            H.wait_for(
+                lambda: os.path.exists(part) and open(part, "rb").read().count(b"\nF ") >= 3, 60
+            )
             p.send_signal(signal.SIGTERM)
             p.communicate(timeout=30)
         finally:

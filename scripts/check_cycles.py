@@ -16,6 +16,7 @@ usage: scripts/check_cycles.py [--root DIR] [--limit N] [FOLDER ...]
 Cycles and long files named in KNOWN_CYCLES / KNOWN_LONG are reported, not failed.
 Exit status 0 when both hold, 1 with the cycles and long files listed otherwise.
 """
+
 import argparse
 import os
 import re
@@ -27,7 +28,7 @@ DEFAULT_FOLDERS = ("plan", "planner", "core", "executor")
 # it, a long file by its path. A new cycle or long file fails; a known one is reported.
 KNOWN_CYCLES = {
     "planner/include/hv/pick_model.h": "hv_fruit_t lives in plan_instance.h, which builds "
-                                       "instances with the pick model",
+    "instances with the pick model",
     "executor/can/include/hv/can_bus.h": "the CAN transports and their wire format (item 5)",
 }
 KNOWN_LONG = {"executor/src/exec_sm.c": "the executor's state machine"}
@@ -39,10 +40,16 @@ STRING_RE = re.compile(r'"(\\.|[^"\\])*"')
 IDENT_RE = re.compile(r"\b[A-Za-z_]\w*\b")
 # an external definition starts at column 0: a function (its "(" before any ";" or "=",
 # and a body) or a variable with an initialiser
-FUNC_DEF_RE = re.compile(r"^(?!static\b|extern\b|typedef\b|struct\b|enum\b|union\b|#)"
-                         r"[A-Za-z_][\w \t\*]*?\b([A-Za-z_]\w*)\s*\([^;{]*\)\s*\{", re.M)
-VAR_DEF_RE = re.compile(r"^(?!static\b|extern\b|typedef\b|#)[A-Za-z_][\w \t\*]*?\b([A-Za-z_]\w*)"
-                        r"\s*(?:\[[^\]]*\])?\s*=", re.M)
+FUNC_DEF_RE = re.compile(
+    r"^(?!static\b|extern\b|typedef\b|struct\b|enum\b|union\b|#)"
+    r"[A-Za-z_][\w \t\*]*?\b([A-Za-z_]\w*)\s*\([^;{]*\)\s*\{",
+    re.M,
+)
+VAR_DEF_RE = re.compile(
+    r"^(?!static\b|extern\b|typedef\b|#)[A-Za-z_][\w \t\*]*?\b([A-Za-z_]\w*)"
+    r"\s*(?:\[[^\]]*\])?\s*=",
+    re.M,
+)
 
 
 def source_files(root, folders):
@@ -90,8 +97,10 @@ def modules(files, include_dirs):
             for name in set(IDENT_RE.findall(strip(text[h]))):
                 for c in defined.get(name, ()):
                     parent[find(c)] = find(h)
-    includes = {f: [p for p in (resolve(i, f, include_dirs)
-                                for i in INCLUDE_RE.findall(text[f])) if p] for f in files}
+    includes = {
+        f: [p for p in (resolve(i, f, include_dirs) for i in INCLUDE_RE.findall(text[f])) if p]
+        for f in files
+    }
     graph = {}
     for f in files:
         a = find(f)
@@ -144,10 +153,17 @@ def main(argv=None):
     args = ap.parse_args(argv)
     root = os.path.abspath(args.root)
     files = source_files(root, args.folders)
-    include_dirs = sorted(os.path.join(dp, "include") for folder in args.folders
-                          for dp, dn, _ in os.walk(os.path.join(root, folder)) if "include" in dn)
+    include_dirs = sorted(
+        os.path.join(dp, "include")
+        for folder in args.folders
+        for dp, dn, _ in os.walk(os.path.join(root, folder))
+        if "include" in dn
+    )
     module_of, graph, _ = modules(files, include_dirs)
-    rel = lambda p: os.path.relpath(p, root)
+
+    def rel(p):
+        return os.path.relpath(p, root)
+
     bad = known = 0
     for comp in cycles(graph):
         members = {m: sorted(rel(f) for f in files if module_of[f] == m) for m in comp}
@@ -156,8 +172,10 @@ def main(argv=None):
             known += 1
         else:
             bad += 1
-        print("%scycle between %d modules%s:" % ("known " if why else "", len(comp),
-                                                 " (%s)" % why[0] if why else ""))
+        print(
+            "%scycle between %d modules%s:"
+            % ("known " if why else "", len(comp), " (%s)" % why[0] if why else "")
+        )
         for m in comp:
             deps = sorted(rel(d) for d in graph[m] if d in comp)
             print("  %s -> %s" % (" + ".join(members[m]), ", ".join(deps)))
@@ -167,8 +185,10 @@ def main(argv=None):
             why = KNOWN_LONG.get(rel(f))
             known += why is not None
             bad += why is None
-            print("%s%s: %d lines, over the limit of %d%s" % ("known: " if why else "", rel(f), n,
-                                                          args.limit, " (%s)" % why if why else ""))
+            print(
+                "%s%s: %d lines, over the limit of %d%s"
+                % ("known: " if why else "", rel(f), n, args.limit, " (%s)" % why if why else "")
+            )
     n_mod = len(set(module_of.values()))
     print("%d files in %d modules: %d problems, %d known" % (len(files), n_mod, bad, known))
     return 1 if bad else 0

@@ -15,6 +15,7 @@ apt_pkgs=(
   libeigen3-dev                                  # tools/: cost table generator, mount search
   libglpk-dev glpk-utils                         # planner/: the MILP (C API; glpsol to cross-check)
   libjansson-dev                                 # plan files: the JSON reader
+  clang-format                                   # tests/lint: the C/C++ format check
   libcmocka-dev                                  # C unit tests
   clang libclang-rt-14-dev                       # fuzz/: clang, its libFuzzer + ASan/UBSan runtimes (HV_FUZZ)
   liblcm-dev liblcm-bin                          # telemetry: LCM library and lcm-gen

@@ -11,6 +11,7 @@ Needs the build (HV_BUILD_DIR, default <repo>/build-can or <repo>/build) for hv-
 Numbers inside the guest are software-emulated (~20x slower): compare them only with the
 baseline printed next to them, never with the host's.
 """
+
 import argparse
 import os
 import statistics
@@ -23,7 +24,6 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 
 from harvest.canbus.buses import open_bus  # noqa: E402
 from harvest.canbus.guest import guest_or_skip, in_guest, local_vcan, run_in_guest, skip_reason  # noqa: E402,F401
-from harvest.canbus.netns import NetnsUnavailable, enter_private_netns  # noqa: E402
 
 PING_ID, REPLY_ID = 0x7F0, 0x7F1
 
@@ -43,7 +43,11 @@ bus.shutdown()
 
 
 def build_dir():
-    for cand in (os.environ.get("HV_BUILD_DIR"), os.path.join(ROOT, "build-can"), os.path.join(ROOT, "build")):
+    for cand in (
+        os.environ.get("HV_BUILD_DIR"),
+        os.path.join(ROOT, "build-can"),
+        os.path.join(ROOT, "build"),
+    ):
         if cand and os.path.exists(os.path.join(cand, "executor", "can", "hv-can-tool")):
             return cand
     sys.exit("bench_can: hv-can-tool not built; set HV_BUILD_DIR to your build directory")
@@ -53,24 +57,50 @@ TOOL = None
 
 
 def start_echo(spec, idle_s):
-    p = subprocess.Popen([sys.executable, "-c", ECHO, spec, str(idle_s)], stdout=subprocess.PIPE, text=True)
+    p = subprocess.Popen(
+        [sys.executable, "-c", ECHO, spec, str(idle_s)], stdout=subprocess.PIPE, text=True
+    )
     if p.stdout.readline().strip() != "ready":
         sys.exit("bench_can: python echo did not start")
     return p
 
 
 def c_ping(spec, count, window):
-    out = subprocess.run([TOOL, "--bus", spec, "ping", "--count", str(count), "--window", str(window),
-                          "--id", f"{PING_ID:X}", "--reply-id", f"{REPLY_ID:X}", "--timeout-ms", "5000"],
-                         capture_output=True, text=True, timeout=600)
+    out = subprocess.run(
+        [
+            TOOL,
+            "--bus",
+            spec,
+            "ping",
+            "--count",
+            str(count),
+            "--window",
+            str(window),
+            "--id",
+            f"{PING_ID:X}",
+            "--reply-id",
+            f"{REPLY_ID:X}",
+            "--timeout-ms",
+            "5000",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     fields = dict(f.split("=") for f in out.stdout.split()[1:] if "=" in f)
     if out.returncode != 0 or "fps" not in fields:
         sys.exit(f"bench_can: C ping failed: {out.stdout} {out.stderr}")
-    return float(fields["fps"]), float(fields["rtt_median_us"]), float(fields["rtt_p99_us"]), int(fields["lost"])
+    return (
+        float(fields["fps"]),
+        float(fields["rtt_median_us"]),
+        float(fields["rtt_p99_us"]),
+        int(fields["lost"]),
+    )
 
 
 def py_ping(spec, count, window):
     import can
+
     rtts, lost = [], 0
     with open_bus(spec, can_filters=[{"can_id": REPLY_ID, "can_mask": 0x7FF}]) as bus:
         sent = {}
@@ -79,8 +109,13 @@ def py_ping(spec, count, window):
         while len(rtts) + lost < count:
             while nxt < count and len(sent) < window:
                 sent[nxt] = time.perf_counter()
-                bus.send(can.Message(arbitration_id=PING_ID, is_extended_id=False,
-                                     data=nxt.to_bytes(4, "little") + b"\xee\xff\xc0\x00"))
+                bus.send(
+                    can.Message(
+                        arbitration_id=PING_ID,
+                        is_extended_id=False,
+                        data=nxt.to_bytes(4, "little") + b"\xee\xff\xc0\x00",
+                    )
+                )
                 nxt += 1
             m = bus.recv(5.0)
             if m is None:
@@ -101,7 +136,10 @@ def bench(spec, label, count, window):
     print(f"{'path':<50} {'fps':>9} {'median us':>10} {'p99 us':>10} {'lost':>5}")
     rows = []
     idle = 30 if in_guest() else 5
-    for who, fn in (("C -> python-can -> C", c_ping), ("baseline python-can -> python-can -> python-can", py_ping)):
+    for who, fn in (
+        ("C -> python-can -> C", c_ping),
+        ("baseline python-can -> python-can -> python-can", py_ping),
+    ):
         for w in (1, window):
             echo = start_echo(spec, idle)
             try:
@@ -113,14 +151,17 @@ def bench(spec, label, count, window):
             rows.append((name, fps, med, p99, lost))
             print(f"{name:<50} {fps:>9.0f} {med:>10.1f} {p99:>10.1f} {lost:>5}", flush=True)
     c1, b1 = rows[0], rows[2]
-    print(f"C side vs baseline at window 1: median latency x{c1[2] / b1[2]:.2f}, "
-          f"throughput x{rows[1][1] / rows[3][1]:.2f} at window {window}")
+    print(
+        f"C side vs baseline at window 1: median latency x{c1[2] / b1[2]:.2f}, "
+        f"throughput x{rows[1][1] / rows[3][1]:.2f} at window {window}"
+    )
 
 
 def main(argv=None):
     global TOOL
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(
+        description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     ap.add_argument("--transport", choices=["udp", "vcan", "all"], default="all")
     ap.add_argument("--count", type=int, default=300 if in_guest() else 2000)
     ap.add_argument("--window", type=int, default=32)
@@ -133,13 +174,30 @@ def main(argv=None):
     if args.transport in ("vcan", "all"):
         iface = local_vcan()
         if iface:
-            bench(f"socketcan:{iface}", "vcan" + (" (inside the QEMU guest)" if in_guest() else ""),
-                  args.count, args.window)
+            bench(
+                f"socketcan:{iface}",
+                "vcan" + (" (inside the QEMU guest)" if in_guest() else ""),
+                args.count,
+                args.window,
+            )
         else:
-            print("\n== vcan: no vcan here, running in the QEMU test-bed guest (boot ~10-30 s) ==", flush=True)
-            proc = run_in_guest([sys.executable, os.path.abspath(__file__), "--transport", "vcan",
-                                 "--count", str(max(10, args.count // 7)), "--window", str(args.window)],
-                                timeout=900)
+            print(
+                "\n== vcan: no vcan here, running in the QEMU test-bed guest (boot ~10-30 s) ==",
+                flush=True,
+            )
+            proc = run_in_guest(
+                [
+                    sys.executable,
+                    os.path.abspath(__file__),
+                    "--transport",
+                    "vcan",
+                    "--count",
+                    str(max(10, args.count // 7)),
+                    "--window",
+                    str(args.window),
+                ],
+                timeout=900,
+            )
             reason = skip_reason(proc)
             if reason:
                 print(f"vcan: {reason}")
@@ -152,12 +210,14 @@ def main(argv=None):
         if in_guest():
             return 0
         # the udp part runs in a child inside its own network namespace
-        code = ("import sys; sys.argv = [sys.argv[0]] + sys.argv[1:]\n"
-                f"sys.path.insert(0, {HERE!r})\n"
-                "import bench_can\n"
-                "from harvest.canbus.netns import enter_private_netns\n"
-                "enter_private_netns()\n"
-                "sys.exit(bench_can.main_udp(int(sys.argv[1]), int(sys.argv[2])))\n")
+        code = (
+            "import sys; sys.argv = [sys.argv[0]] + sys.argv[1:]\n"
+            f"sys.path.insert(0, {HERE!r})\n"
+            "import bench_can\n"
+            "from harvest.canbus.netns import enter_private_netns\n"
+            "enter_private_netns()\n"
+            "sys.exit(bench_can.main_udp(int(sys.argv[1]), int(sys.argv[2])))\n"
+        )
         r = subprocess.run([sys.executable, "-c", code, str(args.count), str(args.window)])
         if r.returncode != 0:
             return r.returncode

@@ -18,7 +18,8 @@
 #include "hv/file_io.h"
 #include "tool_config.hpp"
 
-namespace {
+namespace
+{
 
 using Clock = std::chrono::steady_clock;
 using namespace hv::tools;
@@ -206,7 +207,9 @@ int main(int argc, char **argv)
     std::printf("  row scan (hv_costtab_row, %u stops)  %8.2f ns/cell\n", ax[HV_AX_Y].count,
                 1e9 * t_row / static_cast<double>(row_cells));
     std::printf("checksums: lookup %" PRIu64 ", direct %" PRIu64 " (%s), rows %" PRIu64 "\n",
-                sum_lookup, sum_direct, sum_lookup == sum_direct && sum_sorted == sum_lookup ? "agree" : "DISAGREE", sum_row);
+                sum_lookup, sum_direct,
+                sum_lookup == sum_direct && sum_sorted == sum_lookup ? "agree" : "DISAGREE",
+                sum_row);
 
     // 3. Why the planner does not plan from the table: at poses between cell centres (as
     // fruit are) the nearest cell and the exact IK disagree near the workspace's edge.

@@ -11,11 +11,10 @@ in a private network namespace; prints
 
 Usage: python bench/executor/bench_exec_run.py [--stops N] [--per-arm K] [--time-scale S]
 """
+
 import argparse
-import json
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
 import threading
@@ -25,6 +24,7 @@ SOURCE = os.environ.get("HV_SOURCE_DIR", os.path.dirname(os.path.dirname(HERE)))
 sys.path.insert(0, os.path.join(SOURCE, "tests", "executor"))
 
 import exec_hil as H  # noqa: E402
+
 from harvest.canbus import netns, protocol  # noqa: E402
 
 
@@ -36,14 +36,17 @@ def pct(v, q):
 def fmt(v):
     if not v:
         return "n/a (no samples)"
-    return (f"median {statistics.median(v) * 1e3:7.3f} ms  p99 {pct(v, 0.99) * 1e3:7.3f} ms  "
-            f"(n={len(v)})")
+    return (
+        f"median {statistics.median(v) * 1e3:7.3f} ms  p99 {pct(v, 0.99) * 1e3:7.3f} ms  "
+        f"(n={len(v)})"
+    )
 
 
 class Listener(threading.Thread):
     def __init__(self):
         super().__init__(daemon=True)
         import can
+
         self.bus = can.Bus(interface="udp_multicast", channel=H.GROUP)
         self.frames = []
         self.stop = False
@@ -62,11 +65,17 @@ class Listener(threading.Thread):
 
 def reactions(frames, proto):
     """Delays (s) per kind, from the listener's frames."""
-    out = {"reached->ee command": [], "ee done->setpoint": [], "sim: setpoint->echo": [],
-           "sim: ee command->echo": []}
+    out = {
+        "reached->ee command": [],
+        "ee done->setpoint": [],
+        "sim: setpoint->echo": [],
+        "sim: ee command->echo": [],
+    }
     for arm in ("LeftArm", "RightArm"):
-        ids = {proto.message(arm + k).frame_id: k for k in
-               ("Status", "Setpoint", "EeCommand", "EeStatus")}
+        ids = {
+            proto.message(arm + k).frame_id: k
+            for k in ("Status", "Setpoint", "EeCommand", "EeStatus")
+        }
         seen_reached, seen_done = set(), set()
         pending = None  # (t, kind) waiting for the executor's next frame to this arm
         sent_sp, sent_ee = {}, {}
@@ -125,8 +134,9 @@ def main(argv=None):
         listener.start()
         sim = H.Sim(d, args.time_scale)
         try:
-            proc, run = H.run_exec(plan, os.path.join(d, "run.journal"),
-                                   os.path.join(d, "run.json"), args.time_scale)
+            proc, run = H.run_exec(
+                plan, os.path.join(d, "run.journal"), os.path.join(d, "run.json"), args.time_scale
+            )
         finally:
             sim.stop()
             listener.close()
@@ -135,24 +145,39 @@ def main(argv=None):
             return 1
         # idle baseline: the same loop with nobody on the bus, about as long as the row
         idle_wall = min(max(run["wall_s"], 3.0), 30.0)
-        idle_proc, idle = H.run_exec(plan, os.path.join(d, "idle.journal"),
-                                     os.path.join(d, "idle.json"), args.time_scale,
-                                     ["--startup-timeout", f"{idle_wall:.1f}", "--quiet"])
+        idle_proc, idle = H.run_exec(
+            plan,
+            os.path.join(d, "idle.journal"),
+            os.path.join(d, "idle.json"),
+            args.time_scale,
+            ["--startup-timeout", f"{idle_wall:.1f}", "--quiet"],
+        )
         assert idle["safe_reason"] == "nodes_absent", idle
     fruits = run["picked"]
-    print(f"bench_exec_run: {args.stops} stops x {args.per_arm} fruits per arm ({fruits} picked), "
-          f"time scale {args.time_scale:g}, udp multicast in a private namespace")
-    print(f"  row: executed {run['executed_makespan_s']:.2f} s vs expected "
-          f"{run['expected_makespan_s']:.2f} s ({(run['executed_makespan_s'] / run['expected_makespan_s'] - 1) * 100:+.2f} %), "
-          f"wall {run['wall_s']:.2f} s")
+    print(
+        f"bench_exec_run: {args.stops} stops x {args.per_arm} fruits per arm ({fruits} picked), "
+        f"time scale {args.time_scale:g}, udp multicast in a private namespace"
+    )
+    print(
+        f"  row: executed {run['executed_makespan_s']:.2f} s vs expected "
+        f"{run['expected_makespan_s']:.2f} s "
+        f"({(run['executed_makespan_s'] / run['expected_makespan_s'] - 1) * 100:+.2f} %), "
+        f"wall {run['wall_s']:.2f} s"
+    )
     cpu_run = run["cpu_s"] / run["wall_s"] * 100
     cpu_idle = idle["cpu_s"] / idle["wall_s"] * 100
-    print(f"  CPU share of one core: row {cpu_run:6.2f} %   idle loop (baseline) {cpu_idle:6.2f} %  "
-          f"(target < 5 %)")
-    print(f"  peak memory (VmHWM): row {run['peak_rss_kb']} KiB   idle loop (baseline) "
-          f"{idle['peak_rss_kb']} KiB")
-    print(f"  step in the running program: mean {run['step_ns_mean']:.0f} ns, max "
-          f"{run['step_ns_max']} ns over {run['steps']} steps")
+    print(
+        f"  CPU share of one core: row {cpu_run:6.2f} %   idle loop (baseline) {cpu_idle:6.2f} %  "
+        f"(target < 5 %)"
+    )
+    print(
+        f"  peak memory (VmHWM): row {run['peak_rss_kb']} KiB   idle loop (baseline) "
+        f"{idle['peak_rss_kb']} KiB"
+    )
+    print(
+        f"  step in the running program: mean {run['step_ns_mean']:.0f} ns, max "
+        f"{run['step_ns_max']} ns over {run['steps']} steps"
+    )
     r = reactions(listener.frames, proto)
     print("  reaction delay on the bus (listener timestamps):")
     for k in ("reached->ee command", "ee done->setpoint"):

@@ -108,7 +108,8 @@ int main(int argc, char **argv)
     double t_hb = time_steps(hv_exec_step, start, &hb, t0, iters, work);
 
     printf("bench_exec_step: %ld iterations each, state %zu bytes, mid-harvest (stop 1, both "
-           "arms approaching)\n", iters, sizeof *start);
+           "arms approaching)\n",
+           iters, sizeof *start);
     printf("  baseline  empty call through a pointer   %8.1f ns\n", base_call);
     printf("  baseline  memcpy of the state            %8.1f ns\n", base_copy);
     printf("  step      timer tick                     %8.1f ns  (%+.1f ns over the empty call)\n",

@@ -28,8 +28,7 @@ static double uniform(uint64_t *s, double lo, double hi)
     return lo + (hi - lo) * ((double)(z >> 11) * 0x1.0p-53);
 }
 
-hv_fruit_t *bench_fruits_make(const hv_config_t *cfg, size_t n_left, size_t n_right,
-                              uint64_t seed)
+hv_fruit_t *bench_fruits_make(const hv_config_t *cfg, size_t n_left, size_t n_right, uint64_t seed)
 {
     size_t n = n_left + n_right;
     hv_fruit_t *fr = calloc(n + 1, sizeof *fr);

@@ -26,8 +26,7 @@ int bench_model_init(const hv_config_t *cfg, bench_model_t *m);
 
 /* n_left + n_right fruits (ids L0.., R0..) uniform in the canopy of each side over
  * [0, cfg->row_length_m], from `seed`; malloc'd (free it), NULL when out of memory. */
-hv_fruit_t *bench_fruits_make(const hv_config_t *cfg, size_t n_left, size_t n_right,
-                              uint64_t seed);
+hv_fruit_t *bench_fruits_make(const hv_config_t *cfg, size_t n_left, size_t n_right, uint64_t seed);
 
 /* The instance of (n_left, n_right, seed): fruit uniform in the canopy of each side. */
 int bench_instance_make(const hv_config_t *cfg, const bench_model_t *m, size_t n_left,

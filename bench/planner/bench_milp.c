@@ -19,31 +19,32 @@
 #endif
 
 #define MAX_ALPHAS 16
-#define MAX_SEEDS 100
+#define MAX_SEEDS  100
 
 static void usage(FILE *f)
 {
-    fprintf(f,
-            "usage: bench_milp [options]\n"
-            "The paper's experiment: m_L = 50, m_R = alpha * 50, N = 201 stops, real arm costs.\n"
-            "Per alpha: MILP solve times, proven optima, gaps, stops and throughput (fruits / T)\n"
-            "against FOV and Serial, and the plain model (no improvements) as the reference.\n"
-            "  --config PATH        harvest config (default %s)\n"
-            "  --alphas A,B,..      alphas (default 0.25,0.4,1,2.5,4)\n"
-            "  --seeds N            seeds per alpha (default 10)\n"
-            "  --first-seed N       the first seed (default 1): --first-seed 4 --seeds 1 runs seed 4\n"
-            "  --time-limit S       MILP limit per instance, s (default 10: DESIGN's max is 7 s)\n"
-            "  --plain-seeds N      seeds per alpha also solved by the plain model (default 2)\n"
-            "  --plain-limit S      its limit, s (default 10)\n"
-            "  --set KEY=VALUE      an option of the MILP run (repeatable): a row of the\n"
-            "                       table harvest-plan --help-params prints\n"
-            "  --no-baselines       skip FOV and Serial\n"
-            "  --given-plan         also solve each instance again from the plan its MILP run\n"
-            "                       found, and print that time: what the proof alone takes\n"
-            "                       once the plan is known (the rest waited for the plan)\n"
-            "  -v                   solver progress on stderr\n"
-            "  --help               this text\n",
-            HV_BENCH_DEFAULT_CONFIG);
+    fprintf(
+        f,
+        "usage: bench_milp [options]\n"
+        "The paper's experiment: m_L = 50, m_R = alpha * 50, N = 201 stops, real arm costs.\n"
+        "Per alpha: MILP solve times, proven optima, gaps, stops and throughput (fruits / T)\n"
+        "against FOV and Serial, and the plain model (no improvements) as the reference.\n"
+        "  --config PATH        harvest config (default %s)\n"
+        "  --alphas A,B,..      alphas (default 0.25,0.4,1,2.5,4)\n"
+        "  --seeds N            seeds per alpha (default 10)\n"
+        "  --first-seed N       the first seed (default 1): --first-seed 4 --seeds 1 runs seed 4\n"
+        "  --time-limit S       MILP limit per instance, s (default 10: DESIGN's max is 7 s)\n"
+        "  --plain-seeds N      seeds per alpha also solved by the plain model (default 2)\n"
+        "  --plain-limit S      its limit, s (default 10)\n"
+        "  --set KEY=VALUE      an option of the MILP run (repeatable): a row of the\n"
+        "                       table harvest-plan --help-params prints\n"
+        "  --no-baselines       skip FOV and Serial\n"
+        "  --given-plan         also solve each instance again from the plan its MILP run\n"
+        "                       found, and print that time: what the proof alone takes\n"
+        "                       once the plan is known (the rest waited for the plan)\n"
+        "  -v                   solver progress on stderr\n"
+        "  --help               this text\n",
+        HV_BENCH_DEFAULT_CONFIG);
 }
 
 /* The model as the paper writes it, none of the solver's choices: the reference in the
@@ -113,8 +114,18 @@ int main(int argc, char **argv)
     hv_milp_options_t mo;
     hv_milp_options_default(&mo);
     mo.time_limit_s = 10.0;
-    enum { O_NO_BASELINES = 256, O_GIVEN_PLAN, O_CONFIG, O_ALPHAS, O_SEEDS, O_PLAIN_SEEDS,
-           O_FIRST_SEED, O_TIME_LIMIT, O_PLAIN_LIMIT, O_SET };
+    enum {
+        O_NO_BASELINES = 256,
+        O_GIVEN_PLAN,
+        O_CONFIG,
+        O_ALPHAS,
+        O_SEEDS,
+        O_PLAIN_SEEDS,
+        O_FIRST_SEED,
+        O_TIME_LIMIT,
+        O_PLAIN_LIMIT,
+        O_SET
+    };
     static const struct option longopts[] = {
         {"no-baselines", no_argument, NULL, O_NO_BASELINES},
         {"given-plan", no_argument, NULL, O_GIVEN_PLAN},
@@ -143,7 +154,8 @@ int main(int argc, char **argv)
             n_alpha = 0;
             char buf[256];
             snprintf(buf, sizeof buf, "%s", v);
-            for (char *tok = strtok(buf, ","); tok && n_alpha < MAX_ALPHAS; tok = strtok(NULL, ",")) {
+            for (char *tok = strtok(buf, ","); tok && n_alpha < MAX_ALPHAS;
+                 tok = strtok(NULL, ",")) {
                 char *end;
                 alphas[n_alpha] = strtod(tok, &end);
                 if (*end != '\0' || !(alphas[n_alpha] > 0)) {
@@ -218,15 +230,17 @@ int main(int argc, char **argv)
            "iv_pseudocost=%d tail_off_ms=%d tail_off_open=%d binding_splits=%d "
            "balance_workers=%d warm_transfer=%d rins_every=%d region_stops=%d\n",
            mo.algorithm == HV_MILP_ALG_PRICE ? "price" : "compact", mo.link_disaggregated,
-           mo.heuristic_incumbent, mo.ms_granularity,
-           mo.decompose, mo.glpk_cuts, mo.pcost_branching, mo.time_limit_s, mo.sr_cuts,
-           mo.sr_cuts_large, mo.sr_purge, mo.cover_rows, mo.pseudocost,
-           mo.tree_threads, mo.helper_thread, mo.ascent_steps, mo.auto_smoothing,
-           mo.interval_branching, mo.iv_pseudocost, mo.tail_off_ms, mo.tail_off_open,
-           mo.binding_splits, mo.balance_workers, mo.warm_transfer, mo.rins_every, mo.region_stops);
-    printf("%-5s %-4s %4s %6s | %-9s %9s %9s %8s %7s %7s %5s | %9s %9s | %-9s %8s %7s | %9s %5s | %9s\n",
+           mo.heuristic_incumbent, mo.ms_granularity, mo.decompose, mo.glpk_cuts,
+           mo.pcost_branching, mo.time_limit_s, mo.sr_cuts, mo.sr_cuts_large, mo.sr_purge,
+           mo.cover_rows, mo.pseudocost, mo.tree_threads, mo.helper_thread, mo.ascent_steps,
+           mo.auto_smoothing, mo.interval_branching, mo.iv_pseudocost, mo.tail_off_ms,
+           mo.tail_off_open, mo.binding_splits, mo.balance_workers, mo.warm_transfer, mo.rins_every,
+           mo.region_stops);
+    printf("%-5s %-4s %4s %6s | %-9s %9s %9s %8s %7s %7s %5s | %9s %9s | %-9s %8s %7s | %9s %5s | "
+           "%9s\n",
            "alpha", "seed", "nf", "pairs", "milp", "T_s", "bound_s", "gap", "time_s", "nodes",
-           "stops", "root_s", "heur_T_s", "plain", "plain_gap", "plain_s", "fov_T_s", "stops", "serial_T");
+           "stops", "root_s", "heur_T_s", "plain", "plain_gap", "plain_s", "fov_T_s", "stops",
+           "serial_T");
     row_stats_t rows[MAX_ALPHAS];
     memset(rows, 0, sizeof rows);
     int failures = 0;
@@ -277,8 +291,8 @@ int main(int argc, char **argv)
                     r->n_plain_opt += pr.status == HV_SOLVE_OPTIMAL;
                     /* the plain run's gap against the best bound either run proved */
                     double b = fmax(pr.bound_s, res.bound_s);
-                    double g = isfinite(pr.objective_s) ? (pr.objective_s - b) / pr.objective_s
-                                                        : INFINITY;
+                    double g =
+                        isfinite(pr.objective_s) ? (pr.objective_s - b) / pr.objective_s : INFINITY;
                     r->plain_gap_max = fmax(r->plain_gap_max, g);
                     printf(" %-9s %8.2e %7.2f |", status_word(pr.status), g, pr.runtime_s);
                 }
@@ -299,8 +313,7 @@ int main(int argc, char **argv)
                 hv_milp_options_t so;
                 hv_milp_options_default(&so);
                 so.time_limit_s = mo.time_limit_s;
-                if (passes != NULL &&
-                    hv_serial_solve(&inst, &so, &tmp, passes, &sr) == HV_OK) {
+                if (passes != NULL && hv_serial_solve(&inst, &so, &tmp, passes, &sr) == HV_OK) {
                     st_serial = sr.makespan_s;
                     r->thr_serial += (double)nf / sr.makespan_s;
                     r->n_serial++;
@@ -320,8 +333,10 @@ int main(int argc, char **argv)
                            res.objective_s, status_word(gr.status), gr.objective_s, gr.gap,
                            gr.runtime_s, gr.nodes);
                 } else {
-                    fprintf(stderr, "bench_milp: solver error on alpha %g seed %zu, given its "
-                            "plan\n", alphas[ai], first_seed + seed);
+                    fprintf(stderr,
+                            "bench_milp: solver error on alpha %g seed %zu, given its "
+                            "plan\n",
+                            alphas[ai], first_seed + seed);
                     failures++;
                 }
             }
@@ -333,7 +348,8 @@ int main(int argc, char **argv)
     }
 
     printf("\n# Summary per alpha (times in s; throughput in fruits/s; plain = the model as the "
-           "paper writes it: aggregated linking, GLPK cuts on, no incumbent, %.0f s limit)\n", plain_limit);
+           "paper writes it: aggregated linking, GLPK cuts on, no incumbent, %.0f s limit)\n",
+           plain_limit);
     printf("%-5s | %7s %7s %7s %8s %8s | %5s %8s | %5s %8s %9s | %9s %5s | %6s %7s %9s\n", "alpha",
            "median", "max", "optimal", "mean_gap", "max_gap", "stops", "thr", "FOVst", "FOV_thr",
            "MILP/FOV", "serial", "dual/s", "plain", "p_med", "p_max_gap");
@@ -351,16 +367,16 @@ int main(int argc, char **argv)
                      100.0 * (r->thr_milp / r->thr_fov - 1.0));
         }
         if (r->n_serial > 0) {
-            snprintf(serial, sizeof serial, "%9.4f %4.2fx",
-                     r->thr_serial / (double)r->n_serial, r->thr_milp / r->thr_serial);
+            snprintf(serial, sizeof serial, "%9.4f %4.2fx", r->thr_serial / (double)r->n_serial,
+                     r->thr_milp / r->thr_serial);
         }
         if (np > 0) {
             snprintf(plain, sizeof plain, "%2zu/%-3zu %7.2f %9.2e", r->n_plain_opt, np, pmed,
                      r->plain_gap_max);
         }
         printf("%-5g | %7.3f %7.3f %3zu/%-3zu %8.2e %8.2e | %5.2f %8.4f | %s | %s | %s\n",
-               alphas[ai], median(r->t_milp, r->n), tmax, r->n_opt, r->n, r->gap_sum / n, r->gap_max,
-               r->stops_milp / n, r->thr_milp / n, fov, serial, plain);
+               alphas[ai], median(r->t_milp, r->n), tmax, r->n_opt, r->n, r->gap_sum / n,
+               r->gap_max, r->stops_milp / n, r->thr_milp / n, fov, serial, plain);
     }
     if (given_plan) {
         printf("\n# Given its own plan from the start (the proof alone)\n%-5s | %7s %7s %7s\n",

@@ -89,12 +89,12 @@ static double stop_work_s(const hv_online_t *o, const hv_online_stop_t *s)
 }
 
 typedef struct online_run {
-    double makespan_s;      /* virtual: course start to course end, waits included */
-    double wait_start_s;    /* waiting for the first committed stop */
-    double wait_row_s;      /* waiting after that */
-    unsigned waits;         /* times the vehicle waited after the first stop */
-    double min_slack_s;     /* least robot time left ahead of the vehicle when a step came */
-    double *step_s;         /* wall time per horizon */
+    double makespan_s;   /* virtual: course start to course end, waits included */
+    double wait_start_s; /* waiting for the first committed stop */
+    double wait_row_s;   /* waiting after that */
+    unsigned waits;      /* times the vehicle waited after the first stop */
+    double min_slack_s;  /* least robot time left ahead of the vehicle when a step came */
+    double *step_s;      /* wall time per horizon */
     size_t n_steps;
     unsigned empty_advances; /* drives to the commit line with no stop ahead */
 } online_run_t;
@@ -279,7 +279,8 @@ static int bench_row(const hv_config_t *cfg, double alpha, uint64_t seed,
                      hv_assignment_alloc(&warm, o.n_fruits) == HV_OK &&
                      hv_online_assignment(&o, &on) == HV_OK &&
                      hv_assignment_makespan(&inst, &on, &t_on) == HV_OK
-                 ? 0 : -1;
+                 ? 0
+                 : -1;
     }
     double t0 = now_s();
     if (rc == 0) {
@@ -288,7 +289,8 @@ static int bench_row(const hv_config_t *cfg, double alpha, uint64_t seed,
         mo.time_limit_s = time_limit;
         rc = hv_heuristic_solve(&inst, &warm) == HV_OK &&
                      hv_milp_solve(&inst, &mo, &warm, &off, &mr) == HV_OK
-                 ? 0 : -1;
+                 ? 0
+                 : -1;
     }
     double off_wall = now_s() - t0;
     if (rc == 0) {
@@ -301,14 +303,16 @@ static int bench_row(const hv_config_t *cfg, double alpha, uint64_t seed,
         double mx = run.n_steps ? run.step_s[run.n_steps - 1] : 0.0;
         printf("row %.0f m, alpha %.2f, seed %llu: %zu fruits (%u unreachable), %zu stops "
                "committed in %zu horizons (%u optimal)\n",
-               cfg->row_length_m, alpha, (unsigned long long)seed, n,
-               o.counts[HV_DET_UNREACHABLE], o.n_stops, run.n_steps, o.steps_optimal);
+               cfg->row_length_m, alpha, (unsigned long long)seed, n, o.counts[HV_DET_UNREACHABLE],
+               o.n_stops, run.n_steps, o.steps_optimal);
         printf("  offline whole row: %s after %.1f s: makespan %s%.1f s, bound %.1f s\n",
-               mr.status == HV_SOLVE_OPTIMAL ? "optimal" : have ? "feasible" : "no solution",
+               mr.status == HV_SOLVE_OPTIMAL ? "optimal"
+               : have                        ? "feasible"
+                                             : "no solution",
                off_wall, have ? "" : "n/a ", have ? t_off : 0.0, mr.bound_s);
         printf("  online plan: makespan %.1f s: %+.2f %% vs offline%s, %+.2f %% vs its bound\n",
-               t_on, have ? 100.0 * (t_on - t_off) / t_off : NAN,
-               have ? "" : " (none)", 100.0 * (t_on - mr.bound_s) / mr.bound_s);
+               t_on, have ? 100.0 * (t_on - t_off) / t_off : NAN, have ? "" : " (none)",
+               100.0 * (t_on - mr.bound_s) / mr.bound_s);
         printf("  online run (virtual time, time scale 1): %.1f s, vehicle waited %.2f s for the "
                "first horizon and %.2f s after it (%u times); least robot time committed ahead "
                "when a horizon came: %.1f s; %u drives through a stretch with no fruit\n",
@@ -335,8 +339,16 @@ int main(int argc, char **argv)
     unsigned long long seed = 1;
     hv_online_options_t oo;
     hv_online_options_default(&oo);
-    enum { O_CONFIG = 256, O_ALPHAS, O_LENGTH, O_SEED, O_WINDOW, O_COMMIT, O_WINDOW_LIMIT,
-           O_TIME_LIMIT };
+    enum {
+        O_CONFIG = 256,
+        O_ALPHAS,
+        O_LENGTH,
+        O_SEED,
+        O_WINDOW,
+        O_COMMIT,
+        O_WINDOW_LIMIT,
+        O_TIME_LIMIT
+    };
     static const struct option longopts[] = {
         {"config", required_argument, NULL, O_CONFIG},
         {"alphas", required_argument, NULL, O_ALPHAS},

@@ -9,8 +9,8 @@
 #include "hv/config.h"
 
 #define HV_PI 3.14159265358979323846
-#define DEG (HV_PI / 180.0)
-#define POS 1e-12 /* smallest value accepted where a quantity must be > 0 */
+#define DEG   (HV_PI / 180.0)
+#define POS   1e-12 /* smallest value accepted where a quantity must be > 0 */
 
 typedef enum { K_REAL, K_DEG, K_BOOL } key_kind_t;
 
@@ -23,11 +23,13 @@ typedef struct key_spec {
 } key_spec_t;
 
 #define F(member) offsetof(hv_config_t, member)
-#define JOINT(n, i)                                                                        \
-    {"joint" #n ".min", F(limit[i].min), 1, -10.0, 10.0, K_REAL},                          \
-    {"joint" #n ".max", F(limit[i].max), 1, -10.0, 10.0, K_REAL},                          \
-    {"joint" #n ".vmax", F(limit[i].vmax), 1, POS, 100.0, K_REAL},                         \
-    {"joint" #n ".amax", F(limit[i].amax), 1, POS, 1000.0, K_REAL}
+#define JOINT(n, i)                                                                                \
+    {"joint" #n ".min", F(limit[i].min), 1, -10.0, 10.0, K_REAL},                                  \
+        {"joint" #n ".max", F(limit[i].max), 1, -10.0, 10.0, K_REAL},                              \
+        {"joint" #n ".vmax", F(limit[i].vmax), 1, POS, 100.0, K_REAL},                             \
+    {                                                                                              \
+        "joint" #n ".amax", F(limit[i].amax), 1, POS, 1000.0, K_REAL                               \
+    }
 
 static const key_spec_t keys[] = {
     {"arm.origin.j1", F(origin_m[0]), 3, -2.0, 2.0, K_REAL},
@@ -35,7 +37,10 @@ static const key_spec_t keys[] = {
     {"arm.origin.j3", F(origin_m[2]), 3, -2.0, 2.0, K_REAL},
     {"arm.origin.j4", F(origin_m[3]), 3, -2.0, 2.0, K_REAL},
     {"arm.origin.ee", F(origin_m[4]), 3, -2.0, 2.0, K_REAL},
-    JOINT(1, 0), JOINT(2, 1), JOINT(3, 2), JOINT(4, 3),
+    JOINT(1, 0),
+    JOINT(2, 1),
+    JOINT(3, 2),
+    JOINT(4, 3),
     {"arm.home", F(home), 4, -10.0, 10.0, K_REAL},
     {"arm.elbow_free", F(elbow_free), 1, 0.0, 1.0, K_BOOL},
     {"mount.base_height", F(base_height_m), 1, 0.0, 3.0, K_REAL},
@@ -292,6 +297,5 @@ double hv_config_stop_time_s(const hv_config_t *cfg)
 {
     /* a stop-to-stop move of d >= v^2/a takes d/v + v/a on the trapezoid: v/a is what
      * stopping there costs beyond driving through */
-    return cfg->pick_cycle ? cfg->vehicle_speed_mps / cfg->vehicle_accel_mps2
-                           : cfg->stop_penalty_s;
+    return cfg->pick_cycle ? cfg->vehicle_speed_mps / cfg->vehicle_accel_mps2 : cfg->stop_penalty_s;
 }

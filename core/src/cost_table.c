@@ -28,14 +28,28 @@
 #include "hv/cost_table.h"
 
 enum {
-    OFF_MAGIC = 0, OFF_VERSION = 8, OFF_HEADER_BYTES = 12, OFF_ENCODING = 16, OFF_SIDE = 20,
-    OFF_ELBOW = 24, OFF_LAYOUT = 28, OFF_GENERATOR = 32, OFF_GRID = 40, AXIS_BYTES = 24,
-    OFF_COST_UNIT = 136, OFF_MOUNT = 144, OFF_ORIGINS = 176, OFF_LIMITS = 296, OFF_HOME = 424,
-    OFF_PAYLOAD_BYTES = 456, OFF_PAYLOAD_CRC = 464, OFF_HEADER_CRC = 468
+    OFF_MAGIC = 0,
+    OFF_VERSION = 8,
+    OFF_HEADER_BYTES = 12,
+    OFF_ENCODING = 16,
+    OFF_SIDE = 20,
+    OFF_ELBOW = 24,
+    OFF_LAYOUT = 28,
+    OFF_GENERATOR = 32,
+    OFF_GRID = 40,
+    AXIS_BYTES = 24,
+    OFF_COST_UNIT = 136,
+    OFF_MOUNT = 144,
+    OFF_ORIGINS = 176,
+    OFF_LIMITS = 296,
+    OFF_HOME = 424,
+    OFF_PAYLOAD_BYTES = 456,
+    OFF_PAYLOAD_CRC = 464,
+    OFF_HEADER_CRC = 468
 };
 #define ENCODING_U16_MS 1u
-#define LAYOUT_XZYAW_Y 1u
-#define COST_UNIT_S 0.001
+#define LAYOUT_XZYAW_Y  1u
+#define COST_UNIT_S     0.001
 
 static const char *const axis_name[HV_NAXES] = {"x", "y", "z", "yaw"};
 
@@ -145,9 +159,9 @@ size_t hv_costtab_file_bytes(const hv_grid_t *grid)
     return HV_COSTTAB_HEADER_BYTES + 2u * hv_grid_cells(grid);
 }
 
-hv_status_t hv_costtab_write(const hv_grid_t *grid, const hv_arm_t *arm,
-                             uint32_t generator_version, const uint16_t *costs_ms,
-                             uint8_t *out, size_t out_len, hv_diag_t *diag)
+hv_status_t hv_costtab_write(const hv_grid_t *grid, const hv_arm_t *arm, uint32_t generator_version,
+                             const uint16_t *costs_ms, uint8_t *out, size_t out_len,
+                             hv_diag_t *diag)
 {
     if (grid == NULL || arm == NULL || costs_ms == NULL || out == NULL) {
         return HV_ERR_ARG;
@@ -232,13 +246,14 @@ hv_status_t hv_costtab_open(hv_costtab_t *tab, const void *buf, size_t len, hv_d
         return fail(diag, HV_ERR_TAB_VERSION, "version", msg);
     }
     if (get_u32(h + OFF_HEADER_BYTES) != HV_COSTTAB_HEADER_BYTES) {
-        snprintf(msg, sizeof msg, "header size %" PRIu32 ", expected %u", get_u32(h + OFF_HEADER_BYTES),
-                 HV_COSTTAB_HEADER_BYTES);
+        snprintf(msg, sizeof msg, "header size %" PRIu32 ", expected %u",
+                 get_u32(h + OFF_HEADER_BYTES), HV_COSTTAB_HEADER_BYTES);
         return fail(diag, HV_ERR_TAB_HEADER, "header_bytes", msg);
     }
     uint32_t hcrc = hv_crc32(0, h, OFF_HEADER_CRC);
     if (hcrc != get_u32(h + OFF_HEADER_CRC)) {
-        snprintf(msg, sizeof msg, "header CRC-32 is %08" PRIx32 ", stored %08" PRIx32 ": header corrupted", hcrc,
+        snprintf(msg, sizeof msg,
+                 "header CRC-32 is %08" PRIx32 ", stored %08" PRIx32 ": header corrupted", hcrc,
                  get_u32(h + OFF_HEADER_CRC));
         return fail(diag, HV_ERR_TAB_CRC, "header_crc32", msg);
     }
@@ -288,7 +303,8 @@ hv_status_t hv_costtab_open(hv_costtab_t *tab, const void *buf, size_t len, hv_d
     const uint8_t *payload = h + HV_COSTTAB_HEADER_BYTES;
     uint32_t pcrc = hv_crc32(0, payload, 2u * t.cells);
     if (pcrc != get_u32(h + OFF_PAYLOAD_CRC)) {
-        snprintf(msg, sizeof msg, "payload CRC-32 is %08" PRIx32 ", header says %08" PRIx32 ": payload corrupted",
+        snprintf(msg, sizeof msg,
+                 "payload CRC-32 is %08" PRIx32 ", header says %08" PRIx32 ": payload corrupted",
                  pcrc, get_u32(h + OFF_PAYLOAD_CRC));
         return fail(diag, HV_ERR_TAB_CRC, "payload_crc32", msg);
     }
@@ -310,9 +326,8 @@ hv_status_t hv_costtab_open(hv_costtab_t *tab, const void *buf, size_t len, hv_d
         l->vmax = get_f64(h + OFF_LIMITS + 32 * j + 16);
         l->amax = get_f64(h + OFF_LIMITS + 32 * j + 24);
         arm->home[j] = get_f64(h + OFF_HOME + 8 * j);
-        if (!isfinite(l->min) || !isfinite(l->max) || !(l->min <= l->max) ||
-            !isfinite(l->vmax) || !(l->vmax > 0.0) || !isfinite(l->amax) ||
-            !(l->amax > 0.0) || !isfinite(arm->home[j])) {
+        if (!isfinite(l->min) || !isfinite(l->max) || !(l->min <= l->max) || !isfinite(l->vmax) ||
+            !(l->vmax > 0.0) || !isfinite(l->amax) || !(l->amax > 0.0) || !isfinite(arm->home[j])) {
             return fail(diag, HV_ERR_TAB_HEADER, "joint_limits", "invalid joint limit or home");
         }
     }
@@ -328,8 +343,8 @@ static int axis_equal(const hv_axis_t *a, const hv_axis_t *b)
            fabs(a->step - b->step) <= 1e-12;
 }
 
-hv_status_t hv_costtab_expect(const hv_costtab_t *tab, hv_side_t side,
-                              const hv_grid_t *expected, hv_diag_t *diag)
+hv_status_t hv_costtab_expect(const hv_costtab_t *tab, hv_side_t side, const hv_grid_t *expected,
+                              hv_diag_t *diag)
 {
     if (tab == NULL) {
         return HV_ERR_ARG;
@@ -345,10 +360,10 @@ hv_status_t hv_costtab_expect(const hv_costtab_t *tab, hv_side_t side,
                 char field[32], msg[160];
                 snprintf(field, sizeof field, "grid.%s", axis_name[a]);
                 snprintf(msg, sizeof msg,
-                         "table has origin %.6g step %.6g count %" PRIu32 ", expected %.6g %.6g %" PRIu32,
-                         tab->grid.axis[a].origin, tab->grid.axis[a].step,
-                         tab->grid.axis[a].count, expected->axis[a].origin,
-                         expected->axis[a].step, expected->axis[a].count);
+                         "table has origin %.6g step %.6g count %" PRIu32
+                         ", expected %.6g %.6g %" PRIu32,
+                         tab->grid.axis[a].origin, tab->grid.axis[a].step, tab->grid.axis[a].count,
+                         expected->axis[a].origin, expected->axis[a].step, expected->axis[a].count);
                 return fail(diag, HV_ERR_TAB_MISMATCH, field, msg);
             }
         }

@@ -11,16 +11,14 @@
 
 #include "hv/file_io.h"
 
-static void set_err(char *err, size_t errlen, const char *path, const char *field,
-                    const char *msg)
+static void set_err(char *err, size_t errlen, const char *path, const char *field, const char *msg)
 {
     if (err != NULL && errlen > 0) {
         snprintf(err, errlen, "%s: %s: %s", path, field, msg);
     }
 }
 
-hv_status_t hv_file_read_all(const char *path, void **data, size_t *len, char *err,
-                             size_t errlen)
+hv_status_t hv_file_read_all(const char *path, void **data, size_t *len, char *err, size_t errlen)
 {
     if (path == NULL || data == NULL || len == NULL) {
         return HV_ERR_ARG;
@@ -132,8 +130,7 @@ hv_status_t hv_config_load(const char *path, hv_config_t *cfg, char *err, size_t
     return st;
 }
 
-hv_status_t hv_costtab_load(const char *path, hv_costtab_file_t *file, char *err,
-                            size_t errlen)
+hv_status_t hv_costtab_load(const char *path, hv_costtab_file_t *file, char *err, size_t errlen)
 {
     if (file == NULL) {
         return HV_ERR_ARG;

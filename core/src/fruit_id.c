@@ -8,8 +8,8 @@
 /* The set by hand, not <ctype.h>: isalnum() follows the locale, the id set must not. */
 int hv_fruit_id_char(int c)
 {
-    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
-           c == '_' || c == '.' || c == '-';
+    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' ||
+           c == '.' || c == '-';
 }
 
 static hv_status_t id_fail(hv_diag_t *diag, const char *message)
@@ -39,8 +39,8 @@ hv_status_t hv_fruit_id_check(const char *id, size_t len, hv_diag_t *diag)
         unsigned char c = (unsigned char)id[i];
         if (!hv_fruit_id_char(c)) {
             snprintf(msg, sizeof msg,
-                     "character 0x%02x at position %zu not allowed (only " ID_SET ")",
-                     (unsigned)c, i + 1);
+                     "character 0x%02x at position %zu not allowed (only " ID_SET ")", (unsigned)c,
+                     i + 1);
             return id_fail(diag, msg);
         }
     }

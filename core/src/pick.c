@@ -29,8 +29,7 @@ static int height_in_stroke(const hv_arm_t *arm, double z_m)
 }
 
 hv_status_t hv_pick_solve(const hv_arm_t *arm, double x_m, double y_rel_m, double z_m,
-                          double yaw_rad, double q[HV_NJOINTS], double *move_s,
-                          hv_pick_why_t *why)
+                          double yaw_rad, double q[HV_NJOINTS], double *move_s, hv_pick_why_t *why)
 {
     if (arm == NULL || move_s == NULL) {
         return HV_ERR_ARG;
@@ -102,8 +101,7 @@ hv_status_t hv_pick_reach_span(const hv_arm_t *arm, const hv_grid_t *area, doubl
     return HV_OK;
 }
 
-double hv_pick_margin_of_spans(const double y_rel_min[2], const double y_rel_max[2],
-                               double step)
+double hv_pick_margin_of_spans(const double y_rel_min[2], const double y_rel_max[2], double step)
 {
     double reach = 0.0;
     for (int s = 0; s < 2; s++) {

@@ -4,15 +4,15 @@
 
 #include "hv/scara.h"
 
-#define HV_PI 3.14159265358979323846
+#define HV_PI        3.14159265358979323846
 #define HV_LIMIT_TOL 1e-9
 
 /* Planar link geometry derived from the zero-pose link origins. */
 typedef struct link_geom {
-    double j2x, j2y;        /* joint 2 axis, base frame (m) */
-    double len[3];          /* joint2->joint3, joint3->joint4, joint4->ee (m) */
-    double beta[3];         /* their headings at zero joints (rad) */
-    double ee_z0;           /* ee height at q1 = 0, base frame (m) */
+    double j2x, j2y; /* joint 2 axis, base frame (m) */
+    double len[3];   /* joint2->joint3, joint3->joint4, joint4->ee (m) */
+    double beta[3];  /* their headings at zero joints (rad) */
+    double ee_z0;    /* ee height at q1 = 0, base frame (m) */
 } link_geom_t;
 
 static void geom_of(const hv_arm_t *arm, link_geom_t *g)
@@ -96,8 +96,7 @@ int hv_scara_within_limits(const hv_arm_t *arm, const double q[HV_NJOINTS])
 
 double hv_trap_time(double dist, double vmax, double amax)
 {
-    if (!isfinite(dist) || !isfinite(vmax) || !isfinite(amax) || !(vmax > 0.0) ||
-        !(amax > 0.0)) {
+    if (!isfinite(dist) || !isfinite(vmax) || !isfinite(amax) || !(vmax > 0.0) || !(amax > 0.0)) {
         return -1.0;
     }
     double d = fabs(dist);

@@ -7,6 +7,7 @@ Each entry wraps the cantools-generated functions (generate_c_source --database-
 harvest_can), whose names cantools derives with camel_to_snake_case; we use the same
 helper so the names cannot drift.
 """
+
 import sys
 
 import cantools
@@ -16,9 +17,15 @@ PREFIX = "harvest_can"
 
 
 def emit(db):
-    out = ["/* Generated from harvest.dbc by gen_message_table.py: do not edit. */",
-           '#include "hv/can_messages.h"', "", "#include <string.h>", "",
-           '#include "harvest_can.h"', ""]
+    out = [
+        "/* Generated from harvest.dbc by gen_message_table.py: do not edit. */",
+        '#include "hv/can_messages.h"',
+        "",
+        "#include <string.h>",
+        "",
+        '#include "harvest_can.h"',
+        "",
+    ]
     entries = []
     for m in db.messages:
         msg = camel_to_snake_case(m.name)
@@ -26,8 +33,12 @@ def emit(db):
         sigs = [(s.name, camel_to_snake_case(s.name)) for s in m.signals]
         names = ", ".join(f'"{n}"' for n, _ in sigs)
         out.append(f"static const char *const {msg}_signals[] = {{{names}}};")
-        mins = ", ".join(repr(float(s.minimum if s.minimum is not None else -1e308)) for s in m.signals)
-        maxs = ", ".join(repr(float(s.maximum if s.maximum is not None else 1e308)) for s in m.signals)
+        mins = ", ".join(
+            repr(float(s.minimum if s.minimum is not None else -1e308)) for s in m.signals
+        )
+        maxs = ", ".join(
+            repr(float(s.maximum if s.maximum is not None else 1e308)) for s in m.signals
+        )
         out.append(f"static const double {msg}_min[] = {{{mins}}};")
         out.append(f"static const double {msg}_max[] = {{{maxs}}};")
         out.append(f"static int {msg}_pack(uint8_t *dst, const double *v)\n{{")
@@ -41,8 +52,10 @@ def emit(db):
         for i, (_, snake) in enumerate(sigs):
             out.append(f"    v[{i}] = {fn}_{snake}_decode(s.{snake});")
         out.append("    return r;\n}")
-        entries.append(f'    {{"{m.name}", 0x{m.frame_id:03x}u, {m.length}, {len(sigs)}, '
-                       f"{msg}_signals, {msg}_min, {msg}_max, {msg}_pack, {msg}_unpack}},")
+        entries.append(
+            f'    {{"{m.name}", 0x{m.frame_id:03x}u, {m.length}, {len(sigs)}, '
+            f"{msg}_signals, {msg}_min, {msg}_max, {msg}_pack, {msg}_unpack}},"
+        )
         if len(sigs) > 16:
             raise SystemExit(f"{m.name}: {len(sigs)} signals > HV_CAN_MAX_SIGNALS")
     out.append("")

@@ -13,77 +13,77 @@ static int side_of_node(int node)
     return node == HV_EXEC_LEFT ? HV_SIDE_LEFT : HV_SIDE_RIGHT;
 }
 
-#define DECODE_HB(MSG, NODE)                                                             \
-    do {                                                                                 \
-        struct harvest_can_##MSG##_t m;                                                      \
-        if (harvest_can_##MSG##_unpack(&m, f->data, f->dlc) != 0)                            \
-            return HV_RX_MALFORMED;                                                      \
-        ev->kind = HV_EV_HEARTBEAT;                                                      \
-        ev->node = NODE;                                                                 \
-        ev->u.hb.health = m.health;                                                      \
-        ev->u.hb.time_scale = harvest_can_##MSG##_time_scale_decode(m.time_scale);           \
-        ev->u.hb.protocol = m.protocol_version;                                          \
-        return HV_RX_EVENT;                                                              \
+#define DECODE_HB(MSG, NODE)                                                                       \
+    do {                                                                                           \
+        struct harvest_can_##MSG##_t m;                                                            \
+        if (harvest_can_##MSG##_unpack(&m, f->data, f->dlc) != 0)                                  \
+            return HV_RX_MALFORMED;                                                                \
+        ev->kind = HV_EV_HEARTBEAT;                                                                \
+        ev->node = NODE;                                                                           \
+        ev->u.hb.health = m.health;                                                                \
+        ev->u.hb.time_scale = harvest_can_##MSG##_time_scale_decode(m.time_scale);                 \
+        ev->u.hb.protocol = m.protocol_version;                                                    \
+        return HV_RX_EVENT;                                                                        \
     } while (0)
 
-#define DECODE_ARM_STATUS(MSG, NODE)                                                     \
-    do {                                                                                 \
-        struct harvest_can_##MSG##_t m;                                                      \
-        if (harvest_can_##MSG##_unpack(&m, f->data, f->dlc) != 0)                            \
-            return HV_RX_MALFORMED;                                                      \
-        ev->kind = HV_EV_ARM_STATUS;                                                     \
-        ev->node = NODE;                                                                 \
-        ev->u.arm.state = m.state;                                                       \
-        ev->u.arm.reached = m.target_reached;                                            \
-        ev->u.arm.homed = m.homed;                                                       \
-        ev->u.arm.sp_seq = m.setpoint_seq;                                               \
-        ev->u.arm.cmd_seq = m.command_seq;                                               \
-        ev->u.arm.fault_bits = m.fault_bits;                                             \
-        return HV_RX_EVENT;                                                              \
+#define DECODE_ARM_STATUS(MSG, NODE)                                                               \
+    do {                                                                                           \
+        struct harvest_can_##MSG##_t m;                                                            \
+        if (harvest_can_##MSG##_unpack(&m, f->data, f->dlc) != 0)                                  \
+            return HV_RX_MALFORMED;                                                                \
+        ev->kind = HV_EV_ARM_STATUS;                                                               \
+        ev->node = NODE;                                                                           \
+        ev->u.arm.state = m.state;                                                                 \
+        ev->u.arm.reached = m.target_reached;                                                      \
+        ev->u.arm.homed = m.homed;                                                                 \
+        ev->u.arm.sp_seq = m.setpoint_seq;                                                         \
+        ev->u.arm.cmd_seq = m.command_seq;                                                         \
+        ev->u.arm.fault_bits = m.fault_bits;                                                       \
+        return HV_RX_EVENT;                                                                        \
     } while (0)
 
-#define DECODE_EE_STATUS(MSG, NODE)                                                      \
-    do {                                                                                 \
-        struct harvest_can_##MSG##_t m;                                                      \
-        if (harvest_can_##MSG##_unpack(&m, f->data, f->dlc) != 0)                            \
-            return HV_RX_MALFORMED;                                                      \
-        ev->kind = HV_EV_EE_STATUS;                                                      \
-        ev->node = NODE;                                                                 \
-        ev->u.ee.state = m.state;                                                        \
-        ev->u.ee.action = m.action;                                                      \
-        ev->u.ee.ee_seq = m.ee_seq;                                                      \
-        ev->u.ee.fruit_held = m.fruit_held;                                              \
-        return HV_RX_EVENT;                                                              \
+#define DECODE_EE_STATUS(MSG, NODE)                                                                \
+    do {                                                                                           \
+        struct harvest_can_##MSG##_t m;                                                            \
+        if (harvest_can_##MSG##_unpack(&m, f->data, f->dlc) != 0)                                  \
+            return HV_RX_MALFORMED;                                                                \
+        ev->kind = HV_EV_EE_STATUS;                                                                \
+        ev->node = NODE;                                                                           \
+        ev->u.ee.state = m.state;                                                                  \
+        ev->u.ee.action = m.action;                                                                \
+        ev->u.ee.ee_seq = m.ee_seq;                                                                \
+        ev->u.ee.fruit_held = m.fruit_held;                                                        \
+        return HV_RX_EVENT;                                                                        \
     } while (0)
 
-#define DECODE_JOINTS(MSG, SIDE)                                                         \
-    do {                                                                                 \
-        struct harvest_can_##MSG##_t m;                                                      \
-        if (harvest_can_##MSG##_unpack(&m, f->data, f->dlc) != 0)                            \
-            return HV_RX_MALFORMED;                                                      \
-        hv_exec_arm_sample_t *s = &samples[SIDE];                                        \
-        s->side = SIDE;                                                                  \
-        ev->node = SIDE;                                                                 \
-        s->q[0] = harvest_can_##MSG##_joint1_position_decode(m.joint1_position);             \
-        s->q[1] = harvest_can_##MSG##_joint2_position_decode(m.joint2_position);             \
-        s->q[2] = harvest_can_##MSG##_joint3_position_decode(m.joint3_position);             \
-        s->q[3] = harvest_can_##MSG##_joint4_position_decode(m.joint4_position);             \
-        return HV_RX_JOINTS;                                                             \
+#define DECODE_JOINTS(MSG, SIDE)                                                                   \
+    do {                                                                                           \
+        struct harvest_can_##MSG##_t m;                                                            \
+        if (harvest_can_##MSG##_unpack(&m, f->data, f->dlc) != 0)                                  \
+            return HV_RX_MALFORMED;                                                                \
+        hv_exec_arm_sample_t *s = &samples[SIDE];                                                  \
+        s->side = SIDE;                                                                            \
+        ev->node = SIDE;                                                                           \
+        s->q[0] = harvest_can_##MSG##_joint1_position_decode(m.joint1_position);                   \
+        s->q[1] = harvest_can_##MSG##_joint2_position_decode(m.joint2_position);                   \
+        s->q[2] = harvest_can_##MSG##_joint3_position_decode(m.joint3_position);                   \
+        s->q[3] = harvest_can_##MSG##_joint4_position_decode(m.joint4_position);                   \
+        return HV_RX_JOINTS;                                                                       \
     } while (0)
 
-#define DECODE_VELOCITIES(MSG, SIDE)                                                     \
-    do {                                                                                 \
-        struct harvest_can_##MSG##_t m;                                                      \
-        if (harvest_can_##MSG##_unpack(&m, f->data, f->dlc) != 0)                            \
-            return HV_RX_MALFORMED;                                                      \
-        hv_exec_arm_sample_t *s = &samples[SIDE];                                        \
-        s->side = SIDE;                                                                  \
-        ev->node = SIDE;                                                                 \
-        s->qd[0] = harvest_can_##MSG##_joint1_velocity_decode(m.joint1_velocity);            \
-        s->qd[1] = harvest_can_##MSG##_joint2_velocity_decode(m.joint2_velocity);            \
-        s->qd[2] = harvest_can_##MSG##_joint3_velocity_decode(m.joint3_velocity);            \
-        s->qd[3] = harvest_can_##MSG##_joint4_velocity_decode(m.joint4_velocity);            \
-        return HV_RX_VELOCITIES;                                                         \
+#define DECODE_VELOCITIES(MSG, SIDE)                                                               \
+    do {                                                                                           \
+        struct harvest_can_##MSG##_t m;                                                            \
+        if (harvest_can_##MSG##_unpack(&m, f->data, f->dlc) != 0)                                  \
+            return HV_RX_MALFORMED;                                                                \
+        hv_exec_arm_sample_t *s = &samples[SIDE];                                                  \
+        s->side = SIDE;                                                                            \
+        ev->node = SIDE;                                                                           \
+        s->qd[0] = harvest_can_##MSG##_joint1_velocity_decode(m.joint1_velocity);                  \
+        s->qd[1] = harvest_can_##MSG##_joint2_velocity_decode(m.joint2_velocity);                  \
+        s->qd[2] = harvest_can_##MSG##_joint3_velocity_decode(m.joint3_velocity);                  \
+        s->qd[3] = harvest_can_##MSG##_joint4_velocity_decode(m.joint4_velocity);                  \
+        return HV_RX_VELOCITIES;                                                                   \
     } while (0)
 
 hv_exec_rx_kind_t hv_exec_can_decode(const hv_can_frame_t *f, hv_exec_event_t *ev,
@@ -112,58 +112,58 @@ hv_exec_rx_kind_t hv_exec_can_decode(const hv_can_frame_t *f, hv_exec_event_t *e
     }
     case HARVEST_CAN_LEFT_ARM_STATUS_FRAME_ID: DECODE_ARM_STATUS(left_arm_status, HV_EXEC_LEFT);
     case HARVEST_CAN_RIGHT_ARM_STATUS_FRAME_ID: DECODE_ARM_STATUS(right_arm_status, HV_EXEC_RIGHT);
-    case HARVEST_CAN_LEFT_ARM_EE_STATUS_FRAME_ID: DECODE_EE_STATUS(left_arm_ee_status, HV_EXEC_LEFT);
+    case HARVEST_CAN_LEFT_ARM_EE_STATUS_FRAME_ID:
+        DECODE_EE_STATUS(left_arm_ee_status, HV_EXEC_LEFT);
     case HARVEST_CAN_RIGHT_ARM_EE_STATUS_FRAME_ID:
         DECODE_EE_STATUS(right_arm_ee_status, HV_EXEC_RIGHT);
-    case HARVEST_CAN_LEFT_ARM_JOINT_STATE_FRAME_ID: DECODE_JOINTS(left_arm_joint_state, HV_SIDE_LEFT);
+    case HARVEST_CAN_LEFT_ARM_JOINT_STATE_FRAME_ID:
+        DECODE_JOINTS(left_arm_joint_state, HV_SIDE_LEFT);
     case HARVEST_CAN_RIGHT_ARM_JOINT_STATE_FRAME_ID:
         DECODE_JOINTS(right_arm_joint_state, HV_SIDE_RIGHT);
     case HARVEST_CAN_LEFT_ARM_JOINT_VELOCITY_FRAME_ID:
         DECODE_VELOCITIES(left_arm_joint_velocity, HV_SIDE_LEFT);
     case HARVEST_CAN_RIGHT_ARM_JOINT_VELOCITY_FRAME_ID:
         DECODE_VELOCITIES(right_arm_joint_velocity, HV_SIDE_RIGHT);
-    default:
-        return HV_RX_NONE;
+    default: return HV_RX_NONE;
     }
 }
 
-
 /* A setpoint: encode and range-check every joint (the DBC's ranges are the joint limits). */
-#define ENCODE_SETPOINT(MSG, ID)                                                         \
-    do {                                                                                 \
-        struct harvest_can_##MSG##_t m;                                                      \
-        harvest_can_##MSG##_init(&m);                                                        \
-        m.joint1_position = harvest_can_##MSG##_joint1_position_encode(a->u.sp.q[0]);        \
-        m.joint2_position = harvest_can_##MSG##_joint2_position_encode(a->u.sp.q[1]);        \
-        m.joint3_position = harvest_can_##MSG##_joint3_position_encode(a->u.sp.q[2]);        \
-        m.joint4_position = harvest_can_##MSG##_joint4_position_encode(a->u.sp.q[3]);        \
-        m.setpoint_seq = (uint8_t)a->u.sp.seq;                                           \
-        if (!harvest_can_##MSG##_joint1_position_is_in_range(m.joint1_position) ||           \
-            !harvest_can_##MSG##_joint2_position_is_in_range(m.joint2_position) ||           \
-            !harvest_can_##MSG##_joint3_position_is_in_range(m.joint3_position) ||           \
-            !harvest_can_##MSG##_joint4_position_is_in_range(m.joint4_position))             \
-            return HV_ERR_EXEC_CAN_FRAME;                                                \
-        int n_ = harvest_can_##MSG##_pack(f->data, &m, sizeof f->data);                      \
-        if (n_ < 0)                                                                      \
-            return HV_ERR_EXEC_CAN_FRAME;                                                \
-        f->dlc = (uint8_t)n_;                                                            \
-        f->id = ID;                                                                      \
+#define ENCODE_SETPOINT(MSG, ID)                                                                   \
+    do {                                                                                           \
+        struct harvest_can_##MSG##_t m;                                                            \
+        harvest_can_##MSG##_init(&m);                                                              \
+        m.joint1_position = harvest_can_##MSG##_joint1_position_encode(a->u.sp.q[0]);              \
+        m.joint2_position = harvest_can_##MSG##_joint2_position_encode(a->u.sp.q[1]);              \
+        m.joint3_position = harvest_can_##MSG##_joint3_position_encode(a->u.sp.q[2]);              \
+        m.joint4_position = harvest_can_##MSG##_joint4_position_encode(a->u.sp.q[3]);              \
+        m.setpoint_seq = (uint8_t)a->u.sp.seq;                                                     \
+        if (!harvest_can_##MSG##_joint1_position_is_in_range(m.joint1_position) ||                 \
+            !harvest_can_##MSG##_joint2_position_is_in_range(m.joint2_position) ||                 \
+            !harvest_can_##MSG##_joint3_position_is_in_range(m.joint3_position) ||                 \
+            !harvest_can_##MSG##_joint4_position_is_in_range(m.joint4_position))                   \
+            return HV_ERR_EXEC_CAN_FRAME;                                                          \
+        int n_ = harvest_can_##MSG##_pack(f->data, &m, sizeof f->data);                            \
+        if (n_ < 0)                                                                                \
+            return HV_ERR_EXEC_CAN_FRAME;                                                          \
+        f->dlc = (uint8_t)n_;                                                                      \
+        f->id = ID;                                                                                \
     } while (0)
 
-#define ENCODE_SIMPLE(MSG, ID, ...)                                                      \
-    do {                                                                                 \
-        struct harvest_can_##MSG##_t m;                                                      \
-        harvest_can_##MSG##_init(&m);                                                        \
-        __VA_ARGS__;                                                                     \
-        int n_ = harvest_can_##MSG##_pack(f->data, &m, sizeof f->data);                      \
-        if (n_ < 0)                                                                      \
-            return HV_ERR_EXEC_CAN_FRAME;                                                \
-        f->dlc = (uint8_t)n_;                                                            \
-        f->id = ID;                                                                      \
+#define ENCODE_SIMPLE(MSG, ID, ...)                                                                \
+    do {                                                                                           \
+        struct harvest_can_##MSG##_t m;                                                            \
+        harvest_can_##MSG##_init(&m);                                                              \
+        __VA_ARGS__;                                                                               \
+        int n_ = harvest_can_##MSG##_pack(f->data, &m, sizeof f->data);                            \
+        if (n_ < 0)                                                                                \
+            return HV_ERR_EXEC_CAN_FRAME;                                                          \
+        f->dlc = (uint8_t)n_;                                                                      \
+        f->id = ID;                                                                                \
     } while (0)
 
-hv_status_t hv_exec_can_encode(const hv_exec_action_t *a, hv_exec_can_tx_t *tx,
-                               hv_can_frame_t *f, int *has_frame)
+hv_status_t hv_exec_can_encode(const hv_exec_action_t *a, hv_exec_can_tx_t *tx, hv_can_frame_t *f,
+                               int *has_frame)
 {
     memset(f, 0, sizeof *f);
     *has_frame = 1;
@@ -173,7 +173,8 @@ hv_status_t hv_exec_can_encode(const hv_exec_action_t *a, hv_exec_can_tx_t *tx,
         if (!(ts >= 0.01 && ts <= 655.35))
             return HV_ERR_EXEC_CAN_FRAME;
         ENCODE_SIMPLE(executor_heartbeat, HARVEST_CAN_EXECUTOR_HEARTBEAT_FRAME_ID,
-                      m.counter = tx->hb_counter++; m.health = (uint8_t)a->u.hb.health;
+                      m.counter = tx->hb_counter++;
+                      m.health = (uint8_t)a->u.hb.health;
                       m.time_scale = harvest_can_executor_heartbeat_time_scale_encode(ts);
                       m.protocol_version = HV_PROTOCOL_VERSION);
         return HV_OK;
@@ -192,7 +193,8 @@ hv_status_t hv_exec_can_encode(const hv_exec_action_t *a, hv_exec_can_tx_t *tx,
                           m.command_seq = seq);
         else
             ENCODE_SIMPLE(right_arm_command, HARVEST_CAN_RIGHT_ARM_COMMAND_FRAME_ID,
-                          m.command = cmd; m.command_seq = seq);
+                          m.command = cmd;
+                          m.command_seq = seq);
         return HV_OK;
     }
     case HV_ACT_SETPOINT:
@@ -205,10 +207,12 @@ hv_status_t hv_exec_can_encode(const hv_exec_action_t *a, hv_exec_can_tx_t *tx,
         uint8_t act = (uint8_t)a->u.ee.action, seq = (uint8_t)a->u.ee.seq;
         if (side_of_node(a->node) == HV_SIDE_LEFT)
             ENCODE_SIMPLE(left_arm_ee_command, HARVEST_CAN_LEFT_ARM_EE_COMMAND_FRAME_ID,
-                          m.action = act; m.ee_seq = seq);
+                          m.action = act;
+                          m.ee_seq = seq);
         else
             ENCODE_SIMPLE(right_arm_ee_command, HARVEST_CAN_RIGHT_ARM_EE_COMMAND_FRAME_ID,
-                          m.action = act; m.ee_seq = seq);
+                          m.action = act;
+                          m.ee_seq = seq);
         return HV_OK;
     }
     case HV_ACT_MOVE: {
@@ -221,8 +225,6 @@ hv_status_t hv_exec_can_encode(const hv_exec_action_t *a, hv_exec_can_tx_t *tx,
                       m.move_seq = (uint8_t)a->u.move.seq);
         return HV_OK;
     }
-    default:
-        *has_frame = 0;
-        return HV_OK;
+    default: *has_frame = 0; return HV_OK;
     }
 }

@@ -82,9 +82,10 @@ static hv_status_t take_stop(feed_lcm_t *f, const harvest_lcm_plan_commit_t *m, 
     if (s < f->plan->n_stops)
         return hv_exec_plan_stop_matches(f->plan, (uint16_t)s, (uint32_t)m->stop_index[s],
                                          m->stop_y_m[s], f->picks, left, right)
-                   ? HV_OK : HV_ERR_EXEC_PLAN_CONFLICT;
-    return hv_exec_plan_append(f->plan, (uint32_t)m->stop_index[s], m->stop_y_m[s], f->picks,
-                               left, right);
+                   ? HV_OK
+                   : HV_ERR_EXEC_PLAN_CONFLICT;
+    return hv_exec_plan_append(f->plan, (uint32_t)m->stop_index[s], m->stop_y_m[s], f->picks, left,
+                               right);
 }
 
 static void on_commit(const lcm_recv_buf_t *rbuf, const char *channel,
@@ -120,8 +121,7 @@ static void on_commit(const lcm_recv_buf_t *rbuf, const char *channel,
         if (st != HV_OK) {
             snprintf(f->why, sizeof f->why, "%s: stop %d (candidate %d at %.3f m): %s",
                      hv_exec_status_name(st), s + 1, (int)m->stop_index[s], m->stop_y_m[s],
-                     st == HV_ERR_EXEC_PLAN_CONFLICT
-                         ? "not the stop the plan (journal) holds there"
+                     st == HV_ERR_EXEC_PLAN_CONFLICT ? "not the stop the plan (journal) holds there"
                      : st == HV_ERR_EXEC_PLAN_CAPACITY
                          ? "more stops or picks than the tables hold"
                          : "a stop that does not follow, or a fruit planned twice");

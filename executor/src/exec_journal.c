@@ -14,13 +14,13 @@
 #include <unistd.h>
 
 #include "hv/cost_table.h" /* hv_crc32 */
-#include "hv/exec_sm.h"     /* node indices and names */
+#include "hv/exec_sm.h"    /* node indices and names */
 #include "hv/exec_status.h"
 #include "hv/fruit_id.h"
 #include "hv/record_line.h"
 
 #define JOURNAL_VERSION 1
-#define LINE_MAX_BYTES 256
+#define LINE_MAX_BYTES  256
 
 uint32_t hv_exec_plan_hash(const hv_exec_plan_t *plan)
 {
@@ -189,8 +189,8 @@ hv_status_t hv_exec_journal_stops(hv_exec_journal_t *j)
             return HV_ERR_EXEC_JOURNAL_ID;
     hv_status_t st = HV_OK;
     if (!j->course_journalled)
-        st = fmt_line(j, "O start=%.17g length=%.17g margin=%.17g", p->row_start_m,
-                      p->row_length_m, p->stop_margin_m);
+        st = fmt_line(j, "O start=%.17g length=%.17g margin=%.17g", p->row_start_m, p->row_length_m,
+                      p->stop_margin_m);
     for (uint16_t s = j->stops_journalled; s < p->n_stops && st == HV_OK; s++) {
         const hv_exec_stop_t *sp = &p->stops[s];
         st = fmt_line(j, "P %u y=%.17g left=%u right=%u", (unsigned)sp->plan_index, sp->y_m,
@@ -199,8 +199,8 @@ hv_status_t hv_exec_journal_stops(hv_exec_journal_t *j)
             for (unsigned k = 0; k < sp->count[side] && st == HV_OK; k++) {
                 const hv_exec_pick_t *pk = &p->picks[sp->first[side] + k];
                 st = fmt_line(j, "Q %c %s x=%.17g y=%.17g z=%.17g yaw=%.17g cost=%.17g",
-                              side_char(pk->side), pk->id, pk->x_m, pk->y_m, pk->z_m,
-                              pk->yaw_rad, pk->cost_s);
+                              side_char(pk->side), pk->id, pk->x_m, pk->y_m, pk->z_m, pk->yaw_rad,
+                              pk->cost_s);
             }
     }
     if (st == HV_OK && fdatasync(j->fd) != 0)
@@ -245,11 +245,11 @@ typedef struct replay {
     char *err;
     size_t errlen;
     int line;
-    size_t line_off;        /* where the current line starts in the file */
+    size_t line_off; /* where the current line starts in the file */
     /* online: the stop being read (its P record seen, its Q records coming) */
-    hv_exec_pick_t *picks;  /* HV_EXEC_MAX_PICKS */
+    hv_exec_pick_t *picks; /* HV_EXEC_MAX_PICKS */
     int group_open;
-    size_t group_off;       /* where its P record starts */
+    size_t group_off; /* where its P record starts */
     unsigned g_index, g_left, g_right, g_got;
     double g_y;
 } replay_t;
@@ -273,13 +273,14 @@ static hv_status_t replay_plan_record(replay_t *r, char kind, const char *line)
     hv_exec_plan_t *p = r->j->grow;
     int end = 0;
     if (!p)
-        return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "a record of an online plan in the journal "
+        return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT,
+                   "a record of an online plan in the journal "
                    "of a plan file");
     if (kind == 'O') {
         double y0, len, margin;
         if (sscanf(line, "O start=%lf length=%lf margin=%lf%n", &y0, &len, &margin, &end) != 3 ||
-            line[end] != '\0' || !isfinite(y0) || !(len > 0) || !isfinite(len) ||
-            !(margin >= 0) || !isfinite(margin))
+            line[end] != '\0' || !isfinite(y0) || !(len > 0) || !isfinite(len) || !(margin >= 0) ||
+            !isfinite(margin))
             return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "bad course record");
         if (r->j->course_journalled &&
             (y0 != p->row_start_m || len != p->row_length_m || margin != p->stop_margin_m))
@@ -294,8 +295,8 @@ static hv_status_t replay_plan_record(replay_t *r, char kind, const char *line)
         if (!r->j->course_journalled)
             return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "a stop before the course record");
         if (sscanf(line, "P %u y=%lf left=%u right=%u%n", &r->g_index, &r->g_y, &r->g_left,
-                   &r->g_right, &end) != 4 || line[end] != '\0' ||
-            r->g_left + r->g_right > HV_EXEC_MAX_PICKS)
+                   &r->g_right, &end) != 4 ||
+            line[end] != '\0' || r->g_left + r->g_right > HV_EXEC_MAX_PICKS)
             return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "bad stop record");
         r->group_open = 1;
         r->group_off = r->line_off;
@@ -323,7 +324,8 @@ static hv_status_t replay_plan_record(replay_t *r, char kind, const char *line)
     r->group_open = 0;
     if (hv_exec_plan_append(p, r->g_index, r->g_y, r->picks, (uint16_t)r->g_left,
                             (uint16_t)r->g_right) != HV_OK)
-        return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "a stop that does not follow the last one, "
+        return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT,
+                   "a stop that does not follow the last one, "
                    "a fruit planned twice, or more than the plan's tables hold");
     r->j->stops_journalled = p->n_stops;
     return HV_OK;
@@ -338,9 +340,11 @@ static hv_status_t replay_line(replay_t *r, char *line, size_t len)
 
     char kind[8], a[40], b[40], c[24], d[32];
     if (r->line == 1 && (strcmp(line, ONLINE_HEADER) == 0) != (r->j->online != 0))
-        return bad(r, HV_ERR_EXEC_JOURNAL_PLAN, r->j->online
-                   ? "the journal of a plan file's run (--plan), not of an online one"
-                   : "the journal of an online run (harvest-exec --online), not of a plan file");
+        return bad(
+            r, HV_ERR_EXEC_JOURNAL_PLAN,
+            r->j->online
+                ? "the journal of a plan file's run (--plan), not of an online one"
+                : "the journal of an online run (harvest-exec --online), not of a plan file");
     if (r->line == 1 && r->j->online)
         return HV_OK;
     if (r->line == 1) {
@@ -349,8 +353,7 @@ static hv_status_t replay_line(replay_t *r, char *line, size_t len)
             return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "not a harvest journal header");
         if (version != JOURNAL_VERSION)
             return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "unsupported journal version");
-        if (hash != r->j->plan_hash || picks != r->j->plan->n_picks ||
-            stops != r->j->plan->n_stops)
+        if (hash != r->j->plan_hash || picks != r->j->plan->n_picks || stops != r->j->plan->n_stops)
             return bad(r, HV_ERR_EXEC_JOURNAL_PLAN, "the journal belongs to another plan");
         return HV_OK;
     }
@@ -363,12 +366,10 @@ static hv_status_t replay_line(replay_t *r, char *line, size_t len)
     switch (kind[0]) {
     case 'O':
     case 'P':
-    case 'Q':
-        return replay_plan_record(r, kind[0], line);
+    case 'Q': return replay_plan_record(r, kind[0], line);
     case 'S': {
         int stop;
-        if (sscanf(line, "S %d t=%lf", &stop, &t) != 2 || stop < 0 ||
-            stop >= r->j->plan->n_stops)
+        if (sscanf(line, "S %d t=%lf", &stop, &t) != 2 || stop < 0 || stop >= r->j->plan->n_stops)
             return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "bad stop record");
         r->prog->stop_reached[stop] = 1;
         return HV_OK;
@@ -416,8 +417,7 @@ static hv_status_t replay_line(replay_t *r, char *line, size_t len)
         r->prog->estop_clears++;
         return HV_OK;
     }
-    default:
-        return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "unknown record");
+    default: return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "unknown record");
     }
 }
 
@@ -434,9 +434,9 @@ static void sync_dir(const char *path)
 }
 
 /* Open and replay; `grow` set for an online journal (the plan it rebuilds). */
-static hv_status_t open_journal(hv_exec_journal_t *j, const char *path,
-                                const hv_exec_plan_t *plan, hv_exec_plan_t *grow,
-                                hv_exec_progress_t *progress, char *err, size_t errlen)
+static hv_status_t open_journal(hv_exec_journal_t *j, const char *path, const hv_exec_plan_t *plan,
+                                hv_exec_plan_t *grow, hv_exec_progress_t *progress, char *err,
+                                size_t errlen)
 {
     if (!j || !path || !plan || !progress || !err || errlen == 0)
         return HV_ERR_ARG;
@@ -519,8 +519,7 @@ static hv_status_t open_journal(hv_exec_journal_t *j, const char *path,
         /* torn by a crash during a write: that record never counted, drop its bytes */
         j->torn_bytes = (unsigned)(size - complete);
         if (ftruncate(fd, (off_t)complete) != 0 || fdatasync(fd) != 0) {
-            snprintf(err, errlen, "%s: cannot cut the torn last record: %s", path,
-                     strerror(errno));
+            snprintf(err, errlen, "%s: cannot cut the torn last record: %s", path, strerror(errno));
             close(fd);
             return HV_ERR_EXEC_JOURNAL_IO;
         }
@@ -537,8 +536,7 @@ static hv_status_t open_journal(hv_exec_journal_t *j, const char *path,
                                (unsigned)j->plan_hash, (unsigned)plan->n_picks,
                                (unsigned)plan->n_stops);
         if (st != HV_OK) {
-            snprintf(err, errlen, "%s: cannot write the journal header: %s", path,
-                     strerror(errno));
+            snprintf(err, errlen, "%s: cannot write the journal header: %s", path, strerror(errno));
             hv_exec_journal_close(j);
             return st;
         }
@@ -547,9 +545,8 @@ static hv_status_t open_journal(hv_exec_journal_t *j, const char *path,
     return HV_OK;
 }
 
-hv_status_t hv_exec_journal_open(hv_exec_journal_t *j, const char *path,
-                                 const hv_exec_plan_t *plan, hv_exec_progress_t *progress,
-                                 char *err, size_t errlen)
+hv_status_t hv_exec_journal_open(hv_exec_journal_t *j, const char *path, const hv_exec_plan_t *plan,
+                                 hv_exec_progress_t *progress, char *err, size_t errlen)
 {
     return open_journal(j, path, plan, NULL, progress, err, errlen);
 }

@@ -36,11 +36,12 @@ static void online_progress(hv_exec_loop_t *L, uint64_t now, double t)
     for (int s = sm->stop; s < (int)p->n_stops; s++)
         ahead += p->stops[s].expected_s + (s > sm->stop ? p->stops[s].drive_s : 0.0);
     hv_exec_plan_wait_s(sm, now, &first, &row);
-    fprintf(L->progress, "harvest-exec: [%8.2f s] stop %d of %u known%s at %.3f m; %u fruits "
+    fprintf(L->progress,
+            "harvest-exec: [%8.2f s] stop %d of %u known%s at %.3f m; %u fruits "
             "picked; committed ahead %.1f s; waited for the planner %.1f s (%u times) after "
-            "%.1f s at the start\n", t, sm->stop + 1, (unsigned)p->n_stops,
-            sm->plan_final ? " (final)" : "", p->stops[sm->stop].y_m, sm->picked, ahead, row,
-            sm->waits, first);
+            "%.1f s at the start\n",
+            t, sm->stop + 1, (unsigned)p->n_stops, sm->plan_final ? " (final)" : "",
+            p->stops[sm->stop].y_m, sm->picked, ahead, row, sm->waits, first);
 }
 
 static void report(hv_exec_loop_t *L, const hv_exec_action_t *a, uint64_t now)
@@ -56,16 +57,15 @@ static void report(hv_exec_loop_t *L, const hv_exec_action_t *a, uint64_t now)
         else if (sm->phase == HV_PH_HARVEST && sm->prm.online)
             online_progress(L, now, t);
         else if (sm->phase == HV_PH_HARVEST)
-            fprintf(L->progress, "harvest-exec: [%8.2f s] stop %d/%u at %.3f m\n", t,
-                    sm->stop + 1, (unsigned)sm->plan->n_stops,
-                    sm->plan->stops[sm->stop].y_m);
+            fprintf(L->progress, "harvest-exec: [%8.2f s] stop %d/%u at %.3f m\n", t, sm->stop + 1,
+                    (unsigned)sm->plan->n_stops, sm->plan->stops[sm->stop].y_m);
         else if (sm->phase == HV_PH_WAIT_PLAN)
-            fprintf(L->progress, "harvest-exec: [%8.2f s] waiting for the planner: %d stops "
-                    "done of %u known, %u fruits picked\n", t, sm->stop + 1,
-                    (unsigned)sm->plan->n_stops, sm->picked);
+            fprintf(L->progress,
+                    "harvest-exec: [%8.2f s] waiting for the planner: %d stops "
+                    "done of %u known, %u fruits picked\n",
+                    t, sm->stop + 1, (unsigned)sm->plan->n_stops, sm->picked);
         else
-            fprintf(L->progress, "harvest-exec: [%8.2f s] %s\n", t,
-                    hv_exec_phase_name(sm->phase));
+            fprintf(L->progress, "harvest-exec: [%8.2f s] %s\n", t, hv_exec_phase_name(sm->phase));
     } else if (a->kind == HV_ACT_FRUIT_EVENT && a->u.fe.kind == HV_FE_OUTCOME &&
                a->u.fe.outcome != HV_OUT_PICKED) {
         const hv_exec_pick_t *pk = &sm->plan->picks[a->u.fe.pick];
@@ -75,13 +75,14 @@ static void report(hv_exec_loop_t *L, const hv_exec_action_t *a, uint64_t now)
     } else if (a->kind == HV_ACT_JOURNAL && a->u.jr.kind == HV_JR_ESTOP_CLEAR) {
         char nodes[64];
         hv_exec_node_list(a->u.jr.nodes, nodes, sizeof nodes);
-        fprintf(L->progress, "harvest-exec: [%8.2f s] e-stop of %s cleared by %s (journalled); "
-                "waiting for a heartbeat and a status of every node\n", t, nodes, L->clear_by);
+        fprintf(L->progress,
+                "harvest-exec: [%8.2f s] e-stop of %s cleared by %s (journalled); "
+                "waiting for a heartbeat and a status of every node\n",
+                t, nodes, L->clear_by);
     } else if (a->kind == HV_ACT_FRUIT_EVENT && a->u.fe.kind == HV_FE_FAULT) {
         const hv_exec_pick_t *pk = &sm->plan->picks[a->u.fe.pick];
-        fprintf(L->progress, "harvest-exec: [%8.2f s] fault at fruit %s (%c): %s, recovering\n",
-                t, pk->id, pk->side == HV_SIDE_LEFT ? 'L' : 'R',
-                hv_exec_reason_name(a->u.fe.reason));
+        fprintf(L->progress, "harvest-exec: [%8.2f s] fault at fruit %s (%c): %s, recovering\n", t,
+                pk->id, pk->side == HV_SIDE_LEFT ? 'L' : 'R', hv_exec_reason_name(a->u.fe.reason));
     }
     fflush(L->progress);
 }
@@ -170,9 +171,9 @@ static void periodic_telemetry(hv_exec_loop_t *L, uint64_t now)
     if (now >= L->next_stats_pub_ns) {
         hv_can_stats_t cs;
         hv_can_get_stats(L->bus, &cs);
-        hv_exec_bus_stats_t s = {hv_can_name(L->bus), cs.tx_frames, cs.rx_frames,
-                                 cs.rx_error_frames, cs.rx_malformed, cs.rx_unsupported,
-                                 cs.rx_filtered, cs.rx_kernel_drops, cs.tx_failures};
+        hv_exec_bus_stats_t s = {hv_can_name(L->bus), cs.tx_frames,       cs.rx_frames,
+                                 cs.rx_error_frames,  cs.rx_malformed,    cs.rx_unsupported,
+                                 cs.rx_filtered,      cs.rx_kernel_drops, cs.tx_failures};
         hv_exec_tm_can_stats(L->tm, &s, wall_utime());
         L->next_stats_pub_ns = now + 1000000000ull; /* 1 Hz */
     }
@@ -183,9 +184,7 @@ static void handle_frame(hv_exec_loop_t *L, const hv_can_frame_t *f, uint64_t no
     hv_exec_event_t ev;
     L->st.frames_rx++;
     switch (hv_exec_can_decode(f, &ev, L->samples)) {
-    case HV_RX_EVENT:
-        step(L, &ev, now);
-        break;
+    case HV_RX_EVENT: step(L, &ev, now); break;
     case HV_RX_VELOCITIES: {
         /* the velocity frame follows the joint state frame: publish the pair, 20 Hz max */
         int side = ev.node;
@@ -195,11 +194,8 @@ static void handle_frame(hv_exec_loop_t *L, const hv_can_frame_t *f, uint64_t no
         }
         break;
     }
-    case HV_RX_MALFORMED:
-        L->st.frames_rx_malformed++;
-        break;
-    default:
-        break;
+    case HV_RX_MALFORMED: L->st.frames_rx_malformed++; break;
+    default: break;
     }
 }
 
@@ -213,8 +209,10 @@ static void take_plan(hv_exec_loop_t *L)
     uint64_t now = hv_exec_now_ns();
     if (L->journal && L->journal->online && hv_exec_journal_stops(L->journal) != HV_OK) {
         if (L->progress)
-            fprintf(L->progress, "harvest-exec: %s: journal write of the committed stops "
-                    "failed: %s\n", L->journal->path, strerror(errno));
+            fprintf(L->progress,
+                    "harvest-exec: %s: journal write of the committed stops "
+                    "failed: %s\n",
+                    L->journal->path, strerror(errno));
         memset(&ev, 0, sizeof ev);
         ev.kind = HV_EV_JOURNAL_FAILED;
         step(L, &ev, now);

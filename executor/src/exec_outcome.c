@@ -4,8 +4,8 @@
 
 static const char *const outcome_names[HV_OUT_COUNT] = {"picked", "failed", "skipped"};
 static const char *const reason_names[HV_RSN_COUNT] = {
-    "ok", "resumed", "ik_unreachable", "setpoint_rejected", "joint_fault",
-    "ee_fault", "timeout", "cut_failed", "dropped"};
+    "ok",      "resumed",    "ik_unreachable", "setpoint_rejected", "joint_fault", "ee_fault",
+    "timeout", "cut_failed", "dropped"};
 
 const char *hv_exec_outcome_name(int outcome)
 {

@@ -15,10 +15,9 @@ double hv_exec_vehicle_move_s(double dist_m, double speed_mps, double accel_mps2
 
 static int timing_ok(const hv_exec_timing_t *t)
 {
-    return t->cut_s > 0.0 && isfinite(t->cut_s) && t->release_s > 0.0 &&
-           isfinite(t->release_s) && t->vehicle_speed_mps > 0.0 &&
-           isfinite(t->vehicle_speed_mps) && t->vehicle_accel_mps2 > 0.0 &&
-           isfinite(t->vehicle_accel_mps2);
+    return t->cut_s > 0.0 && isfinite(t->cut_s) && t->release_s > 0.0 && isfinite(t->release_s) &&
+           t->vehicle_speed_mps > 0.0 && isfinite(t->vehicle_speed_mps) &&
+           t->vehicle_accel_mps2 > 0.0 && isfinite(t->vehicle_accel_mps2);
 }
 
 hv_status_t hv_exec_plan_prepare(hv_exec_plan_t *plan, const hv_arm_t arm[2],
@@ -157,8 +156,7 @@ int hv_exec_plan_stop_matches(const hv_exec_plan_t *plan, uint16_t s, uint32_t p
         int side = k < n_left ? HV_SIDE_LEFT : HV_SIDE_RIGHT;
         const hv_exec_pick_t *pk =
             &plan->picks[st->first[side] + (side == HV_SIDE_LEFT ? k : k - n_left)];
-        if (picks[k].side != (hv_side_t)side ||
-            strncmp(pk->id, picks[k].id, sizeof pk->id) != 0)
+        if (picks[k].side != (hv_side_t)side || strncmp(pk->id, picks[k].id, sizeof pk->id) != 0)
             return 0;
     }
     return 1;

@@ -20,9 +20,8 @@ static hv_status_t plan_err(char *err, size_t errlen, const char *name, hv_statu
     return code;
 }
 
-static hv_status_t add_picks(const char *name, const hv_plan_pick_t *src, size_t n,
-                             hv_side_t side, uint16_t stop, hv_exec_plan_t *plan, char *err,
-                             size_t errlen)
+static hv_status_t add_picks(const char *name, const hv_plan_pick_t *src, size_t n, hv_side_t side,
+                             uint16_t stop, hv_exec_plan_t *plan, char *err, size_t errlen)
 {
     static const char *const side_key[2] = {"left", "right"};
     for (size_t k = 0; k < n; k++) {
@@ -51,8 +50,8 @@ static hv_status_t add_picks(const char *name, const hv_plan_pick_t *src, size_t
     return HV_OK;
 }
 
-static hv_status_t from_plan(const char *name, const hv_plan_t *p, hv_exec_plan_t *plan,
-                             char *err, size_t errlen)
+static hv_status_t from_plan(const char *name, const hv_plan_t *p, hv_exec_plan_t *plan, char *err,
+                             size_t errlen)
 {
     if (p->n_stops > HV_EXEC_MAX_STOPS) {
         return plan_err(err, errlen, name, HV_ERR_EXEC_PLAN_CAPACITY, "stops",
@@ -75,21 +74,21 @@ static hv_status_t from_plan(const char *name, const hv_plan_t *p, hv_exec_plan_
               ps->y_m <= hv_exec_course_end(plan) + 1e-6)) {
             char field[32], msg[128];
             snprintf(field, sizeof field, "stops[%zu].y_m", s);
-            snprintf(msg, sizeof msg, "%g m is outside the course [%g, %g] m (the row and "
-                     "params.stop_margin_m beyond each end)", ps->y_m,
-                     hv_exec_course_start(plan), hv_exec_course_end(plan));
+            snprintf(msg, sizeof msg,
+                     "%g m is outside the course [%g, %g] m (the row and "
+                     "params.stop_margin_m beyond each end)",
+                     ps->y_m, hv_exec_course_start(plan), hv_exec_course_end(plan));
             return plan_err(err, errlen, name, HV_ERR_EXEC_PLAN_RANGE, field, msg);
         }
         st->first[HV_SIDE_LEFT] = plan->n_picks;
-        hv_status_t r = add_picks(name, ps->left, ps->n_left, HV_SIDE_LEFT, (uint16_t)s, plan,
-                                  err, errlen);
+        hv_status_t r =
+            add_picks(name, ps->left, ps->n_left, HV_SIDE_LEFT, (uint16_t)s, plan, err, errlen);
         if (r != HV_OK) {
             return r;
         }
         st->count[HV_SIDE_LEFT] = (uint16_t)ps->n_left;
         st->first[HV_SIDE_RIGHT] = plan->n_picks;
-        r = add_picks(name, ps->right, ps->n_right, HV_SIDE_RIGHT, (uint16_t)s, plan, err,
-                      errlen);
+        r = add_picks(name, ps->right, ps->n_right, HV_SIDE_RIGHT, (uint16_t)s, plan, err, errlen);
         if (r != HV_OK) {
             return r;
         }
@@ -100,8 +99,7 @@ static hv_status_t from_plan(const char *name, const hv_plan_t *p, hv_exec_plan_
         char msg[96];
         snprintf(msg, sizeof msg, "says %zu, the stops list %u picks", p->fruits_planned,
                  (unsigned)plan->n_picks);
-        return plan_err(err, errlen, name, HV_ERR_EXEC_PLAN_RANGE, "totals.fruits_planned",
-                        msg);
+        return plan_err(err, errlen, name, HV_ERR_EXEC_PLAN_RANGE, "totals.fruits_planned", msg);
     }
     return HV_OK;
 }
@@ -135,8 +133,7 @@ hv_status_t hv_exec_plan_parse_json(const char *name, const char *text, size_t l
     return st;
 }
 
-hv_status_t hv_exec_plan_load_json(const char *path, hv_exec_plan_t *plan, char *err,
-                                   size_t errlen)
+hv_status_t hv_exec_plan_load_json(const char *path, hv_exec_plan_t *plan, char *err, size_t errlen)
 {
     if (!path || !plan || !err || errlen == 0) {
         return HV_ERR_ARG;

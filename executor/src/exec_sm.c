@@ -25,7 +25,7 @@ void hv_exec_params_default(hv_exec_params_t *p)
     p->vehicle_accel_mps2 = 0.1;
     p->max_retries = 2;
     p->resend_s = 0.25; /* 5 status periods at time scale 1 (DBC: status every 50 ms) */
-    p->clear_estop = 0;  /* only an operator clears an e-stop */
+    p->clear_estop = 0; /* only an operator clears an e-stop */
 }
 
 double hv_exec_home_max_s(const hv_arm_t *arm)
@@ -45,9 +45,11 @@ double hv_exec_home_max_s(const hv_arm_t *arm)
 
 static int params_ok(const hv_exec_params_t *p)
 {
-    const double pos[] = {p->heartbeat_timeout_s, p->heartbeat_period_s, p->startup_timeout_s,
-                          p->command_timeout_s, p->home_max_s, p->cut_s, p->release_s,
-                          p->vehicle_speed_mps, p->vehicle_accel_mps2, p->resend_s};
+    const double pos[] = {p->heartbeat_timeout_s, p->heartbeat_period_s,
+                          p->startup_timeout_s,   p->command_timeout_s,
+                          p->home_max_s,          p->cut_s,
+                          p->release_s,           p->vehicle_speed_mps,
+                          p->vehicle_accel_mps2,  p->resend_s};
     for (size_t i = 0; i < sizeof pos / sizeof pos[0]; i++)
         if (!(pos[i] > 0.0) || !isfinite(pos[i]))
             return 0;
@@ -300,9 +302,9 @@ static void send_move(ctx_t *c, double target_m)
         a->u.move.seq = seq;
     }
     remember(c, HV_EXEC_VEHICLE, a);
-    sm->deadline_ns = motion_deadline(
-        c, hv_exec_vehicle_move_s(target_m - v->position_m, sm->prm.vehicle_speed_mps,
-                                  sm->prm.vehicle_accel_mps2));
+    sm->deadline_ns = motion_deadline(c, hv_exec_vehicle_move_s(target_m - v->position_m,
+                                                                sm->prm.vehicle_speed_mps,
+                                                                sm->prm.vehicle_accel_mps2));
     if (sm->t_row_start_ns == 0)
         sm->t_row_start_ns = c->now ? c->now : 1;
 }
@@ -416,8 +418,7 @@ static void start_release(ctx_t *c, int side)
 {
     hv_exec_sm_t *sm = c->sm;
     hv_exec_arm_t *arm = &sm->arm[side];
-    journal(c, HV_JR_RELEASE, arm->pick, sm->plan->picks[arm->pick].stop, (int)arm->attempt,
-            0, 0);
+    journal(c, HV_JR_RELEASE, arm->pick, sm->plan->picks[arm->pick].stop, (int)arm->attempt, 0, 0);
     sm->prog.pick[arm->pick] = HV_PROG_RELEASE;
     arm->phase = HV_ARM_RELEASE;
     send_ee(c, side, HV_CAN_EE_ACTION_RELEASE);
@@ -626,9 +627,9 @@ static void arm_update(ctx_t *c, int side)
             if (arm->cut_confirmed && n->fruit_held)
                 start_release(c, side);
             else
-                retry_or_give_up(c, side, arm->cut_confirmed
-                                              ? HV_RSN_DROPPED
-                                              : (hv_exec_reason_t)arm->fault_reason);
+                retry_or_give_up(c, side,
+                                 arm->cut_confirmed ? HV_RSN_DROPPED
+                                                    : (hv_exec_reason_t)arm->fault_reason);
         }
         break;
     case HV_ARM_RELEASE:
@@ -644,8 +645,7 @@ static void arm_update(ctx_t *c, int side)
             }
         }
         break;
-    default:
-        break;
+    default: break;
     }
 }
 
@@ -667,17 +667,14 @@ static int event_ok(const hv_exec_event_t *ev)
     switch (ev->kind) {
     case HV_EV_TICK:
     case HV_EV_STOP_REQUEST:
-    case HV_EV_JOURNAL_FAILED:
-        return 1;
+    case HV_EV_JOURNAL_FAILED: return 1;
     case HV_EV_PLAN_GROWN:
         return (ev->u.plan.final == 0 || ev->u.plan.final == 1) && isfinite(ev->u.plan.advance_m);
     case HV_EV_HEARTBEAT:
         return ev->node >= 0 && ev->node < HV_EXEC_NODES && isfinite(ev->u.hb.time_scale);
-    case HV_EV_VEHICLE_STATUS:
-        return ev->node == HV_EXEC_VEHICLE && isfinite(ev->u.veh.position_m);
+    case HV_EV_VEHICLE_STATUS: return ev->node == HV_EXEC_VEHICLE && isfinite(ev->u.veh.position_m);
     case HV_EV_ARM_STATUS:
-    case HV_EV_EE_STATUS:
-        return ev->node == HV_EXEC_LEFT || ev->node == HV_EXEC_RIGHT;
+    case HV_EV_EE_STATUS: return ev->node == HV_EXEC_LEFT || ev->node == HV_EXEC_RIGHT;
     }
     return 0;
 }
@@ -731,8 +728,7 @@ static void apply_event(hv_exec_sm_t *sm, const hv_exec_event_t *ev, uint64_t no
         n->ee_seq = ev->u.ee.ee_seq;
         n->fruit_held = ev->u.ee.fruit_held;
         break;
-    default:
-        break;
+    default: break;
     }
 }
 
@@ -914,8 +910,8 @@ static void phase_logic(ctx_t *c, const hv_exec_event_t *ev)
             double ts = sm->node[0].time_scale;
             for (int i = 0; i < HV_EXEC_NODES; i++)
                 if (!same_scale(sm->node[i].time_scale, ts) ||
-                    (sm->prm.time_scale > 0.0 && !same_scale(sm->node[i].time_scale,
-                                                             sm->prm.time_scale))) {
+                    (sm->prm.time_scale > 0.0 &&
+                     !same_scale(sm->node[i].time_scale, sm->prm.time_scale))) {
                     enter_safe(c, HV_SAFE_TIME_SCALE, i);
                     return;
                 }
@@ -946,9 +942,7 @@ static void phase_logic(ctx_t *c, const hv_exec_event_t *ev)
             enter_safe(c, HV_SAFE_NODES_ABSENT, -1);
         }
         break;
-    case HV_PH_ENABLE:
-        enable_progress(c);
-        break;
+    case HV_PH_ENABLE: enable_progress(c); break;
     case HV_PH_HOMING: {
         int done = 1;
         for (int s = 0; s < 2; s++) {
@@ -994,9 +988,7 @@ static void phase_logic(ctx_t *c, const hv_exec_event_t *ev)
             enter_safe(c, HV_SAFE_TIMEOUT, HV_EXEC_VEHICLE);
         }
         break;
-    case HV_PH_WAIT_PLAN:
-        wait_plan(c);
-        break;
+    case HV_PH_WAIT_PLAN: wait_plan(c); break;
     case HV_PH_HARVEST:
         for (int s = 0; s < 2 && sm->phase == HV_PH_HARVEST; s++) {
             int ev_arm = (ev->kind == HV_EV_ARM_STATUS || ev->kind == HV_EV_EE_STATUS) &&
@@ -1007,8 +999,7 @@ static void phase_logic(ctx_t *c, const hv_exec_event_t *ev)
                 arm_timers(c, s);
         }
         break;
-    default:
-        break;
+    default: break;
     }
 }
 
@@ -1072,8 +1063,7 @@ double hv_exec_executed_s(const hv_exec_sm_t *sm, uint64_t now_ns)
     return (double)(end - sm->t_row_start_ns) * 1e-9 * sm->time_scale;
 }
 
-void hv_exec_plan_wait_s(const hv_exec_sm_t *sm, uint64_t now_ns, double *first_s,
-                         double *row_s)
+void hv_exec_plan_wait_s(const hv_exec_sm_t *sm, uint64_t now_ns, double *first_s, double *row_s)
 {
     uint64_t first = sm->wait_first_ns, row = sm->wait_row_ns;
     if (sm->phase == HV_PH_WAIT_PLAN && now_ns > sm->wait_from_ns) {
@@ -1093,25 +1083,25 @@ int hv_exec_finished(const hv_exec_sm_t *sm)
 
 const char *hv_exec_phase_name(int phase)
 {
-    static const char *const names[HV_PH_COUNT] = {"wait_nodes", "enable", "homing",
-                                                   "driving", "harvest", "final_drive",
-                                                   "row_done", "safe", "wait_plan"};
+    static const char *const names[HV_PH_COUNT] = {"wait_nodes", "enable",  "homing",
+                                                   "driving",    "harvest", "final_drive",
+                                                   "row_done",   "safe",    "wait_plan"};
     return phase >= 0 && phase < HV_PH_COUNT ? names[phase] : "unknown";
 }
 
 const char *hv_exec_arm_phase_name(int phase)
 {
-    static const char *const names[HV_ARM_PHASE_COUNT] = {"idle", "approach", "cut", "return",
-                                                          "release", "recover", "done"};
+    static const char *const names[HV_ARM_PHASE_COUNT] = {"idle",    "approach", "cut", "return",
+                                                          "release", "recover",  "done"};
     return phase >= 0 && phase < HV_ARM_PHASE_COUNT ? names[phase] : "unknown";
 }
 
 const char *hv_exec_safe_reason_name(int reason)
 {
     static const char *const names[HV_SAFE_COUNT] = {
-        "none", "estop", "lost_heartbeat", "nodes_absent", "time_scale_mismatch",
-        "comm_timeout", "vehicle_fault", "timeout", "fault", "journal_failed", "operator_stop",
-        "estop_latched"};
+        "none",          "estop",         "lost_heartbeat", "nodes_absent", "time_scale_mismatch",
+        "comm_timeout",  "vehicle_fault", "timeout",        "fault",        "journal_failed",
+        "operator_stop", "estop_latched"};
     return reason >= 0 && reason < HV_SAFE_COUNT ? names[reason] : "unknown";
 }
 

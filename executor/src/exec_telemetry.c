@@ -47,15 +47,15 @@ void hv_exec_tm_state(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, uint64_t n
         count(t, t->ops->state(t, sm, now_ns, utime));
 }
 
-void hv_exec_tm_fruit(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm,
-                      const hv_exec_action_t *fe, uint64_t now_ns, int64_t utime)
+void hv_exec_tm_fruit(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const hv_exec_action_t *fe,
+                      uint64_t now_ns, int64_t utime)
 {
     if (t && t->ops && t->ops->fruit)
         count(t, t->ops->fruit(t, sm, fe, now_ns, utime));
 }
 
-void hv_exec_tm_arm(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm,
-                    const hv_exec_arm_sample_t *s, int64_t utime)
+void hv_exec_tm_arm(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const hv_exec_arm_sample_t *s,
+                    int64_t utime)
 {
     if (t && t->ops && t->ops->arm)
         count(t, t->ops->arm(t, sm, s, utime));

@@ -64,8 +64,7 @@ static int pub_plan(hv_exec_telemetry_t *t, const hv_exec_plan_t *plan, const ch
     return harvest_lcm_plan_t_publish(lcm_of(t), HV_TM_CH_PLAN, &m);
 }
 
-static int pub_state(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, uint64_t now_ns,
-                     int64_t utime)
+static int pub_state(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, uint64_t now_ns, int64_t utime)
 {
     harvest_lcm_exec_state_t m;
     memset(&m, 0, sizeof m);
@@ -104,8 +103,8 @@ static int pub_fruit(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const hv_ex
     m.pick = (int16_t)a->u.fe.pick;
     m.event = (char *)fe_names[a->u.fe.kind];
     m.attempt = (int8_t)a->u.fe.attempt;
-    m.outcome = (char *)(a->u.fe.kind == HV_FE_OUTCOME ? hv_exec_outcome_name(a->u.fe.outcome)
-                                                        : "");
+    m.outcome =
+        (char *)(a->u.fe.kind == HV_FE_OUTCOME ? hv_exec_outcome_name(a->u.fe.outcome) : "");
     m.reason = (char *)(a->u.fe.kind == HV_FE_OUTCOME || a->u.fe.kind == HV_FE_FAULT
                             ? hv_exec_reason_name(a->u.fe.reason)
                             : "");
@@ -164,7 +163,8 @@ hv_status_t hv_exec_telemetry_lcm_open(hv_exec_telemetry_t *t, const char *url, 
     hv_exec_telemetry_null(t);
     lcm_t *l = lcm_create(url);
     if (!l) {
-        snprintf(err, errlen, "LCM: cannot open '%s' (a udpm URL needs a multicast route, "
+        snprintf(err, errlen,
+                 "LCM: cannot open '%s' (a udpm URL needs a multicast route, "
                  "e.g. `ip route add 224.0.0.0/4 dev lo` in a private namespace)",
                  url ? url : "(default)");
         return HV_ERR_EXEC_TELEMETRY;

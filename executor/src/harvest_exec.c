@@ -18,8 +18,14 @@
 #include "hv/file_io.h"
 #include "hv/pick.h"
 
-enum { EXIT_ROW_DONE = 0, EXIT_RUNTIME = 1, EXIT_USAGE = 2, EXIT_SAFE = 3,
-       EXIT_ESTOP_LATCHED = 4, EXIT_REFUSED = 5 };
+enum {
+    EXIT_ROW_DONE = 0,
+    EXIT_RUNTIME = 1,
+    EXIT_USAGE = 2,
+    EXIT_SAFE = 3,
+    EXIT_ESTOP_LATCHED = 4,
+    EXIT_REFUSED = 5
+};
 
 /* The only mutable global: a signal handler can reach nothing else. */
 static volatile sig_atomic_t stop_requested;
@@ -32,78 +38,90 @@ static void on_signal(int sig)
 
 static void usage(FILE *out)
 {
-    fprintf(out,
-"usage: harvest-exec --plan PLAN.json --config harvest.cfg --journal FILE [options]\n"
-"       harvest-exec --check-plan --plan PLAN.json --config harvest.cfg [tables]\n"
-"       harvest-exec --online --lcm-url URL --config harvest.cfg --journal FILE [options]\n"
-"\n"
-"Run a harvest plan on the CAN bus: wait for the vehicle drive and both arms, enable and\n"
-"home them, drive to each stop, run both arms' pick cycles, and stop safely (e-stop) on\n"
-"any fault. Every outcome is journalled before the next action; restarting with the same\n"
-"plan and journal resumes without picking a fruit twice.\n"
-"\n"
-"A stop in the safe state (a fault, a node's e-stop, SIGINT/SIGTERM) leaves every node\n"
-"holding an e-stop. Only an operator releases it: a restart finds it latched and stays\n"
-"safe (exit 4) until it is given --clear-estop.\n"
-"\n"
-"input:\n"
-"  --plan FILE             plan file (docs/PLAN_FORMAT.md), required\n"
-"  --config FILE           harvest.cfg: arm, mount, vehicle speed/accel, required\n"
-"  --cost-table-left FILE  optional: refused unless built for the config's left arm\n"
-"  --cost-table-right FILE   (mount, joint limits, home pose, grid); same for the right.\n"
-"                          Picks come from the exact IK either way.\n"
-"  --check-plan            only load the plan and solve every pick's IK as a run would:\n"
-"                          print the picks the IK refuses and the expected makespan, open\n"
-"                          no bus and no journal; exit 0 when every pick is accepted\n"
-"  --online                instead of --plan: the plan grows while the row runs, from the\n"
-"                          online planner's committed stops (harvest-plan-online, LCM\n"
-"                          channel HARVEST_PLAN_COMMIT on --lcm-url); with no committed stop\n"
-"                          ahead the vehicle waits (or drives on to the commit line); the\n"
-"                          row ends once the planner's plan is final. Progress lines show\n"
-"                          stops done of those known, fruits picked, the robot time\n"
-"                          committed ahead and the waits. The committed stops go into the\n"
-"                          journal before any is acted on: a restart with the same journal\n"
-"                          rebuilds them and resumes; a planner's message that contradicts\n"
-"                          them is refused (HV_ERR_EXEC_PLAN_CONFLICT)\n"
-"bus:\n"
-"  --transport T           socketcan | udp (default udp)\n"
-"  --channel C             socketcan: interface (vcan0); udp: multicast group\n"
-"                          (default 239.74.163.2, python-can udp_multicast's)\n"
-"  --port N                udp port (default 43113)\n"
-"timing:\n"
-"  --time-scale K          expected node time scale; 0 = take the nodes' (default 0)\n"
-"  --margin M              timeout = planned * (1 + M) + slack (default 0.5)\n"
-"  --slack S               simulated s added to every timeout (default 1.0)\n"
-"  --max-retries N         further attempts of a fruit after a recoverable fault (2)\n"
-"  --startup-timeout S     wall s to see every node (default 10)\n"
-"  --heartbeat-timeout S   wall s without a node's heartbeat = lost (default 0.5, the DBC's)\n"
-"  --latency S             wall s added to every motion timeout for the bus (default 0.3)\n"
-"safety:\n"
-"  --clear-estop NAME      operator NAME has dealt with what caused the e-stop and clears it\n"
-"                          for this start-up: the nodes reporting a latched e-stop get\n"
-"                          CLEAR_ESTOP once the clear is in the journal (\"E NAME nodes=...\"),\n"
-"                          and nothing is enabled before every node's heartbeat and status,\n"
-"                          received after the clear, show no e-stop. NAME: 1-32 of\n"
-"                          A-Z a-z 0-9 . _ -. Without it a latched e-stop is never cleared.\n"
-"                          An e-stop during the run still ends it (exit 3)\n"
-"record and telemetry:\n"
-"  --journal FILE          harvest journal (created, or resumed), required\n"
-"  --lcm-url URL           publish LCM telemetry here (memq://, udpm://...?ttl=0);\n"
-"                          default: no telemetry\n"
-"  --summary FILE          write a JSON summary of the run here\n"
-"  --quiet                 no progress lines on stderr\n"
-"  -h, --help              this text\n"
-"\n"
-"exit status: 0 row done (--check-plan: every pick accepted); 1 runtime error; 2 bad input;\n"
-"3 stopped in the safe state (the nodes hold an e-stop: restart with --clear-estop NAME once\n"
-"the cause is dealt with); 4 not started: a node reports a latched e-stop and --clear-estop\n"
-"was not given (nothing but e-stop frames and heartbeats was sent; the summary's\n"
-"estop_latched names the nodes); 5 --check-plan: the IK refuses a planned pick.\n"
-"Expected makespan (compared with the executed one): per stop the slower arm's sum of\n"
-"pick cycles (2 x IK move time home->fruit + pick.cut_time + pick.release_time of the\n"
-"config) plus trapezoid vehicle moves\n"
-"between stops, from the course's start to its end (the row and the plan's stop margin\n"
-"beyond each end; the vehicle is expected at the course's start).\n");
+    fprintf(
+        out,
+        "usage: harvest-exec --plan PLAN.json --config harvest.cfg --journal FILE [options]\n"
+        "       harvest-exec --check-plan --plan PLAN.json --config harvest.cfg [tables]\n"
+        "       harvest-exec --online --lcm-url URL --config harvest.cfg --journal FILE [options]\n"
+        "\n"
+        "Run a harvest plan on the CAN bus: wait for the vehicle drive and both arms, enable and\n"
+        "home them, drive to each stop, run both arms' pick cycles, and stop safely (e-stop) on\n"
+        "any fault. Every outcome is journalled before the next action; restarting with the same\n"
+        "plan and journal resumes without picking a fruit twice.\n"
+        "\n"
+        "A stop in the safe state (a fault, a node's e-stop, SIGINT/SIGTERM) leaves every node\n"
+        "holding an e-stop. Only an operator releases it: a restart finds it latched and stays\n"
+        "safe (exit 4) until it is given --clear-estop.\n"
+        "\n"
+        "input:\n"
+        "  --plan FILE             plan file (docs/PLAN_FORMAT.md), required\n"
+        "  --config FILE           harvest.cfg: arm, mount, vehicle speed/accel, required\n"
+        "  --cost-table-left FILE  optional: refused unless built for the config's left arm\n"
+        "  --cost-table-right FILE   (mount, joint limits, home pose, grid); same for the right.\n"
+        "                          Picks come from the exact IK either way.\n"
+        "  --check-plan            only load the plan and solve every pick's IK as a run would:\n"
+        "                          print the picks the IK refuses and the expected makespan, open\n"
+        "                          no bus and no journal; exit 0 when every pick is accepted\n"
+        "  --online                instead of --plan: the plan grows while the row runs, from the\n"
+        "                          online planner's committed stops (harvest-plan-online, LCM\n"
+        "                          channel HARVEST_PLAN_COMMIT on --lcm-url); with no committed "
+        "stop\n"
+        "                          ahead the vehicle waits (or drives on to the commit line); the\n"
+        "                          row ends once the planner's plan is final. Progress lines show\n"
+        "                          stops done of those known, fruits picked, the robot time\n"
+        "                          committed ahead and the waits. The committed stops go into the\n"
+        "                          journal before any is acted on: a restart with the same "
+        "journal\n"
+        "                          rebuilds them and resumes; a planner's message that "
+        "contradicts\n"
+        "                          them is refused (HV_ERR_EXEC_PLAN_CONFLICT)\n"
+        "bus:\n"
+        "  --transport T           socketcan | udp (default udp)\n"
+        "  --channel C             socketcan: interface (vcan0); udp: multicast group\n"
+        "                          (default 239.74.163.2, python-can udp_multicast's)\n"
+        "  --port N                udp port (default 43113)\n"
+        "timing:\n"
+        "  --time-scale K          expected node time scale; 0 = take the nodes' (default 0)\n"
+        "  --margin M              timeout = planned * (1 + M) + slack (default 0.5)\n"
+        "  --slack S               simulated s added to every timeout (default 1.0)\n"
+        "  --max-retries N         further attempts of a fruit after a recoverable fault (2)\n"
+        "  --startup-timeout S     wall s to see every node (default 10)\n"
+        "  --heartbeat-timeout S   wall s without a node's heartbeat = lost (default 0.5, the "
+        "DBC's)\n"
+        "  --latency S             wall s added to every motion timeout for the bus (default 0.3)\n"
+        "safety:\n"
+        "  --clear-estop NAME      operator NAME has dealt with what caused the e-stop and clears "
+        "it\n"
+        "                          for this start-up: the nodes reporting a latched e-stop get\n"
+        "                          CLEAR_ESTOP once the clear is in the journal (\"E NAME "
+        "nodes=...\"),\n"
+        "                          and nothing is enabled before every node's heartbeat and "
+        "status,\n"
+        "                          received after the clear, show no e-stop. NAME: 1-32 of\n"
+        "                          A-Z a-z 0-9 . _ -. Without it a latched e-stop is never "
+        "cleared.\n"
+        "                          An e-stop during the run still ends it (exit 3)\n"
+        "record and telemetry:\n"
+        "  --journal FILE          harvest journal (created, or resumed), required\n"
+        "  --lcm-url URL           publish LCM telemetry here (memq://, udpm://...?ttl=0);\n"
+        "                          default: no telemetry\n"
+        "  --summary FILE          write a JSON summary of the run here\n"
+        "  --quiet                 no progress lines on stderr\n"
+        "  -h, --help              this text\n"
+        "\n"
+        "exit status: 0 row done (--check-plan: every pick accepted); 1 runtime error; 2 bad "
+        "input;\n"
+        "3 stopped in the safe state (the nodes hold an e-stop: restart with --clear-estop NAME "
+        "once\n"
+        "the cause is dealt with); 4 not started: a node reports a latched e-stop and "
+        "--clear-estop\n"
+        "was not given (nothing but e-stop frames and heartbeats was sent; the summary's\n"
+        "estop_latched names the nodes); 5 --check-plan: the IK refuses a planned pick.\n"
+        "Expected makespan (compared with the executed one): per stop the slower arm's sum of\n"
+        "pick cycles (2 x IK move time home->fruit + pick.cut_time + pick.release_time of the\n"
+        "config) plus trapezoid vehicle moves\n"
+        "between stops, from the course's start to its end (the row and the plan's stop margin\n"
+        "beyond each end; the vehicle is expected at the course's start).\n");
 }
 
 typedef struct opts {
@@ -129,22 +147,29 @@ static int parse_double(const char *name, const char *s, double min, double *out
 
 static int parse_args(int argc, char **argv, opts_t *o)
 {
-    static const struct option lo[] = {
-        {"plan", required_argument, 0, 'p'},        {"config", required_argument, 0, 'c'},
-        {"cost-table-left", required_argument, 0, 'L'},
-        {"cost-table-right", required_argument, 0, 'R'},
-        {"transport", required_argument, 0, 't'},   {"channel", required_argument, 0, 'C'},
-        {"port", required_argument, 0, 'P'},        {"time-scale", required_argument, 0, 'k'},
-        {"margin", required_argument, 0, 'm'},      {"slack", required_argument, 0, 's'},
-        {"max-retries", required_argument, 0, 'n'},
-        {"startup-timeout", required_argument, 0, 'w'},
-        {"heartbeat-timeout", required_argument, 0, 'H'},
-        {"latency", required_argument, 0, 'a'},
-        {"journal", required_argument, 0, 'j'},     {"lcm-url", required_argument, 0, 'l'},
-        {"summary", required_argument, 0, 'S'},     {"quiet", no_argument, 0, 'q'},
-        {"check-plan", no_argument, 0, 'K'},      {"online", no_argument, 0, 'O'},
-        {"clear-estop", required_argument, 0, 'E'},
-        {"help", no_argument, 0, 'h'},              {0, 0, 0, 0}};
+    static const struct option lo[] = {{"plan", required_argument, 0, 'p'},
+                                       {"config", required_argument, 0, 'c'},
+                                       {"cost-table-left", required_argument, 0, 'L'},
+                                       {"cost-table-right", required_argument, 0, 'R'},
+                                       {"transport", required_argument, 0, 't'},
+                                       {"channel", required_argument, 0, 'C'},
+                                       {"port", required_argument, 0, 'P'},
+                                       {"time-scale", required_argument, 0, 'k'},
+                                       {"margin", required_argument, 0, 'm'},
+                                       {"slack", required_argument, 0, 's'},
+                                       {"max-retries", required_argument, 0, 'n'},
+                                       {"startup-timeout", required_argument, 0, 'w'},
+                                       {"heartbeat-timeout", required_argument, 0, 'H'},
+                                       {"latency", required_argument, 0, 'a'},
+                                       {"journal", required_argument, 0, 'j'},
+                                       {"lcm-url", required_argument, 0, 'l'},
+                                       {"summary", required_argument, 0, 'S'},
+                                       {"quiet", no_argument, 0, 'q'},
+                                       {"check-plan", no_argument, 0, 'K'},
+                                       {"online", no_argument, 0, 'O'},
+                                       {"clear-estop", required_argument, 0, 'E'},
+                                       {"help", no_argument, 0, 'h'},
+                                       {0, 0, 0, 0}};
     memset(o, 0, sizeof *o);
     o->transport = "udp";
     o->port = HV_CAN_UDP_DEFAULT_PORT;
@@ -169,12 +194,30 @@ static int parse_args(int argc, char **argv, opts_t *o)
                 return -1;
             o->port = (int)v;
             break;
-        case 'k': if (parse_double("time-scale", optarg, 0, &o->time_scale)) return -1; break;
-        case 'm': if (parse_double("margin", optarg, 0, &o->margin)) return -1; break;
-        case 's': if (parse_double("slack", optarg, 0, &o->slack_s)) return -1; break;
-        case 'w': if (parse_double("startup-timeout", optarg, 0.1, &o->startup_s)) return -1; break;
-        case 'H': if (parse_double("heartbeat-timeout", optarg, 0.05, &o->hb_timeout_s)) return -1; break;
-        case 'a': if (parse_double("latency", optarg, 0, &o->latency_s)) return -1; break;
+        case 'k':
+            if (parse_double("time-scale", optarg, 0, &o->time_scale))
+                return -1;
+            break;
+        case 'm':
+            if (parse_double("margin", optarg, 0, &o->margin))
+                return -1;
+            break;
+        case 's':
+            if (parse_double("slack", optarg, 0, &o->slack_s))
+                return -1;
+            break;
+        case 'w':
+            if (parse_double("startup-timeout", optarg, 0.1, &o->startup_s))
+                return -1;
+            break;
+        case 'H':
+            if (parse_double("heartbeat-timeout", optarg, 0.05, &o->hb_timeout_s))
+                return -1;
+            break;
+        case 'a':
+            if (parse_double("latency", optarg, 0, &o->latency_s))
+                return -1;
+            break;
         case 'n':
             if (parse_double("max-retries", optarg, 0, &v) || v > 20 || v != floor(v))
                 return -1;
@@ -188,8 +231,10 @@ static int parse_args(int argc, char **argv, opts_t *o)
         case 'O': o->online = 1; break;
         case 'E':
             if (!hv_exec_journal_operator_ok(optarg)) {
-                fprintf(stderr, "harvest-exec: --clear-estop: expected the operator's name, 1-32 "
-                        "of A-Z a-z 0-9 . _ -, got '%s'\n", optarg);
+                fprintf(stderr,
+                        "harvest-exec: --clear-estop: expected the operator's name, 1-32 "
+                        "of A-Z a-z 0-9 . _ -, got '%s'\n",
+                        optarg);
                 return -1;
             }
             o->clear_by = optarg;
@@ -204,11 +249,13 @@ static int parse_args(int argc, char **argv, opts_t *o)
     }
     if (o->online && (o->plan || o->check_only || !o->lcm_url)) {
         fprintf(stderr, "harvest-exec: --online takes no --plan nor --check-plan, and needs "
-                "--lcm-url (see --help)\n");
+                        "--lcm-url (see --help)\n");
         return -1;
     }
-    const char *missing = !o->plan && !o->online ? "--plan" : !o->config ? "--config"
-                        : !o->journal && !o->check_only ? "--journal" : NULL;
+    const char *missing = !o->plan && !o->online          ? "--plan"
+                          : !o->config                    ? "--config"
+                          : !o->journal && !o->check_only ? "--journal"
+                                                          : NULL;
     if (missing) {
         fprintf(stderr, "harvest-exec: %s is required (see --help)\n", missing);
         return -1;
@@ -254,7 +301,8 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
     for (uint16_t i = 0; i < w->plan.n_picks; i++)
         if (sm->prog.pick[i] == HV_PROG_DONE)
             outcome[sm->prog.outcome[i]]++;
-    int n = snprintf(buf, sizeof buf,
+    int n = snprintf(
+        buf, sizeof buf,
         "{\n  \"phase\": \"%s\",\n  \"safe_reason\": \"%s\",\n  \"safe_node\": %d,\n"
         "  \"fruits_planned\": %u,\n  \"picked\": %u,\n  \"failed\": %u,\n  \"skipped\": %u,\n"
         "  \"remaining\": %u,\n  \"picked_this_run\": %u,\n  \"failed_this_run\": %u,\n"
@@ -281,12 +329,11 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
         (unsigned long long)st->step_ns_max, (unsigned long long)st->frames_rx,
         (unsigned long long)st->frames_tx, (unsigned long long)st->send_failures,
         (unsigned long long)st->frames_rx_malformed, (unsigned long long)cs.rx_malformed,
-        (unsigned long long)cs.rx_unsupported,
-        (unsigned long long)st->journal_records, o->journal, hv_can_name(&w->bus),
-        latched, sm->latched && sm->prm.clear_estop ? "true" : "false",
-        hv_exec_node_name(sm->safe_node), o->online ? "true" : "false",
-        (unsigned)w->plan.n_stops, sm->plan_final ? "true" : "false", wait_first, wait_row,
-        sm->waits, w->feed_stats.messages, w->feed_stats.refused);
+        (unsigned long long)cs.rx_unsupported, (unsigned long long)st->journal_records, o->journal,
+        hv_can_name(&w->bus), latched, sm->latched && sm->prm.clear_estop ? "true" : "false",
+        hv_exec_node_name(sm->safe_node), o->online ? "true" : "false", (unsigned)w->plan.n_stops,
+        sm->plan_final ? "true" : "false", wait_first, wait_row, sm->waits, w->feed_stats.messages,
+        w->feed_stats.refused);
     char err[256];
     if (n < 0 || (size_t)n >= sizeof buf ||
         hv_file_write_atomic(o->summary, buf, (size_t)n, err, sizeof err) != HV_OK)
@@ -351,9 +398,10 @@ int main(int argc, char **argv)
         return EXIT_USAGE;
     }
     if (w->plan.stop_margin_m > margin_m + 1e-9) {
-        fprintf(stderr, "harvest-exec: %s: params.stop_margin_m: %g m beyond the row's ends, "
-                "but from there no arm of %s reaches the row (at most %g m) (%s)\n", o.plan,
-                w->plan.stop_margin_m, o.config, margin_m,
+        fprintf(stderr,
+                "harvest-exec: %s: params.stop_margin_m: %g m beyond the row's ends, "
+                "but from there no arm of %s reaches the row (at most %g m) (%s)\n",
+                o.plan, w->plan.stop_margin_m, o.config, margin_m,
                 hv_exec_status_name(HV_ERR_EXEC_PLAN_RANGE));
         free(w);
         return EXIT_USAGE;
@@ -368,24 +416,25 @@ int main(int argc, char **argv)
     }
     for (uint16_t i = 0; i < w->plan.n_picks; i++)
         if (!w->plan.picks[i].reachable)
-            fprintf(stderr, "harvest-exec: %s: fruit %s (%c): the IK finds no pose within the "
-                    "joint limits (%s): it will be skipped\n", o.plan, w->plan.picks[i].id,
-                    w->plan.picks[i].side == HV_SIDE_LEFT ? 'L' : 'R',
+            fprintf(stderr,
+                    "harvest-exec: %s: fruit %s (%c): the IK finds no pose within the "
+                    "joint limits (%s): it will be skipped\n",
+                    o.plan, w->plan.picks[i].id, w->plan.picks[i].side == HV_SIDE_LEFT ? 'L' : 'R',
                     hv_status_name(w->plan.picks[i].ik_status));
     if (o.check_only) {
         printf("harvest-exec: %s: %u stops, %u picks, %u refused by the IK; expected makespan "
-               "%.3f s (plan's objective %.3f s)\n", o.plan, (unsigned)w->plan.n_stops,
-               (unsigned)w->plan.n_picks, w->plan.n_unreachable, w->plan.expected_makespan_s,
-               w->plan.planned_makespan_s);
+               "%.3f s (plan's objective %.3f s)\n",
+               o.plan, (unsigned)w->plan.n_stops, (unsigned)w->plan.n_picks, w->plan.n_unreachable,
+               w->plan.expected_makespan_s, w->plan.planned_makespan_s);
         int rc = w->plan.n_unreachable ? EXIT_REFUSED : EXIT_ROW_DONE;
         free(w);
         return rc;
     }
 
-    st = o.online ? hv_exec_journal_open_online(&w->journal, o.journal, &w->plan, &w->prog, err,
-                                                sizeof err)
-                  : hv_exec_journal_open(&w->journal, o.journal, &w->plan, &w->prog, err,
-                                         sizeof err);
+    st = o.online
+             ? hv_exec_journal_open_online(&w->journal, o.journal, &w->plan, &w->prog, err,
+                                           sizeof err)
+             : hv_exec_journal_open(&w->journal, o.journal, &w->plan, &w->prog, err, sizeof err);
     if (st != HV_OK) {
         fprintf(stderr, "harvest-exec: %s\n", err);
         free(w);
@@ -396,7 +445,8 @@ int main(int argc, char **argv)
     if (o.online && w->plan.n_stops &&
         (w->plan.stop_margin_m > margin_m + 1e-9 ||
          (st = hv_exec_plan_prepare(&w->plan, arms, &timing)) != HV_OK)) {
-        fprintf(stderr, "harvest-exec: %s: the committed stops it holds cannot be run with %s "
+        fprintf(stderr,
+                "harvest-exec: %s: the committed stops it holds cannot be run with %s "
                 "(a stop margin beyond the arms' reach, or a stop off the course)\n",
                 o.journal, o.config);
         hv_exec_journal_close(&w->journal);
@@ -408,14 +458,17 @@ int main(int argc, char **argv)
         done += w->prog.pick[i] == HV_PROG_DONE;
     if (w->prog.row_done) {
         printf("harvest-exec: %s: the journal says this row is done (%u/%u fruits have an "
-               "outcome): nothing to do\n", o.journal, done, (unsigned)w->plan.n_picks);
+               "outcome): nothing to do\n",
+               o.journal, done, (unsigned)w->plan.n_picks);
         hv_exec_journal_close(&w->journal);
         free(w);
         return EXIT_ROW_DONE;
     }
     if (done || w->journal.records > 1)
-        fprintf(stderr, "harvest-exec: resuming from %s: %u of %u fruits already have an "
-                "outcome%s%s\n", o.journal, done, (unsigned)w->plan.n_picks,
+        fprintf(stderr,
+                "harvest-exec: resuming from %s: %u of %u fruits already have an "
+                "outcome%s%s\n",
+                o.journal, done, (unsigned)w->plan.n_picks,
                 o.online ? "; the committed stops rebuilt from it" : "",
                 w->journal.torn_bytes ? " (a torn last record was cut off)" : "");
 
@@ -496,11 +549,13 @@ int main(int argc, char **argv)
     hv_exec_tm_plan(&w->tm, &w->plan, o.plan ? o.plan : "(online)", &prm, o.time_scale,
                     (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000);
     if (!o.quiet && o.online)
-        fprintf(stderr, "harvest-exec: online on %s: the plan grows from the planner's "
+        fprintf(stderr,
+                "harvest-exec: online on %s: the plan grows from the planner's "
                 "committed stops (HARVEST_PLAN_COMMIT on %s); waiting for the nodes\n",
                 hv_can_name(&w->bus), o.lcm_url);
     else if (!o.quiet)
-        fprintf(stderr, "harvest-exec: %u stops, %u fruits on %s; expected makespan %.1f s "
+        fprintf(stderr,
+                "harvest-exec: %u stops, %u fruits on %s; expected makespan %.1f s "
                 "(plan's objective %.1f s); waiting for the nodes\n",
                 (unsigned)w->plan.n_stops, (unsigned)w->plan.n_picks, hv_can_name(&w->bus),
                 w->plan.expected_makespan_s, w->plan.planned_makespan_s);
@@ -522,10 +577,10 @@ int main(int argc, char **argv)
     double cpu_s = (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec * 1e-6 +
                    (double)ru.ru_stime.tv_sec + (double)ru.ru_stime.tv_usec * 1e-6;
 
-    int rc = st != HV_OK                                 ? EXIT_RUNTIME
-             : w->sm.phase == HV_PH_ROW_DONE             ? EXIT_ROW_DONE
+    int rc = st != HV_OK                                  ? EXIT_RUNTIME
+             : w->sm.phase == HV_PH_ROW_DONE              ? EXIT_ROW_DONE
              : w->sm.safe_reason == HV_SAFE_ESTOP_LATCHED ? EXIT_ESTOP_LATCHED
-                                                         : EXIT_SAFE;
+                                                          : EXIT_SAFE;
     /* an online plan has no objective of its own: the planner's horizons each had one */
     char objective[96];
     if (o.online)
@@ -539,26 +594,26 @@ int main(int argc, char **argv)
            hv_exec_phase_name(w->sm.phase), w->sm.phase == HV_PH_SAFE ? " " : "",
            w->sm.phase == HV_PH_SAFE ? hv_exec_safe_reason_name(w->sm.safe_reason) : "",
            w->sm.picked, w->sm.failed, w->sm.skipped, hv_exec_remaining(&w->sm), w->sm.faults,
-           hv_exec_executed_s(&w->sm, hv_exec_now_ns()), w->plan.expected_makespan_s,
-           objective);
+           hv_exec_executed_s(&w->sm, hv_exec_now_ns()), w->plan.expected_makespan_s, objective);
     if (rc == EXIT_ESTOP_LATCHED) {
         char latched[64];
         hv_exec_node_list(w->sm.latched, latched, sizeof latched);
         printf("harvest-exec: latched e-stop on %s: not started, nothing enabled. Once its "
                "cause is dealt with, an operator clears it by restarting with "
-               "--clear-estop NAME\n", latched);
-    }
-    else if (rc == EXIT_SAFE)
+               "--clear-estop NAME\n",
+               latched);
+    } else if (rc == EXIT_SAFE)
         printf("harvest-exec: the nodes hold the e-stop (%s, %s): a restart needs "
-               "--clear-estop NAME\n", hv_exec_safe_reason_name(w->sm.safe_reason),
-               hv_exec_node_name(w->sm.safe_node));
+               "--clear-estop NAME\n",
+               hv_exec_safe_reason_name(w->sm.safe_reason), hv_exec_node_name(w->sm.safe_node));
 #ifdef HV_WITH_LCM
     if (o.online) {
         w->feed_stats = *hv_exec_feed_lcm_stats(&w->feed);
         if (w->feed_stats.refused)
-            fprintf(stderr, "harvest-exec: %u of the planner's %u messages refused, the last "
-                    "for %s\n", w->feed_stats.refused, w->feed_stats.messages,
-                    w->feed_stats.last_refusal);
+            fprintf(stderr,
+                    "harvest-exec: %u of the planner's %u messages refused, the last "
+                    "for %s\n",
+                    w->feed_stats.refused, w->feed_stats.messages, w->feed_stats.last_refusal);
         hv_exec_feed_lcm_close(&w->feed);
     }
 #endif

@@ -19,23 +19,25 @@
 
 static void usage(FILE *out)
 {
-    fprintf(out,
-"usage: harvest-fw-plan --plan PLAN.json --config harvest.cfg --out IMAGE [options]\n"
-"\n"
-"Write the plan image harvest-fw.elf takes over the bus (ExecutorPlanBegin/Data): the plan\n"
-"prepared as harvest-exec prepares it (IK of every pick with the config's arms, expected\n"
-"times) and the executor's parameters. Prints the image's size, CRC-32 and the expected\n"
-"makespan. Refuses a plan larger than the firmware's tables (%u stops, %u picks).\n"
-"\n"
-"  --plan FILE             plan file (docs/PLAN_FORMAT.md), required\n"
-"  --config FILE           harvest.cfg, required\n"
-"  --out FILE              the image, required\n"
-"  --time-scale K          expected node time scale; 0 = take the nodes' (default 0)\n"
-"  --heartbeat-timeout S   wall s without a node's heartbeat = lost (default 0.5)\n"
-"  --startup-timeout S     wall s to see every node (default 10)\n"
-"  -h, --help              this text\n"
-"exit status: 0 written; 2 bad input (the file and field named).\n",
-            (unsigned)HV_FW_MAX_STOPS, (unsigned)HV_FW_MAX_PICKS);
+    fprintf(
+        out,
+        "usage: harvest-fw-plan --plan PLAN.json --config harvest.cfg --out IMAGE [options]\n"
+        "\n"
+        "Write the plan image harvest-fw.elf takes over the bus (ExecutorPlanBegin/Data): the "
+        "plan\n"
+        "prepared as harvest-exec prepares it (IK of every pick with the config's arms, expected\n"
+        "times) and the executor's parameters. Prints the image's size, CRC-32 and the expected\n"
+        "makespan. Refuses a plan larger than the firmware's tables (%u stops, %u picks).\n"
+        "\n"
+        "  --plan FILE             plan file (docs/PLAN_FORMAT.md), required\n"
+        "  --config FILE           harvest.cfg, required\n"
+        "  --out FILE              the image, required\n"
+        "  --time-scale K          expected node time scale; 0 = take the nodes' (default 0)\n"
+        "  --heartbeat-timeout S   wall s without a node's heartbeat = lost (default 0.5)\n"
+        "  --startup-timeout S     wall s to see every node (default 10)\n"
+        "  -h, --help              this text\n"
+        "exit status: 0 written; 2 bad input (the file and field named).\n",
+        (unsigned)HV_FW_MAX_STOPS, (unsigned)HV_FW_MAX_PICKS);
 }
 
 static int number(const char *name, const char *s, double *out)
@@ -56,12 +58,14 @@ int main(int argc, char **argv)
     const char *plan_path = NULL, *config = NULL, *out = NULL;
     hv_exec_params_t prm;
     hv_exec_params_default(&prm);
-    static const struct option opts[] = {
-        {"plan", required_argument, 0, 'p'}, {"config", required_argument, 0, 'c'},
-        {"out", required_argument, 0, 'o'}, {"time-scale", required_argument, 0, 't'},
-        {"heartbeat-timeout", required_argument, 0, 'b'},
-        {"startup-timeout", required_argument, 0, 's'}, {"help", no_argument, 0, 'h'},
-        {0, 0, 0, 0}};
+    static const struct option opts[] = {{"plan", required_argument, 0, 'p'},
+                                         {"config", required_argument, 0, 'c'},
+                                         {"out", required_argument, 0, 'o'},
+                                         {"time-scale", required_argument, 0, 't'},
+                                         {"heartbeat-timeout", required_argument, 0, 'b'},
+                                         {"startup-timeout", required_argument, 0, 's'},
+                                         {"help", no_argument, 0, 'h'},
+                                         {0, 0, 0, 0}};
     int c;
     while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
         int bad = 0;
@@ -99,15 +103,19 @@ int main(int argc, char **argv)
     }
     double margin_m = 0.0;
     if (hv_pick_stop_margin(&cfg, &margin_m) != HV_OK || plan->stop_margin_m > margin_m + 1e-9) {
-        fprintf(stderr, "harvest-fw-plan: %s: params.stop_margin_m: %g m, the arms of %s reach "
-                "the row from at most %g m beyond its ends (%s)\n", plan_path,
-                plan->stop_margin_m, config, margin_m, hv_exec_status_name(HV_ERR_EXEC_PLAN_RANGE));
+        fprintf(stderr,
+                "harvest-fw-plan: %s: params.stop_margin_m: %g m, the arms of %s reach "
+                "the row from at most %g m beyond its ends (%s)\n",
+                plan_path, plan->stop_margin_m, config, margin_m,
+                hv_exec_status_name(HV_ERR_EXEC_PLAN_RANGE));
         free(plan);
         return 2;
     }
     if (plan->n_stops > HV_FW_MAX_STOPS || plan->n_picks > HV_FW_MAX_PICKS) {
-        fprintf(stderr, "harvest-fw-plan: %s: %u stops and %u picks, the firmware holds %u and "
-                "%u (%s)\n", plan_path, (unsigned)plan->n_stops, (unsigned)plan->n_picks,
+        fprintf(stderr,
+                "harvest-fw-plan: %s: %u stops and %u picks, the firmware holds %u and "
+                "%u (%s)\n",
+                plan_path, (unsigned)plan->n_stops, (unsigned)plan->n_picks,
                 (unsigned)HV_FW_MAX_STOPS, (unsigned)HV_FW_MAX_PICKS,
                 hv_exec_status_name(HV_ERR_EXEC_PLAN_CAPACITY));
         free(plan);
@@ -138,8 +146,8 @@ int main(int argc, char **argv)
         return 2;
     }
     printf("harvest-fw-plan: %s: %zu bytes, crc32 %08lx, %u stops, %u picks (%u refused by the "
-           "IK), expected makespan %.3f s\n", out, size,
-           (unsigned long)hv_crc32(0, buf, size), (unsigned)plan->n_stops,
+           "IK), expected makespan %.3f s\n",
+           out, size, (unsigned long)hv_crc32(0, buf, size), (unsigned)plan->n_stops,
            (unsigned)plan->n_picks, plan->n_unreachable, plan->expected_makespan_s);
     free(buf);
     free(plan);

@@ -1,5 +1,6 @@
 """`harvest-stack <command> [args]` (or `python -m harvest ...`): dispatch to
 harvest.<command>.cli:main(argv)."""
+
 import importlib
 import sys
 
@@ -13,8 +14,11 @@ COMMANDS = {
 
 
 def _usage(stream):
-    print("usage: harvest-stack <command> [--help] [args...]   (or: python -m harvest ...)\n\n"
-          "commands:", file=stream)
+    print(
+        "usage: harvest-stack <command> [--help] [args...]   (or: python -m harvest ...)\n\n"
+        "commands:",
+        file=stream,
+    )
     for name, what in COMMANDS.items():
         print(f"  {name:<12} {what}", file=stream)
 

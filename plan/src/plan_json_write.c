@@ -40,7 +40,10 @@ static void jw_put(jw_t *w, const char *s, size_t n)
     w->buf[w->len] = '\0';
 }
 
-static void jw_raw(jw_t *w, const char *s) { jw_put(w, s, strlen(s)); }
+static void jw_raw(jw_t *w, const char *s)
+{
+    jw_put(w, s, strlen(s));
+}
 
 static void jw_str(jw_t *w, const char *s)
 {
@@ -112,13 +115,26 @@ static void jw_picks(jw_t *w, const hv_plan_pick_t *picks, size_t n)
     for (size_t k = 0; k < n; ++k) {
         const hv_plan_pick_t *pk = &picks[k];
         jw_raw(w, k ? ",\n       {" : "\n       {");
-        jw_key(w, "id"); jw_str(w, pk->id);
-        jw_raw(w, ", "); jw_key(w, "x"); jw_num(w, pk->x_m);
-        jw_raw(w, ", "); jw_key(w, "y"); jw_num(w, pk->y_m);
-        jw_raw(w, ", "); jw_key(w, "z"); jw_num(w, pk->z_m);
-        jw_raw(w, ", "); jw_key(w, "yaw"); jw_num(w, pk->yaw_rad);
-        jw_raw(w, ", "); jw_key(w, "cost_s"); jw_num(w, pk->cost_s);
-        jw_raw(w, ", "); jw_key(w, "start_s"); jw_num(w, pk->start_s);
+        jw_key(w, "id");
+        jw_str(w, pk->id);
+        jw_raw(w, ", ");
+        jw_key(w, "x");
+        jw_num(w, pk->x_m);
+        jw_raw(w, ", ");
+        jw_key(w, "y");
+        jw_num(w, pk->y_m);
+        jw_raw(w, ", ");
+        jw_key(w, "z");
+        jw_num(w, pk->z_m);
+        jw_raw(w, ", ");
+        jw_key(w, "yaw");
+        jw_num(w, pk->yaw_rad);
+        jw_raw(w, ", ");
+        jw_key(w, "cost_s");
+        jw_num(w, pk->cost_s);
+        jw_raw(w, ", ");
+        jw_key(w, "start_s");
+        jw_num(w, pk->start_s);
         jw_raw(w, "}");
     }
     jw_raw(w, "]");
@@ -132,87 +148,176 @@ hv_status_t hv_plan_to_json(const hv_plan_t *plan, char **text, size_t *len)
     jw_t w = {0};
     jw_raw(&w, "{\n  \"format\": \"harvest-plan\", \"version\": ");
     jw_fmt(&w, "%d", HV_PLAN_FORMAT_VERSION);
-    jw_raw(&w, ",\n  "); jw_key(&w, "method"); jw_str(&w, plan->method);
+    jw_raw(&w, ",\n  ");
+    jw_key(&w, "method");
+    jw_str(&w, plan->method);
 
-    jw_raw(&w, ",\n  "); jw_key(&w, "inputs");
-    jw_raw(&w, "{"); jw_key(&w, "fruit_map"); jw_str(&w, plan->fruit_map);
-    jw_raw(&w, ", "); jw_key(&w, "cost_table_left"); jw_str(&w, plan->cost_table_left);
-    jw_raw(&w, ", "); jw_key(&w, "cost_table_right"); jw_str(&w, plan->cost_table_right);
-    jw_raw(&w, ", "); jw_key(&w, "config"); jw_str(&w, plan->config);
+    jw_raw(&w, ",\n  ");
+    jw_key(&w, "inputs");
+    jw_raw(&w, "{");
+    jw_key(&w, "fruit_map");
+    jw_str(&w, plan->fruit_map);
+    jw_raw(&w, ", ");
+    jw_key(&w, "cost_table_left");
+    jw_str(&w, plan->cost_table_left);
+    jw_raw(&w, ", ");
+    jw_key(&w, "cost_table_right");
+    jw_str(&w, plan->cost_table_right);
+    jw_raw(&w, ", ");
+    jw_key(&w, "config");
+    jw_str(&w, plan->config);
     jw_raw(&w, "}");
 
-    jw_raw(&w, ",\n  "); jw_key(&w, "params");
-    jw_raw(&w, "{"); jw_key(&w, "stop_step_m"); jw_num(&w, plan->stop_step_m);
-    jw_raw(&w, ", "); jw_key(&w, "row_start_m"); jw_num(&w, plan->row_start_m);
-    jw_raw(&w, ", "); jw_key(&w, "row_length_m"); jw_num(&w, plan->row_length_m);
-    jw_raw(&w, ", "); jw_key(&w, "stop_penalty_s"); jw_num(&w, plan->stop_penalty_s);
-    jw_raw(&w, ", "); jw_key(&w, "vehicle_speed_mps"); jw_num(&w, plan->vehicle_speed_mps);
-    jw_raw(&w, ", "); jw_key(&w, "travel_time_s"); jw_num(&w, plan->travel_time_s);
-    jw_raw(&w, ", "); jw_key(&w, "stop_margin_m"); jw_num(&w, plan->stop_margin_m);
-    jw_raw(&w, ", "); jw_key(&w, "pick_time"); jw_str(&w, plan->pick_time);
+    jw_raw(&w, ",\n  ");
+    jw_key(&w, "params");
+    jw_raw(&w, "{");
+    jw_key(&w, "stop_step_m");
+    jw_num(&w, plan->stop_step_m);
+    jw_raw(&w, ", ");
+    jw_key(&w, "row_start_m");
+    jw_num(&w, plan->row_start_m);
+    jw_raw(&w, ", ");
+    jw_key(&w, "row_length_m");
+    jw_num(&w, plan->row_length_m);
+    jw_raw(&w, ", ");
+    jw_key(&w, "stop_penalty_s");
+    jw_num(&w, plan->stop_penalty_s);
+    jw_raw(&w, ", ");
+    jw_key(&w, "vehicle_speed_mps");
+    jw_num(&w, plan->vehicle_speed_mps);
+    jw_raw(&w, ", ");
+    jw_key(&w, "travel_time_s");
+    jw_num(&w, plan->travel_time_s);
+    jw_raw(&w, ", ");
+    jw_key(&w, "stop_margin_m");
+    jw_num(&w, plan->stop_margin_m);
+    jw_raw(&w, ", ");
+    jw_key(&w, "pick_time");
+    jw_str(&w, plan->pick_time);
     jw_raw(&w, "}");
 
-    jw_raw(&w, ",\n  "); jw_key(&w, "solver");
-    jw_raw(&w, "{"); jw_key(&w, "status"); jw_str(&w, plan->solver_status);
-    jw_raw(&w, ", "); jw_key(&w, "gap");
+    jw_raw(&w, ",\n  ");
+    jw_key(&w, "solver");
+    jw_raw(&w, "{");
+    jw_key(&w, "status");
+    jw_str(&w, plan->solver_status);
+    jw_raw(&w, ", ");
+    jw_key(&w, "gap");
     if (plan->gap < 0) {
         jw_raw(&w, "null");
     } else {
         jw_num(&w, plan->gap);
     }
-    jw_raw(&w, ", "); jw_key(&w, "nodes"); jw_fmt(&w, "%ld", plan->nodes);
-    jw_raw(&w, ", "); jw_key(&w, "runtime_s"); jw_num(&w, plan->runtime_s);
-    jw_raw(&w, ", "); jw_key(&w, "time_limit_s"); jw_num(&w, plan->time_limit_s);
+    jw_raw(&w, ", ");
+    jw_key(&w, "nodes");
+    jw_fmt(&w, "%ld", plan->nodes);
+    jw_raw(&w, ", ");
+    jw_key(&w, "runtime_s");
+    jw_num(&w, plan->runtime_s);
+    jw_raw(&w, ", ");
+    jw_key(&w, "time_limit_s");
+    jw_num(&w, plan->time_limit_s);
     jw_raw(&w, "}");
 
-    jw_raw(&w, ",\n  "); jw_key(&w, "totals");
-    jw_raw(&w, "{"); jw_key(&w, "makespan_s"); jw_num(&w, plan->makespan_s);
-    jw_raw(&w, ", "); jw_key(&w, "pick_time_s"); jw_num(&w, plan->pick_time_s);
-    jw_raw(&w, ", "); jw_key(&w, "stop_time_s"); jw_num(&w, plan->stop_time_s);
-    jw_raw(&w, ", "); jw_key(&w, "travel_time_s"); jw_num(&w, plan->total_travel_time_s);
-    jw_raw(&w, ", "); jw_key(&w, "stops"); jw_fmt(&w, "%zu", plan->n_stops_total);
-    jw_raw(&w, ", "); jw_key(&w, "fruits_planned"); jw_fmt(&w, "%zu", plan->fruits_planned);
-    jw_raw(&w, ", "); jw_key(&w, "fruits_unreachable");
+    jw_raw(&w, ",\n  ");
+    jw_key(&w, "totals");
+    jw_raw(&w, "{");
+    jw_key(&w, "makespan_s");
+    jw_num(&w, plan->makespan_s);
+    jw_raw(&w, ", ");
+    jw_key(&w, "pick_time_s");
+    jw_num(&w, plan->pick_time_s);
+    jw_raw(&w, ", ");
+    jw_key(&w, "stop_time_s");
+    jw_num(&w, plan->stop_time_s);
+    jw_raw(&w, ", ");
+    jw_key(&w, "travel_time_s");
+    jw_num(&w, plan->total_travel_time_s);
+    jw_raw(&w, ", ");
+    jw_key(&w, "stops");
+    jw_fmt(&w, "%zu", plan->n_stops_total);
+    jw_raw(&w, ", ");
+    jw_key(&w, "fruits_planned");
+    jw_fmt(&w, "%zu", plan->fruits_planned);
+    jw_raw(&w, ", ");
+    jw_key(&w, "fruits_unreachable");
     jw_fmt(&w, "%zu", plan->fruits_unreachable);
-    jw_raw(&w, ", "); jw_key(&w, "throughput_fruit_per_s");
+    jw_raw(&w, ", ");
+    jw_key(&w, "throughput_fruit_per_s");
     jw_num(&w, plan->throughput_fruit_per_s);
     jw_raw(&w, "}");
 
     if (plan->horizon.used) {
-        jw_raw(&w, ",\n  "); jw_key(&w, "horizon");
-        jw_raw(&w, "{"); jw_key(&w, "window_m"); jw_num(&w, plan->horizon.window_m);
-        jw_raw(&w, ", "); jw_key(&w, "commit_m"); jw_num(&w, plan->horizon.commit_m);
-        jw_raw(&w, ", "); jw_key(&w, "windows"); jw_fmt(&w, "%u", (unsigned)plan->horizon.windows);
-        jw_raw(&w, ", "); jw_key(&w, "windows_optimal");
+        jw_raw(&w, ",\n  ");
+        jw_key(&w, "horizon");
+        jw_raw(&w, "{");
+        jw_key(&w, "window_m");
+        jw_num(&w, plan->horizon.window_m);
+        jw_raw(&w, ", ");
+        jw_key(&w, "commit_m");
+        jw_num(&w, plan->horizon.commit_m);
+        jw_raw(&w, ", ");
+        jw_key(&w, "windows");
+        jw_fmt(&w, "%u", (unsigned)plan->horizon.windows);
+        jw_raw(&w, ", ");
+        jw_key(&w, "windows_optimal");
         jw_fmt(&w, "%u", (unsigned)plan->horizon.windows_optimal);
         jw_raw(&w, "}");
     }
 
-    jw_raw(&w, ",\n  "); jw_key(&w, "stops"); jw_raw(&w, "[");
+    jw_raw(&w, ",\n  ");
+    jw_key(&w, "stops");
+    jw_raw(&w, "[");
     for (size_t s = 0; s < plan->n_stops; ++s) {
         const hv_plan_stop_t *st = &plan->stops[s];
         jw_raw(&w, s ? ",\n    {" : "\n    {");
-        jw_key(&w, "index"); jw_fmt(&w, "%u", (unsigned)st->index);
-        jw_raw(&w, ", "); jw_key(&w, "y_m"); jw_num(&w, st->y_m);
-        jw_raw(&w, ", "); jw_key(&w, "pass"); jw_fmt(&w, "%d", st->pass);
-        jw_raw(&w, ",\n     "); jw_key(&w, "C_left_s"); jw_num(&w, st->c_left_s);
-        jw_raw(&w, ", "); jw_key(&w, "C_right_s"); jw_num(&w, st->c_right_s);
-        jw_raw(&w, ", "); jw_key(&w, "C_s"); jw_num(&w, st->c_s);
-        jw_raw(&w, ", "); jw_key(&w, "idle_left_s"); jw_num(&w, st->idle_left_s);
-        jw_raw(&w, ", "); jw_key(&w, "idle_right_s"); jw_num(&w, st->idle_right_s);
-        jw_raw(&w, ",\n     "); jw_key(&w, "left"); jw_picks(&w, st->left, st->n_left);
-        jw_raw(&w, ",\n     "); jw_key(&w, "right"); jw_picks(&w, st->right, st->n_right);
+        jw_key(&w, "index");
+        jw_fmt(&w, "%u", (unsigned)st->index);
+        jw_raw(&w, ", ");
+        jw_key(&w, "y_m");
+        jw_num(&w, st->y_m);
+        jw_raw(&w, ", ");
+        jw_key(&w, "pass");
+        jw_fmt(&w, "%d", st->pass);
+        jw_raw(&w, ",\n     ");
+        jw_key(&w, "C_left_s");
+        jw_num(&w, st->c_left_s);
+        jw_raw(&w, ", ");
+        jw_key(&w, "C_right_s");
+        jw_num(&w, st->c_right_s);
+        jw_raw(&w, ", ");
+        jw_key(&w, "C_s");
+        jw_num(&w, st->c_s);
+        jw_raw(&w, ", ");
+        jw_key(&w, "idle_left_s");
+        jw_num(&w, st->idle_left_s);
+        jw_raw(&w, ", ");
+        jw_key(&w, "idle_right_s");
+        jw_num(&w, st->idle_right_s);
+        jw_raw(&w, ",\n     ");
+        jw_key(&w, "left");
+        jw_picks(&w, st->left, st->n_left);
+        jw_raw(&w, ",\n     ");
+        jw_key(&w, "right");
+        jw_picks(&w, st->right, st->n_right);
         jw_raw(&w, "}");
     }
     jw_raw(&w, plan->n_stops ? "\n  ]" : "]");
 
-    jw_raw(&w, ",\n  "); jw_key(&w, "unreachable"); jw_raw(&w, "[");
+    jw_raw(&w, ",\n  ");
+    jw_key(&w, "unreachable");
+    jw_raw(&w, "[");
     for (size_t u = 0; u < plan->n_unreachable; ++u) {
         const hv_plan_unreachable_t *ur = &plan->unreachable[u];
         jw_raw(&w, u ? ",\n    {" : "\n    {");
-        jw_key(&w, "id"); jw_str(&w, ur->id);
-        jw_raw(&w, ", "); jw_key(&w, "side"); jw_str(&w, ur->side == HV_SIDE_LEFT ? "L" : "R");
-        jw_raw(&w, ", "); jw_key(&w, "reason"); jw_str(&w, ur->reason);
+        jw_key(&w, "id");
+        jw_str(&w, ur->id);
+        jw_raw(&w, ", ");
+        jw_key(&w, "side");
+        jw_str(&w, ur->side == HV_SIDE_LEFT ? "L" : "R");
+        jw_raw(&w, ", ");
+        jw_key(&w, "reason");
+        jw_str(&w, ur->reason);
         jw_raw(&w, "}");
     }
     jw_raw(&w, plan->n_unreachable ? "\n  ]\n}\n" : "]\n}\n");

@@ -49,8 +49,7 @@ static void fmt_path(char *dst, size_t cap, const char *fmt, ...)
     va_end(ap);
 }
 
-static void rd_vfail(rd_t *r, hv_status_t code, const char *path, const char *fmt,
-                     va_list ap)
+static void rd_vfail(rd_t *r, hv_status_t code, const char *path, const char *fmt, va_list ap)
 {
     if (r->failed) {
         return;
@@ -84,8 +83,7 @@ static void rd_fail_code(rd_t *r, hv_status_t code, const char *path, const char
 }
 
 /* Reject members of `obj` not in the NULL-terminated `allowed` list. */
-static void rd_only(rd_t *r, const json_t *obj, const char *path,
-                    const char *const *allowed)
+static void rd_only(rd_t *r, const json_t *obj, const char *path, const char *const *allowed)
 {
     /* jansson's iterators take a mutable object; nothing here changes it */
     for (void *it = json_object_iter((json_t *)obj); it != NULL && !r->failed;
@@ -106,8 +104,8 @@ static void rd_only(rd_t *r, const json_t *obj, const char *path,
     }
 }
 
-static const json_t *rd_field(rd_t *r, const json_t *obj, const char *path,
-                              const char *key, rd_kind_t type, char *full, size_t fullcap)
+static const json_t *rd_field(rd_t *r, const json_t *obj, const char *path, const char *key,
+                              rd_kind_t type, char *full, size_t fullcap)
 {
     fmt_path(full, fullcap, "%s%s%s", path, *path ? "." : "", key);
     if (r->failed) {
@@ -119,8 +117,8 @@ static const json_t *rd_field(rd_t *r, const json_t *obj, const char *path,
         return NULL;
     }
     if (rd_kind_of(v) != type) {
-        static const char *const names[] = {"null", "a boolean", "a number", "a string",
-                                            "an array", "an object"};
+        static const char *const names[] = {"null",     "a boolean", "a number",
+                                            "a string", "an array",  "an object"};
         rd_fail(r, full, "expected %s", names[type]);
         return NULL;
     }
@@ -150,8 +148,7 @@ static double rd_nonneg(rd_t *r, const json_t *obj, const char *path, const char
 }
 
 /* A non-negative integer no larger than `max`. */
-static double rd_count(rd_t *r, const json_t *obj, const char *path, const char *key,
-                       double max)
+static double rd_count(rd_t *r, const json_t *obj, const char *path, const char *key, double max)
 {
     char full[224];
     const json_t *v = rd_field(r, obj, path, key, RD_NUMBER, full, sizeof full);
@@ -167,8 +164,8 @@ static double rd_count(rd_t *r, const json_t *obj, const char *path, const char 
     return json_number_value(v);
 }
 
-static void rd_str(rd_t *r, const json_t *obj, const char *path, const char *key,
-                   char *dst, size_t cap)
+static void rd_str(rd_t *r, const json_t *obj, const char *path, const char *key, char *dst,
+                   size_t cap)
 {
     char full[224];
     const json_t *v = rd_field(r, obj, path, key, RD_STRING, full, sizeof full);
@@ -197,8 +194,8 @@ static void rd_id(rd_t *r, const json_t *obj, const char *path, char *dst, size_
     }
 }
 
-static const json_t *rd_obj(rd_t *r, const json_t *obj, const char *path,
-                                  const char *key, const char *const *allowed)
+static const json_t *rd_obj(rd_t *r, const json_t *obj, const char *path, const char *key,
+                            const char *const *allowed)
 {
     char full[224];
     const json_t *v = rd_field(r, obj, path, key, RD_OBJECT, full, sizeof full);
@@ -218,8 +215,8 @@ static int one_of(const char *s, const char *const *list)
     return 0;
 }
 
-static hv_plan_pick_t *rd_picks(rd_t *r, const json_t *stop, const char *path,
-                                const char *key, size_t *n_out)
+static hv_plan_pick_t *rd_picks(rd_t *r, const json_t *stop, const char *path, const char *key,
+                                size_t *n_out)
 {
     char full[192];
     const json_t *arr = rd_field(r, stop, path, key, RD_ARRAY, full, sizeof full);
@@ -232,8 +229,7 @@ static hv_plan_pick_t *rd_picks(rd_t *r, const json_t *stop, const char *path,
         rd_fail(r, full, "out of memory");
         return NULL;
     }
-    static const char *const allowed[] = {"id", "x", "y", "z", "yaw", "cost_s", "start_s",
-                                          NULL};
+    static const char *const allowed[] = {"id", "x", "y", "z", "yaw", "cost_s", "start_s", NULL};
     for (size_t k = 0; k < json_array_size(arr) && !r->failed; ++k) {
         char p[224];
         fmt_path(p, sizeof p, "%s[%zu]", full, k);
@@ -268,23 +264,25 @@ static void rd_stop_order(rd_t *r, const hv_plan_stop_t *stops, size_t s)
         fmt_path(f, sizeof f, "stops[%zu].pass", s);
         rd_fail_code(r, HV_ERR_PLAN_ORDER, f,
                      "%d after pass %d of stops[%zu] (stops are listed by pass, then "
-                     "increasing y_m)", st->pass, prev->pass, s - 1);
+                     "increasing y_m)",
+                     st->pass, prev->pass, s - 1);
     } else if (st->pass == prev->pass && !(st->y_m > prev->y_m)) {
         fmt_path(f, sizeof f, "stops[%zu].y_m", s);
         rd_fail_code(r, HV_ERR_PLAN_ORDER, f,
                      "%.9g not after %.9g of stops[%zu] in pass %d (stops are listed by "
-                     "pass, then increasing y_m)", st->y_m, prev->y_m, s - 1, st->pass);
+                     "pass, then increasing y_m)",
+                     st->y_m, prev->y_m, s - 1, st->pass);
     }
 }
 
 static void rd_plan(rd_t *r, const json_t *root, hv_plan_t *plan)
 {
-    static const char *const top[] = {"format", "version", "method", "inputs", "params",
-                                      "solver", "totals", "horizon", "stops", "unreachable",
-                                      NULL};
+    static const char *const top[] = {"format", "version",     "method", "inputs",
+                                      "params", "solver",      "totals", "horizon",
+                                      "stops",  "unreachable", NULL};
     static const char *const methods[] = {"milp", "fov", "serial", NULL};
-    static const char *const statuses[] = {"optimal", "feasible", "infeasible", "time_limit",
-                                           "error", "heuristic", NULL};
+    static const char *const statuses[] = {"optimal", "feasible",  "infeasible", "time_limit",
+                                           "error",   "heuristic", NULL};
     char full[192];
     if (!json_is_object(root)) {
         rd_fail(r, "(top)", "expected an object");
@@ -305,8 +303,8 @@ static void rd_plan(rd_t *r, const json_t *root, hv_plan_t *plan)
         rd_fail(r, "method", "expected milp, fov or serial, got \"%s\"", plan->method);
     }
 
-    static const char *const inputs_keys[] = {"fruit_map", "cost_table_left",
-                                              "cost_table_right", "config", NULL};
+    static const char *const inputs_keys[] = {"fruit_map", "cost_table_left", "cost_table_right",
+                                              "config", NULL};
     const json_t *in = rd_obj(r, root, "", "inputs", inputs_keys);
     if (in != NULL) {
         rd_str(r, in, "inputs", "fruit_map", plan->fruit_map, sizeof plan->fruit_map);
@@ -317,10 +315,10 @@ static void rd_plan(rd_t *r, const json_t *root, hv_plan_t *plan)
         rd_str(r, in, "inputs", "config", plan->config, sizeof plan->config);
     }
 
-    static const char *const params_keys[] = {"stop_step_m", "row_start_m", "row_length_m",
-                                              "stop_penalty_s", "vehicle_speed_mps",
-                                              "travel_time_s", "stop_margin_m", "pick_time",
-                                              NULL};
+    static const char *const params_keys[] = {
+        "stop_step_m",    "row_start_m",       "row_length_m",
+        "stop_penalty_s", "vehicle_speed_mps", "travel_time_s",
+        "stop_margin_m",  "pick_time",         NULL};
     const json_t *pa = rd_obj(r, root, "", "params", params_keys);
     if (pa != NULL) {
         plan->stop_step_m = rd_num(r, pa, "params", "stop_step_m");
@@ -338,8 +336,8 @@ static void rd_plan(rd_t *r, const json_t *root, hv_plan_t *plan)
         }
     }
 
-    static const char *const solver_keys[] = {"status", "gap", "nodes", "runtime_s",
-                                              "time_limit_s", NULL};
+    static const char *const solver_keys[] = {"status",    "gap",          "nodes",
+                                              "runtime_s", "time_limit_s", NULL};
     const json_t *so = rd_obj(r, root, "", "solver", solver_keys);
     if (so != NULL) {
         rd_str(r, so, "solver", "status", plan->solver_status, sizeof plan->solver_status);
@@ -362,10 +360,10 @@ static void rd_plan(rd_t *r, const json_t *root, hv_plan_t *plan)
         plan->time_limit_s = rd_num(r, so, "solver", "time_limit_s");
     }
 
-    static const char *const totals_keys[] = {"makespan_s", "pick_time_s", "stop_time_s",
-                                              "travel_time_s", "stops", "fruits_planned",
-                                              "fruits_unreachable", "throughput_fruit_per_s",
-                                              NULL};
+    static const char *const totals_keys[] = {
+        "makespan_s", "pick_time_s",    "stop_time_s",        "travel_time_s",
+        "stops",      "fruits_planned", "fruits_unreachable", "throughput_fruit_per_s",
+        NULL};
     const json_t *to = rd_obj(r, root, "", "totals", totals_keys);
     if (to != NULL) {
         plan->makespan_s = rd_num(r, to, "totals", "makespan_s");
@@ -379,8 +377,8 @@ static void rd_plan(rd_t *r, const json_t *root, hv_plan_t *plan)
     }
 
     if (!r->failed && json_object_get(root, "horizon") != NULL) {
-        static const char *const hz_keys[] = {"window_m", "commit_m", "windows",
-                                              "windows_optimal", NULL};
+        static const char *const hz_keys[] = {"window_m", "commit_m", "windows", "windows_optimal",
+                                              NULL};
         const json_t *hz = rd_obj(r, root, "", "horizon", hz_keys);
         if (hz != NULL) {
             plan->horizon.used = 1;
@@ -400,9 +398,9 @@ static void rd_plan(rd_t *r, const json_t *root, hv_plan_t *plan)
             return;
         }
         plan->n_stops = json_array_size(stops);
-        static const char *const stop_keys[] = {"index", "y_m", "pass", "C_left_s",
-                                                "C_right_s", "C_s", "idle_left_s",
-                                                "idle_right_s", "left", "right", NULL};
+        static const char *const stop_keys[] = {"index",     "y_m",   "pass",        "C_left_s",
+                                                "C_right_s", "C_s",   "idle_left_s", "idle_right_s",
+                                                "left",      "right", NULL};
         for (size_t s = 0; s < json_array_size(stops) && !r->failed; ++s) {
             char p[64];
             fmt_path(p, sizeof p, "stops[%zu]", s);
@@ -429,8 +427,7 @@ static void rd_plan(rd_t *r, const json_t *root, hv_plan_t *plan)
         }
     }
 
-    const json_t *un =
-        rd_field(r, root, "", "unreachable", RD_ARRAY, full, sizeof full);
+    const json_t *un = rd_field(r, root, "", "unreachable", RD_ARRAY, full, sizeof full);
     if (un != NULL && json_array_size(un) > 0) {
         plan->unreachable = calloc(json_array_size(un), sizeof *plan->unreachable);
         if (plan->unreachable == NULL) {
@@ -482,8 +479,8 @@ hv_status_t hv_plan_parse(const char *text, size_t len, const char *name, hv_pla
     json_t *root = json_loadb(text, len, JSON_REJECT_DUPLICATES, &jerr);
     if (root == NULL) {
         if (err != NULL && errlen > 0) {
-            snprintf(err, errlen, "%s: JSON: line %d, column %d: %s", name, jerr.line,
-                     jerr.column, jerr.text);
+            snprintf(err, errlen, "%s: JSON: line %d, column %d: %s", name, jerr.line, jerr.column,
+                     jerr.text);
         }
         return HV_ERR_PLAN_JSON;
     }

@@ -22,8 +22,7 @@
 #include "hv/plan_io.h"
 #include "hv/plan_paths.h"
 
-enum { EXIT_INPUT = 1, EXIT_USAGE = 2, EXIT_NO_SOLUTION = 3, EXIT_CHECK = 4,
-       EXIT_INTERRUPTED = 5 };
+enum { EXIT_INPUT = 1, EXIT_USAGE = 2, EXIT_NO_SOLUTION = 3, EXIT_CHECK = 4, EXIT_INTERRUPTED = 5 };
 
 static const char k_usage[] =
     "usage: harvest-plan --config CFG --fruits MAP.csv --method milp|fov|serial\n"
@@ -121,8 +120,7 @@ static void catch_stop_signals(void)
 
 static int usage_error(const char *msg, const char *what)
 {
-    fprintf(stderr, "harvest-plan: %s%s%s (see --help)\n", msg, what ? ": " : "",
-            what ? what : "");
+    fprintf(stderr, "harvest-plan: %s%s%s (see --help)\n", msg, what ? ": " : "", what ? what : "");
     return EXIT_USAGE;
 }
 
@@ -204,8 +202,8 @@ static int run_check(int argc, char **argv)
         rc = is_check ? EXIT_CHECK : EXIT_INPUT;
     } else if (!quiet) {
         printf("%s: OK: %s, %zu stops, %zu fruits planned, %zu unreachable, makespan %.3f s\n",
-               plan_path, plan.method, plan.n_stops, plan.fruits_planned,
-               plan.fruits_unreachable, plan.makespan_s);
+               plan_path, plan.method, plan.n_stops, plan.fruits_planned, plan.fruits_unreachable,
+               plan.makespan_s);
     }
     hv_plan_free(&plan);
     return rc;
@@ -213,10 +211,26 @@ static int run_check(int argc, char **argv)
 
 static int parse_args(int argc, char **argv, args_t *a)
 {
-    enum { OPT_CONFIG = 256, OPT_LEFT, OPT_RIGHT, OPT_FRUITS, OPT_METHOD, OPT_OUT,
-           OPT_EXPORT_LP, OPT_TIME_LIMIT, OPT_GAP, OPT_FOV_WIDTH, OPT_HORIZON, OPT_COMMIT,
-           OPT_ROW_LENGTH, OPT_ALGORITHM, OPT_THREADS, OPT_QUIET, OPT_COMPARE_SINGLE,
-           OPT_HELP_PARAMS };
+    enum {
+        OPT_CONFIG = 256,
+        OPT_LEFT,
+        OPT_RIGHT,
+        OPT_FRUITS,
+        OPT_METHOD,
+        OPT_OUT,
+        OPT_EXPORT_LP,
+        OPT_TIME_LIMIT,
+        OPT_GAP,
+        OPT_FOV_WIDTH,
+        OPT_HORIZON,
+        OPT_COMMIT,
+        OPT_ROW_LENGTH,
+        OPT_ALGORITHM,
+        OPT_THREADS,
+        OPT_QUIET,
+        OPT_COMPARE_SINGLE,
+        OPT_HELP_PARAMS
+    };
     static const struct option longopts[] = {
         {"config", required_argument, NULL, OPT_CONFIG},
         {"left", required_argument, NULL, OPT_LEFT},
@@ -270,28 +284,34 @@ static int parse_args(int argc, char **argv, args_t *a)
             a->threads = v[0] - '0';
             break;
         case OPT_TIME_LIMIT:
-            if (parse_pos(f, v, &a->time_limit_s)) return EXIT_USAGE;
+            if (parse_pos(f, v, &a->time_limit_s))
+                return EXIT_USAGE;
             break;
         case OPT_GAP: {
             char *end = NULL;
             a->gap = strtod(v, &end);
             if (end == v || *end != '\0' || !isfinite(a->gap) || a->gap < 0 || a->gap >= 1) {
-                fprintf(stderr, "harvest-plan: --gap: expected a number in [0, 1), got \"%s\"\n", v);
+                fprintf(stderr, "harvest-plan: --gap: expected a number in [0, 1), got \"%s\"\n",
+                        v);
                 return EXIT_USAGE;
             }
             break;
         }
         case OPT_FOV_WIDTH:
-            if (parse_pos(f, v, &a->fov_width_m)) return EXIT_USAGE;
+            if (parse_pos(f, v, &a->fov_width_m))
+                return EXIT_USAGE;
             break;
         case OPT_HORIZON:
-            if (parse_pos(f, v, &a->horizon_m)) return EXIT_USAGE;
+            if (parse_pos(f, v, &a->horizon_m))
+                return EXIT_USAGE;
             break;
         case OPT_COMMIT:
-            if (parse_pos(f, v, &a->commit_m)) return EXIT_USAGE;
+            if (parse_pos(f, v, &a->commit_m))
+                return EXIT_USAGE;
             break;
         case OPT_ROW_LENGTH:
-            if (parse_pos(f, v, &a->row_length_m)) return EXIT_USAGE;
+            if (parse_pos(f, v, &a->row_length_m))
+                return EXIT_USAGE;
             break;
         default: return option_error(opt, argv);
         }
@@ -299,8 +319,11 @@ static int parse_args(int argc, char **argv, args_t *a)
     if (optind < argc) {
         return usage_error("unexpected argument", argv[optind]);
     }
-    const char *missing = !a->config ? "--config" : !a->fruits ? "--fruits"
-                        : !a->method ? "--method" : !a->out ? "--out" : NULL;
+    const char *missing = !a->config   ? "--config"
+                          : !a->fruits ? "--fruits"
+                          : !a->method ? "--method"
+                          : !a->out    ? "--out"
+                                       : NULL;
     if (missing != NULL) {
         return usage_error("missing required option", missing);
     }
@@ -434,8 +457,8 @@ static int run_plan(const args_t *a)
     hv_pick_model_t model;
     hv_status_t mst = hv_pick_model_ik(&cfg, &ik, &model);
     if (mst != HV_OK) {
-        fprintf(stderr, "harvest-plan: %s: an arm reaches none of its fruit area (%s)\n",
-                a->config, hv_status_name(mst));
+        fprintf(stderr, "harvest-plan: %s: an arm reaches none of its fruit area (%s)\n", a->config,
+                hv_status_name(mst));
         return EXIT_INPUT;
     }
     hv_instance_params_t params;
@@ -523,8 +546,8 @@ static int run_plan(const args_t *a)
     mopt.verbose = a->quiet ? 0 : 1;
     mopt.export_lp_path = a->export_lp;
     if (a->algorithm != NULL) {
-        mopt.algorithm = strcmp(a->algorithm, "compact") == 0 ? HV_MILP_ALG_COMPACT
-                                                              : HV_MILP_ALG_PRICE;
+        mopt.algorithm =
+            strcmp(a->algorithm, "compact") == 0 ? HV_MILP_ALG_COMPACT : HV_MILP_ALG_PRICE;
     }
     if (a->threads != 0) {
         mopt.helper_thread = a->threads == 2;
@@ -620,8 +643,8 @@ static int run_plan(const args_t *a)
     }
     if (rc == 0) {
         /* the independent checker re-reads every input file */
-        hv_status_t st = hv_plan_check_files(&plan, NULL, a->config, a->left, a->right,
-                                             a->fruits, err, sizeof err);
+        hv_status_t st = hv_plan_check_files(&plan, NULL, a->config, a->left, a->right, a->fruits,
+                                             err, sizeof err);
         if (st != HV_OK) {
             fprintf(stderr, "harvest-plan: internal error, plan not written: %s\n", err);
             rc = EXIT_CHECK;
@@ -640,9 +663,8 @@ static int run_plan(const args_t *a)
                 "harvest-plan: %s %s (gap %s): makespan %.3f s = picks %.3f + stops %zu x %.1f "
                 "+ travel %.1f; %zu fruits, %zu unreachable, %.4f fruit/s; %.2f s -> %s\n",
                 plan.method, plan.solver_status, gap, plan.makespan_s, plan.pick_time_s,
-                plan.n_stops, plan.stop_penalty_s, plan.total_travel_time_s,
-                plan.fruits_planned, plan.fruits_unreachable, plan.throughput_fruit_per_s,
-                plan.runtime_s, a->out);
+                plan.n_stops, plan.stop_penalty_s, plan.total_travel_time_s, plan.fruits_planned,
+                plan.fruits_unreachable, plan.throughput_fruit_per_s, plan.runtime_s, a->out);
     }
     if (rc == 0 && interrupted(NULL) && strcmp(plan.solver_status, "optimal") != 0) {
         rc = EXIT_INTERRUPTED; /* a proof that came in time lost nothing */

@@ -27,10 +27,16 @@
 #include "hv/pick_model.h"
 #include "hv/online_journal.h"
 
-enum { EXIT_DONE = 0, EXIT_INPUT = 1, EXIT_USAGE = 2, EXIT_FAILED = 3, EXIT_EXEC_SAFE = 4,
-       EXIT_INTERRUPTED = 5 };
+enum {
+    EXIT_DONE = 0,
+    EXIT_INPUT = 1,
+    EXIT_USAGE = 2,
+    EXIT_FAILED = 3,
+    EXIT_EXEC_SAFE = 4,
+    EXIT_INTERRUPTED = 5
+};
 #define MAX_HORIZONS 4096
-#define REPUBLISH_S 2.0 /* wall s between repeats of the committed plan (a lost one heals) */
+#define REPUBLISH_S  2.0 /* wall s between repeats of the committed plan (a lost one heals) */
 
 static const char k_usage[] =
     "usage: harvest-plan-online --config CFG --lcm-url URL [options]\n"
@@ -55,8 +61,8 @@ static const char k_usage[] =
     "  --commit M         committed per step, m (default 1, at most H)\n"
     "  --time-limit S     MILP limit per horizon, s (default 10)\n"
     "  --threads N        1 or 2 (default): the MILP's second thread; 1 leaves a core to the\n"
-"                     executor and the simulator on a 2-core machine\n"
-"  --progress S       a progress line every S s of wall time (default 5; 0: per horizon\n"
+    "                     executor and the simulator on a 2-core machine\n"
+    "  --progress S       a progress line every S s of wall time (default 5; 0: per horizon\n"
     "                     only)\n"
     "  --journal FILE     what the planner saw and committed, durable before the plan is\n"
     "                     published (created, or resumed): a restart with the same file\n"
@@ -65,9 +71,9 @@ static const char k_usage[] =
     "                     starts over: the camera's earlier fruit is lost to it, and\n"
     "                     harvest-exec refuses a plan that contradicts its journal\n"
     "  --summary FILE     write a JSON summary at the end\n"
-"  --out PLAN.json    write the committed plan at the end, in the plan format\n"
-"                     (docs/PLAN_FORMAT.md, no fruit map named: the camera was the input);\n"
-"                     `harvest-plan check PLAN.json --fruits MAP.csv` verifies it\n"
+    "  --out PLAN.json    write the committed plan at the end, in the plan format\n"
+    "                     (docs/PLAN_FORMAT.md, no fruit map named: the camera was the input);\n"
+    "                     `harvest-plan check PLAN.json --fruits MAP.csv` verifies it\n"
     "  --quiet            no progress lines (refusals and errors are still printed)\n"
     "  --help             this text\n"
     "\n"
@@ -274,14 +280,16 @@ static void progress(const app_t *a, const char *what)
     const hv_online_t *o = &a->o;
     char exec[128] = "executor not heard yet";
     if (a->exec_seen) {
-        snprintf(exec, sizeof exec, "executor %s at stop %d of %zu, %d picked, vehicle at %.2f "
-                 "m (%.2f m behind the commit line)", a->exec_phase, a->exec_stop + 1,
-                 o->n_stops, a->exec_picked, a->exec_vehicle_m,
+        snprintf(exec, sizeof exec,
+                 "executor %s at stop %d of %zu, %d picked, vehicle at %.2f "
+                 "m (%.2f m behind the commit line)",
+                 a->exec_phase, a->exec_stop + 1, o->n_stops, a->exec_picked, a->exec_vehicle_m,
                  hv_online_commit_y(o) - a->exec_vehicle_m);
     }
-    fprintf(stderr, "harvest-plan-online: %s: seen to %.2f m, committed to %.2f m%s: %zu stops, "
-            "%zu fruits; refused %u outside_row, %u duplicate, %u late, %u bad_id; %s\n", what,
-            o->seen_to_m, hv_online_commit_y(o), o->done ? " (final)" : "", o->n_stops,
+    fprintf(stderr,
+            "harvest-plan-online: %s: seen to %.2f m, committed to %.2f m%s: %zu stops, "
+            "%zu fruits; refused %u outside_row, %u duplicate, %u late, %u bad_id; %s\n",
+            what, o->seen_to_m, hv_online_commit_y(o), o->done ? " (final)" : "", o->n_stops,
             o->n_order, o->counts[HV_DET_OUTSIDE_ROW], o->counts[HV_DET_DUPLICATE],
             o->counts[HV_DET_LATE], a->bad_id, exec);
 }
@@ -297,16 +305,18 @@ static void write_summary(const char *path, app_t *a)
     const hv_online_t *o = &a->o;
     qsort(a->solve_s, a->n_solves, sizeof *a->solve_s, cmp_double);
     char buf[2048], err[256];
-    int n = snprintf(buf, sizeof buf,
+    int n = snprintf(
+        buf, sizeof buf,
         "{\n  \"done\": %s,\n  \"stops\": %zu,\n  \"fruits_committed\": %zu,\n"
         "  \"detections\": {\"accepted\": %u, \"unreachable\": %u, \"outside_row\": %u, "
         "\"duplicate\": %u, \"late\": %u, \"bad_id\": %u},\n"
         "  \"frames\": %u,\n  \"frames_lost\": %u,\n  \"horizons\": %zu,\n"
-        "  \"horizons_optimal\": %u,\n  \"horizon_s_median\": %.6f,\n  \"horizon_s_max\": %.6f\n}\n",
+        "  \"horizons_optimal\": %u,\n  \"horizon_s_median\": %.6f,\n  \"horizon_s_max\": "
+        "%.6f\n}\n",
         o->done ? "true" : "false", o->n_stops, o->n_order, o->counts[HV_DET_ACCEPTED],
         o->counts[HV_DET_UNREACHABLE], o->counts[HV_DET_OUTSIDE_ROW], o->counts[HV_DET_DUPLICATE],
-        o->counts[HV_DET_LATE], a->bad_id, a->frames, a->frames_lost, a->n_solves,
-        o->steps_optimal, a->n_solves ? a->solve_s[a->n_solves / 2] : 0.0,
+        o->counts[HV_DET_LATE], a->bad_id, a->frames, a->frames_lost, a->n_solves, o->steps_optimal,
+        a->n_solves ? a->solve_s[a->n_solves / 2] : 0.0,
         a->n_solves ? a->solve_s[a->n_solves - 1] : 0.0);
     if (n < 0 || (size_t)n >= sizeof buf ||
         hv_file_write_atomic(path, buf, (size_t)n, err, sizeof err) != HV_OK) {
@@ -315,8 +325,7 @@ static void write_summary(const char *path, app_t *a)
 }
 
 /* The committed plan as a plan file (docs/PLAN_FORMAT.md). */
-static int write_plan(const char *out, const char *config, const hv_config_t *cfg,
-                      const app_t *a)
+static int write_plan(const char *out, const char *config, const hv_config_t *cfg, const app_t *a)
 {
     const hv_online_t *o = &a->o;
     char err[512] = "", cfg_rel[HV_PLAN_PATH_LEN];
@@ -378,8 +387,8 @@ static int parse_pos(const char *flag, const char *text, double *out, int zero_o
     char *end = NULL;
     double v = strtod(text, &end);
     if (end == text || *end != '\0' || !isfinite(v) || v < 0 || (v == 0 && !zero_ok)) {
-        fprintf(stderr, "harvest-plan-online: %s: expected a positive number, got \"%s\"\n",
-                flag, text);
+        fprintf(stderr, "harvest-plan-online: %s: expected a positive number, got \"%s\"\n", flag,
+                text);
         return -1;
     }
     *out = v;
@@ -393,8 +402,19 @@ int main(int argc, char **argv)
     int quiet = 0;
     hv_online_options_t opt;
     hv_online_options_default(&opt);
-    enum { O_CONFIG = 256, O_LCM_URL, O_SUMMARY, O_OUT, O_JOURNAL, O_WINDOW, O_COMMIT,
-           O_TIME_LIMIT, O_PROGRESS, O_THREADS, O_QUIET };
+    enum {
+        O_CONFIG = 256,
+        O_LCM_URL,
+        O_SUMMARY,
+        O_OUT,
+        O_JOURNAL,
+        O_WINDOW,
+        O_COMMIT,
+        O_TIME_LIMIT,
+        O_PROGRESS,
+        O_THREADS,
+        O_QUIET
+    };
     static const struct option longopts[] = {
         {"config", required_argument, NULL, O_CONFIG},
         {"lcm-url", required_argument, NULL, O_LCM_URL},
@@ -469,8 +489,7 @@ int main(int argc, char **argv)
     hv_ik_model_t ik;
     hv_pick_model_t model;
     if (hv_pick_model_ik(&cfg, &ik, &model) != HV_OK) {
-        fprintf(stderr, "harvest-plan-online: %s: an arm reaches none of its fruit area\n",
-                config);
+        fprintf(stderr, "harvest-plan-online: %s: an arm reaches none of its fruit area\n", config);
         return EXIT_INPUT;
     }
     hv_instance_params_t par;
@@ -493,9 +512,10 @@ int main(int argc, char **argv)
         }
         a->journal = &journal;
         if (journal.detections > 0 && !quiet) {
-            fprintf(stderr, "harvest-plan-online: resumed from %s: %u detections, %u horizons "
-                    "(%zu stops, committed to %.2f m%s) as they were%s\n", journal_path,
-                    journal.detections, journal.horizons, a->o.n_stops,
+            fprintf(stderr,
+                    "harvest-plan-online: resumed from %s: %u detections, %u horizons "
+                    "(%zu stops, committed to %.2f m%s) as they were%s\n",
+                    journal_path, journal.detections, journal.horizons, a->o.n_stops,
                     hv_online_commit_y(&a->o), a->o.done ? ", final" : "",
                     journal.torn_bytes ? "; a torn end was cut off" : "");
         }
@@ -521,7 +541,8 @@ int main(int argc, char **argv)
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
     if (!quiet) {
-        fprintf(stderr, "harvest-plan-online: row %.2f m, camera %.2f m from %.2f m ahead, "
+        fprintf(stderr,
+                "harvest-plan-online: row %.2f m, camera %.2f m from %.2f m ahead, "
                 "horizon %.2f m, commit %.2f m, %.1f s per horizon; waiting for the camera\n",
                 cfg.row_length_m, cfg.camera_window_m, cfg.camera_lead_m, opt.window_m,
                 opt.commit_m, opt.milp.time_limit_s);
@@ -556,8 +577,10 @@ int main(int argc, char **argv)
             last_pub = now_s();
             if (!quiet) {
                 char what[160];
-                snprintf(what, sizeof what, "horizon %zu (%zu fruits, %s%s, %.2f s) committed "
-                         "%zu stops", a->n_solves, r.window_fruits, solve_name(r.status),
+                snprintf(what, sizeof what,
+                         "horizon %zu (%zu fruits, %s%s, %.2f s) committed "
+                         "%zu stops",
+                         a->n_solves, r.window_fruits, solve_name(r.status),
                          r.kept_heuristic ? ", kept the FOV plan" : "", dt,
                          r.stops_to - r.stops_from);
                 progress(a, what);

@@ -31,8 +31,8 @@ static uint32_t nearest_stop(const hv_instance_t *inst, double y)
 hv_status_t hv_fov_solve(const hv_instance_t *inst, double fov_width_m, hv_assignment_t *out,
                          hv_fov_stats_t *stats)
 {
-    if (inst == NULL || out == NULL || out->n_fruits != inst->n_fruits ||
-        !isfinite(fov_width_m) || fov_width_m <= 0 || inst->n_stops == 0) {
+    if (inst == NULL || out == NULL || out->n_fruits != inst->n_fruits || !isfinite(fov_width_m) ||
+        fov_width_m <= 0 || inst->n_stops == 0) {
         return HV_ERR_ARG;
     }
     hv_fov_stats_t stt;

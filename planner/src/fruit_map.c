@@ -16,8 +16,8 @@ typedef char hv_fruit_id_fits[HV_FRUIT_ID_LEN > HV_FRUIT_ID_MAX_CHARS ? 1 : -1];
 
 static const char *const k_field_names[MAP_FIELDS] = {"id", "side", "x", "y", "z", "yaw"};
 
-static hv_status_t map_fail(char *err, size_t errlen, hv_status_t code, const char *name,
-                            int line, const char *field, const char *fmt, ...)
+static hv_status_t map_fail(char *err, size_t errlen, hv_status_t code, const char *name, int line,
+                            const char *field, const char *fmt, ...)
 {
     if (err != NULL && errlen > 0) {
         char msg[200];
@@ -34,8 +34,8 @@ static hv_status_t map_fail(char *err, size_t errlen, hv_status_t code, const ch
     return code;
 }
 
-void hv_fruitmap_limits_from_config(const hv_config_t *cfg, double row_start_m,
-                                    double row_length_m, hv_fruitmap_limits_t *lim)
+void hv_fruitmap_limits_from_config(const hv_config_t *cfg, double row_start_m, double row_length_m,
+                                    hv_fruitmap_limits_t *lim)
 {
     hv_config_grid(cfg, HV_SIDE_LEFT, &lim->grid[HV_SIDE_LEFT]);
     hv_config_grid(cfg, HV_SIDE_RIGHT, &lim->grid[HV_SIDE_RIGHT]);
@@ -124,20 +124,20 @@ static hv_status_t parse_line(const char *b, const char *e, const char *name, in
         char tmp[64];
         size_t n = (size_t)(ne - nb);
         if (n == 0 || n >= sizeof tmp) {
-            return map_fail(err, errlen, HV_ERR_PLAN_MAP_SYNTAX, name, line,
-                            k_field_names[2 + i], n == 0 ? "empty" : "too long");
+            return map_fail(err, errlen, HV_ERR_PLAN_MAP_SYNTAX, name, line, k_field_names[2 + i],
+                            n == 0 ? "empty" : "too long");
         }
         memcpy(tmp, nb, n);
         tmp[n] = '\0';
         char *endp = NULL;
         v[i] = strtod(tmp, &endp);
         if (endp != tmp + n) {
-            return map_fail(err, errlen, HV_ERR_PLAN_MAP_SYNTAX, name, line,
-                            k_field_names[2 + i], "not a number: \"%s\"", tmp);
+            return map_fail(err, errlen, HV_ERR_PLAN_MAP_SYNTAX, name, line, k_field_names[2 + i],
+                            "not a number: \"%s\"", tmp);
         }
         if (!isfinite(v[i])) {
-            return map_fail(err, errlen, HV_ERR_PLAN_MAP_NAN, name, line,
-                            k_field_names[2 + i], "not finite: \"%s\"", tmp);
+            return map_fail(err, errlen, HV_ERR_PLAN_MAP_NAN, name, line, k_field_names[2 + i],
+                            "not finite: \"%s\"", tmp);
         }
     }
     f->x_m = v[0];
@@ -156,14 +156,12 @@ static hv_status_t parse_line(const char *b, const char *e, const char *name, in
             if (hv_axis_index(ax, vals[a]) < 0) {
                 double lo = ax->origin, hi = ax->origin + ax->step * (ax->count - 1);
                 return map_fail(err, errlen, HV_ERR_PLAN_MAP_RANGE, name, line, names[a],
-                                "%g outside the %s table grid [%g, %g]", vals[a], sname, lo,
-                                hi);
+                                "%g outside the %s table grid [%g, %g]", vals[a], sname, lo, hi);
             }
         }
         if (f->y_m < lim->y_min_m || f->y_m > lim->y_max_m) {
             return map_fail(err, errlen, HV_ERR_PLAN_MAP_RANGE, name, line, "y",
-                            "%g outside the row [%g, %g]", f->y_m, lim->y_min_m,
-                            lim->y_max_m);
+                            "%g outside the row [%g, %g]", f->y_m, lim->y_min_m, lim->y_max_m);
         }
     }
     return HV_OK;
@@ -248,8 +246,7 @@ hv_status_t hv_fruitmap_parse(const char *text, size_t len, const char *name,
         for (size_t i = 1; i < n; ++i) {
             if (strcmp(ids[i - 1].id, ids[i].id) == 0) {
                 st = map_fail(err, errlen, HV_ERR_PLAN_MAP_DUPLICATE, name, ids[i].line, "id",
-                              "duplicate id \"%s\" (first on line %d)", ids[i].id,
-                              ids[i - 1].line);
+                              "duplicate id \"%s\" (first on line %d)", ids[i].id, ids[i - 1].line);
                 break;
             }
         }
@@ -264,8 +261,8 @@ hv_status_t hv_fruitmap_parse(const char *text, size_t len, const char *name,
     return HV_OK;
 }
 
-hv_status_t hv_fruitmap_load(const char *path, const hv_fruitmap_limits_t *lim,
-                             hv_fruitmap_t *map, char *err, size_t errlen)
+hv_status_t hv_fruitmap_load(const char *path, const hv_fruitmap_limits_t *lim, hv_fruitmap_t *map,
+                             char *err, size_t errlen)
 {
     if (path == NULL || map == NULL) {
         return HV_ERR_ARG;

@@ -17,8 +17,7 @@ static const double seed_widths_m[] = {0.20, 0.40};
 
 hv_status_t hv_heuristic_solve(const hv_instance_t *inst, hv_assignment_t *out)
 {
-    if (inst == NULL || out == NULL || out->fruit_stop == NULL ||
-        out->n_fruits != inst->n_fruits) {
+    if (inst == NULL || out == NULL || out->fruit_stop == NULL || out->n_fruits != inst->n_fruits) {
         return HV_ERR_ARG;
     }
     hv_assignment_t cand;

@@ -124,8 +124,8 @@ hv_status_t hv_horizon_solve(const hv_instance_t *full, const hv_horizon_options
                             res->windows, full->stop_y_m[pos], full->stop_y_m[end - 1],
                             sub.n_fruits, solve_name(r.status),
                             use == &warm ? " (kept the FOV plan)" : "",
-                            isfinite(r.gap) ? 100.0 * r.gap : 100.0, r.runtime_s, committed,
-                            stops, full->stop_y_m[commit_end - 1]);
+                            isfinite(r.gap) ? 100.0 * r.gap : 100.0, r.runtime_s, committed, stops,
+                            full->stop_y_m[commit_end - 1]);
                     fflush(opt->progress);
                 }
             }

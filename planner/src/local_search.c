@@ -6,17 +6,17 @@
 #include "hv/milp_local_search.h"
 #include "hv/plan_status.h"
 
-#define LS_EPS 1e-9      /* s: smaller improvements are rounding noise */
+#define LS_EPS  1e-9     /* s: smaller improvements are rounding noise */
 #define LS_NONE SIZE_MAX /* no pair (unreachable fruit) */
 
 typedef struct ls {
     const hv_instance_t *in;
-    size_t *cur;       /* pair index of each fruit, LS_NONE for unreachable fruit */
-    size_t *best;      /* best plan seen (pair indices) */
-    double *load[2];   /* s, per stop: pick time of the left [0] and right [1] arm */
-    uint32_t *cnt;     /* fruits per stop */
-    size_t *list;      /* scratch: fruits of one stop */
-    size_t *undo;      /* scratch: (fruit, old pair) pairs of a tentative compound move */
+    size_t *cur;     /* pair index of each fruit, LS_NONE for unreachable fruit */
+    size_t *best;    /* best plan seen (pair indices) */
+    double *load[2]; /* s, per stop: pick time of the left [0] and right [1] arm */
+    uint32_t *cnt;   /* fruits per stop */
+    size_t *list;    /* scratch: fruits of one stop */
+    size_t *undo;    /* scratch: (fruit, old pair) pairs of a tentative compound move */
     size_t n_undo;
     uint64_t rng;
 } ls_t;
@@ -37,8 +37,14 @@ static uint32_t rnd(ls_t *s, uint32_t n)
     return (uint32_t)(((s->rng * 0x2545f4914f6cdd1dull) >> 33) % n);
 }
 
-static uint32_t stop_of(const ls_t *s, size_t f) { return s->in->pairs[s->cur[f]].stop; }
-static int side_of(const ls_t *s, size_t f) { return s->in->fruits[f].side == HV_SIDE_RIGHT; }
+static uint32_t stop_of(const ls_t *s, size_t f)
+{
+    return s->in->pairs[s->cur[f]].stop;
+}
+static int side_of(const ls_t *s, size_t f)
+{
+    return s->in->fruits[f].side == HV_SIDE_RIGHT;
+}
 
 /* Pair index of (f, p), or LS_NONE. Pairs of a fruit are sorted by stop. */
 static size_t find_pair(const hv_instance_t *in, size_t f, uint32_t p)
@@ -199,8 +205,8 @@ static int exchange_pass(ls_t *s)
             d[1][sg] -= in->pairs[s->cur[g]].cost_s;
             d[1][sf] += in->pairs[kf].cost_s;
             double delta = stop_time(s, p, d[0][0], d[0][1], 0) +
-                           stop_time(s, q, d[1][0], d[1][1], 0) -
-                           stop_time(s, p, 0, 0, 0) - stop_time(s, q, 0, 0, 0);
+                           stop_time(s, q, d[1][0], d[1][1], 0) - stop_time(s, p, 0, 0, 0) -
+                           stop_time(s, q, 0, 0, 0);
             if (delta < -LS_EPS) {
                 move(s, f, kf, 0);
                 move(s, g, kg, 0);

@@ -21,14 +21,14 @@ typedef struct cb_ctx {
     const hv_instance_t *inst;
     const hv_milp_options_t *opt;
     const hv_milp_model_t *model;
-    const double *x_inc;  /* incumbent point (1-based), NULL if none */
+    const double *x_inc; /* incumbent point (1-based), NULL if none */
     int inc_offered;
     int inc_taken;
-    double bound;         /* best lower bound seen in the tree (s) */
+    double bound; /* best lower bound seen in the tree (s) */
     double t_start, t_last_print;
-    double abs_prune_s;   /* > 0: objective granularity (s) */
-    long nodes;           /* nodes created so far */
-    hv_cut_sep_t *cuts;   /* stop-pattern cut separation, NULL when off */
+    double abs_prune_s;     /* > 0: objective granularity (s) */
+    long nodes;             /* nodes created so far */
+    hv_cut_sep_t *cuts;     /* stop-pattern cut separation, NULL when off */
     double root_after_cuts; /* root LP bound after the cut rounds (s) */
     int cut_rounds;
 } cb_ctx_t;
@@ -70,7 +70,8 @@ static void callback(glp_tree *tree, void *info)
         }
         break;
     case GLP_ICUTGEN:
-        if (c->opt->link_disaggregated == 2 && link_cuts_add_violated(c->inst, c->model, tree) > 0) {
+        if (c->opt->link_disaggregated == 2 &&
+            link_cuts_add_violated(c->inst, c->model, tree) > 0) {
             break; /* the linking first: pattern cuts on the re-solved LP */
         }
         if (c->cuts != NULL && c->cut_rounds < HV_CUT_MAX_ROUNDS &&
@@ -91,8 +92,7 @@ static void callback(glp_tree *tree, void *info)
             }
         }
         break;
-    default:
-        break;
+    default: break;
     }
 }
 
@@ -112,8 +112,7 @@ static int costs_in_whole_ms(const hv_instance_t *inst)
 }
 
 /* Copy an assignment that evaluates on inst; T into *t. */
-static hv_status_t check_assignment(const hv_instance_t *inst, const hv_assignment_t *a,
-                                    double *t)
+static hv_status_t check_assignment(const hv_instance_t *inst, const hv_assignment_t *a, double *t)
 {
     if (a == NULL || a->fruit_stop == NULL || a->n_fruits != inst->n_fruits) {
         return HV_ERR_MILP_INCUMBENT;
@@ -133,8 +132,7 @@ static void set_trivial(const hv_instance_t *inst, hv_assignment_t *out, hv_milp
 
 /* Lazy linking (link_disaggregated == 2): rows a_k - b_p <= 0 for the pairs where the LP
  * point of `lp` has a_k > b_p. Added to the model itself; returns how many. */
-static int link_rows_add_violated(const hv_instance_t *inst, const hv_milp_model_t *m,
-                                  glp_prob *lp)
+static int link_rows_add_violated(const hv_instance_t *inst, const hv_milp_model_t *m, glp_prob *lp)
 {
     int added = 0;
     for (size_t k = 0; k < inst->n_pairs; ++k) {
@@ -170,8 +168,8 @@ static int link_cuts_add_violated(const hv_instance_t *inst, const hv_milp_model
 }
 
 /* A longer local search from `out` (polish_work * 100 / n^2 kicks); keeps it if better. */
-static void polish(const hv_instance_t *inst, const hv_milp_options_t *opt,
-                   hv_assignment_t *out, double *best_t)
+static void polish(const hv_instance_t *inst, const hv_milp_options_t *opt, hv_assignment_t *out,
+                   double *best_t)
 {
     hv_ls_options_t lo;
     hv_ls_options_default(&lo);
@@ -229,8 +227,9 @@ static void set_iocp(glp_iocp *ip, const hv_milp_options_t *opt, cb_ctx_t *c,
     ip->cb_func = callback;
     ip->cb_info = c;
     ip->br_tech = opt->pcost_branching ? GLP_BR_PCH : GLP_BR_DTH;
-    ip->bt_tech = opt->backtracking == 1 ? GLP_BT_DFS
-                  : opt->backtracking == 2 ? GLP_BT_BPH : GLP_BT_BLB;
+    ip->bt_tech = opt->backtracking == 1   ? GLP_BT_DFS
+                  : opt->backtracking == 2 ? GLP_BT_BPH
+                                           : GLP_BT_BLB;
     ip->gmi_cuts = (opt->glpk_cuts & HV_MILP_CUT_GMI) ? GLP_ON : GLP_OFF;
     ip->mir_cuts = (opt->glpk_cuts & HV_MILP_CUT_MIR) ? GLP_ON : GLP_OFF;
     ip->cov_cuts = (opt->glpk_cuts & HV_MILP_CUT_COVER) ? GLP_ON : GLP_OFF;
@@ -261,8 +260,8 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
     int price = opt->algorithm == HV_MILP_ALG_PRICE;
     if (price && opt->export_lp_path == NULL) {
         res->incumbent_taken = inc != NULL;
-        return hv_price_solve(inst, opt, hv_milp_default_subsolver(), inc, inc_t, t_deadline,
-                              out, res);
+        return hv_price_solve(inst, opt, hv_milp_default_subsolver(), inc, inc_t, t_deadline, out,
+                              res);
     }
     hv_milp_model_opts_t mo;
     memset(&mo, 0, sizeof mo);
@@ -279,8 +278,8 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
     if (price) { /* the paper's model was wanted for the file only */
         hv_milp_model_free(&m);
         res->incumbent_taken = inc != NULL;
-        return hv_price_solve(inst, opt, hv_milp_default_subsolver(), inc, inc_t, t_deadline,
-                              out, res);
+        return hv_price_solve(inst, opt, hv_milp_default_subsolver(), inc, inc_t, t_deadline, out,
+                              res);
     }
     double *x = malloc(((size_t)m.n_cols + 1) * sizeof *x);
     if (x == NULL) {
@@ -346,8 +345,8 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
         /* Phase 1 bounded to a share of the limit when the root gap is wide; if it does not
          * prove optimality, the local search polishes the best plan (the tree rarely
          * improves it there, SOLVER.md's history) and phase 2 restarts the tree from it. */
-        int two_phase = have && opt->polish_work > 0 &&
-                        (best_t - res->root_bound_s) / best_t > 2e-3;
+        int two_phase =
+            have && opt->polish_work > 0 && (best_t - res->root_bound_s) / best_t > 2e-3;
         for (int phase = 0; phase < 2; ++phase) {
             if (have && hv_milp_model_point(inst, &m, out->fruit_stop, x) == HV_OK) {
                 c.x_inc = x;
@@ -386,8 +385,7 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
             have |= isfinite(best_t);
             int proven = (mip_ret == 0 && mip_stat == GLP_OPT) || mip_ret == GLP_EMIPGAP;
             if (proven || !two_phase || phase == 1 || t_deadline - hv_milp_now_s() < 2.0 ||
-                mip_ret == GLP_ESTOP ||
-                (mip_ret == 0 && mip_stat == GLP_NOFEAS)) {
+                mip_ret == GLP_ESTOP || (mip_ret == 0 && mip_stat == GLP_NOFEAS)) {
                 break;
             }
             polish(inst, opt, out, &best_t);
@@ -406,10 +404,10 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
     if (mip_ret == 0 && mip_stat == GLP_NOFEAS) {
         res->status = HV_SOLVE_INFEASIBLE;
     } else if (!have) {
-        res->status = (mip_ret == GLP_ETMLIM || mip_ret == GLP_ESTOP || ret == GLP_ETMLIM ||
-                       mip_ret == -1)
-                          ? HV_SOLVE_NO_SOLUTION
-                          : HV_SOLVE_ERROR;
+        res->status =
+            (mip_ret == GLP_ETMLIM || mip_ret == GLP_ESTOP || ret == GLP_ETMLIM || mip_ret == -1)
+                ? HV_SOLVE_NO_SOLUTION
+                : HV_SOLVE_ERROR;
     } else {
         /* each a valid lower bound; T_travel is one whatever the LP managed */
         double bound = fmax(fmax(c.bound, c.root_after_cuts), inst->travel_time_s);
@@ -607,8 +605,8 @@ hv_status_t hv_milp_solve(const hv_instance_t *inst, const hv_milp_options_t *op
 {
     double t0 = hv_milp_now_s();
     if (inst == NULL || opt == NULL || out == NULL || res == NULL || out->fruit_stop == NULL ||
-        out->n_fruits != inst->n_fruits || !(opt->time_limit_s > 0) ||
-        !(opt->rel_gap >= 0) || !isfinite(opt->rel_gap)) {
+        out->n_fruits != inst->n_fruits || !(opt->time_limit_s > 0) || !(opt->rel_gap >= 0) ||
+        !isfinite(opt->rel_gap)) {
         return HV_ERR_ARG;
     }
     memset(res, 0, sizeof *res);

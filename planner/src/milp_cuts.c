@@ -7,7 +7,6 @@
 #include "hv/plan_status.h"
 #include "milp_tunables.h"
 
-
 hv_status_t hv_cut_sep_init(hv_cut_sep_t *s, const hv_instance_t *inst,
                             const hv_milp_model_t *model)
 {
@@ -50,8 +49,8 @@ void hv_cut_sep_free(hv_cut_sep_t *s)
 
 /* The most violated cut at one stop: K = pairs kk[0..n) with LP values av, stop value bv,
  * C value cv. Fills w[0..n) and *w0; returns the violation (s), <= 0 when none. */
-static double separate_stop(const hv_instance_t *in, const size_t *kk, const double *av,
-                            int n, double bv, double cv, double *w, double *w0)
+static double separate_stop(const hv_instance_t *in, const size_t *kk, const double *av, int n,
+                            double bv, double cv, double *w, double *w0)
 {
     int n_sub = (1 << n) - 1;
     double *load = malloc(2 * (size_t)(n_sub + 1) * sizeof *load);

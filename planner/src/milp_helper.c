@@ -140,9 +140,8 @@ static void *helper_main(void *arg)
 }
 
 hv_status_t hv_helper_start(const hv_instance_t *inst, const hv_milp_options_t *opt,
-                            const hv_milp_subsolver_t *sub,
-                            const hv_assignment_t *plan, double t_s, double t_deadline_s,
-                            unsigned polish_kicks, hv_helper_t **out)
+                            const hv_milp_subsolver_t *sub, const hv_assignment_t *plan, double t_s,
+                            double t_deadline_s, unsigned polish_kicks, hv_helper_t **out)
 {
     *out = NULL;
     hv_helper_t *h = calloc(1, sizeof *h);

@@ -8,18 +8,20 @@
 #include "hv/plan_status.h"
 #include "milp_tunables.h"
 
-#define OPTION(name, integer, def, unit, lo, hi, doc) \
-    {#name, 1, integer, def, unit, lo, hi, doc, offsetof(hv_milp_options_t, name)}
-#define CONSTANT(name, integer, unit, lo, hi, doc) \
-    {#name, 0, integer, (double)(name), unit, lo, hi, doc, 0}
+#define OPTION(name, integer, def, unit, lo, hi, doc)                                              \
+    {                                                                                              \
+#name, 1, integer, def, unit, lo, hi, doc, offsetof(hv_milp_options_t, name)               \
+    }
+#define CONSTANT(name, integer, unit, lo, hi, doc)                                                 \
+    {                                                                                              \
+#name, 0, integer, (double)(name), unit, lo, hi, doc, 0                                    \
+    }
 
 /* Options by concern (the whole solve, the compact model, the branch-and-price), then the
  * constants in the order of milp_tunables.h. */
 static const hv_milp_param_t params[] = {
-    OPTION(time_limit_s, 0, 60, "s", 0, INFINITY,
-           "wall-clock limit of the solve"),
-    OPTION(rel_gap, 0, 1e-6, "", 0, 1,
-           "stop once (T - bound) / T is at most this; 0: exact"),
+    OPTION(time_limit_s, 0, 60, "s", 0, INFINITY, "wall-clock limit of the solve"),
+    OPTION(rel_gap, 0, 1e-6, "", 0, 1, "stop once (T - bound) / T is at most this; 0: exact"),
     OPTION(verbose, 1, 0, "", 0, 2,
            "0 quiet, 1 progress lines on stderr, 2 also GLPK's own output"),
     OPTION(algorithm, 1, 1, "", 0, 1,
@@ -27,8 +29,7 @@ static const hv_milp_param_t params[] = {
            "stop patterns"),
     OPTION(heuristic_incumbent, 1, 1, "", 0, 1,
            "1: without a given plan, start from hv_heuristic_solve's"),
-    OPTION(decompose, 1, 1, "", 0, 1,
-           "1: row segments that share no stop are solved apart"),
+    OPTION(decompose, 1, 1, "", 0, 1, "1: row segments that share no stop are solved apart"),
     OPTION(ms_granularity, 1, 1, "", 0, 1,
            "1: when every cost is whole ms, prune what cannot beat the incumbent by 1 ms"),
     OPTION(polish_work, 1, 150000, "", 0, INFINITY,
@@ -61,8 +62,7 @@ static const hv_milp_param_t params[] = {
     OPTION(region_stops, 1, 100, "stops", 0, INFINITY,
            "price: the longest stretch of a regional bound that tries to prove the incumbent "
            "optimal; 0 none"),
-    OPTION(sr_cuts, 1, 1, "rounds", 0, INFINITY,
-           "price: rounds of subset-row cuts at the root"),
+    OPTION(sr_cuts, 1, 1, "rounds", 0, INFINITY, "price: rounds of subset-row cuts at the root"),
     OPTION(sr_cuts_large, 1, 2, "rounds", 0, INFINITY,
            "price: the same from CENTRE_MIN_PAIRS pairs"),
     OPTION(sr_purge, 1, 1, "", 0, 1,
@@ -101,14 +101,11 @@ static const hv_milp_param_t params[] = {
              "the cost of an artificial column: keeps every node's master feasible"),
     CONSTANT(RC_EPS_MS, 0, "ms", 0, 1,
              "a column enters the master when its reduced cost is below -RC_EPS_MS"),
-    CONSTANT(LAMBDA_EPS, 0, "", 0, 0.1,
-             "a master value this close to 0 or 1 counts as integral"),
+    CONSTANT(LAMBDA_EPS, 0, "", 0, 0.1, "a master value this close to 0 or 1 counts as integral"),
     CONSTANT(SMOOTHING, 0, "", 0, 1,
              "Wentges smoothing: the weight of the stabilisation centre in the duals priced"),
-    CONSTANT(SMOOTH_STEP, 0, "", 0, 1,
-             "auto_smoothing: the weight's step per round"),
-    CONSTANT(SMOOTH_MAX, 0, "", 0, 1,
-             "auto_smoothing: the weight's largest value"),
+    CONSTANT(SMOOTH_STEP, 0, "", 0, 1, "auto_smoothing: the weight's step per round"),
+    CONSTANT(SMOOTH_MAX, 0, "", 0, 1, "auto_smoothing: the weight's largest value"),
     CONSTANT(ASCENT_DEFLECT, 0, "", 0, 1,
              "the root's ascent: the share of the last direction kept"),
     CONSTANT(CAND_WINDOW, 1, "stops", 0, INFINITY,
@@ -119,14 +116,12 @@ static const hv_milp_param_t params[] = {
     CONSTANT(PRIMAL_ROOT_GAP, 0, "", 0, 1,
              "the plan's gap above the root's bound beyond which polish, dive, windows and "
              "rounding at every node run"),
-    CONSTANT(POLISH_MAX_KICKS, 1, "kicks", 0, INFINITY,
-             "the polish's local-search kicks at most"),
+    CONSTANT(POLISH_MAX_KICKS, 1, "kicks", 0, INFINITY, "the polish's local-search kicks at most"),
     CONSTANT(POLISH_CHUNK, 1, "kicks", 1, INFINITY,
              "kicks between two readings of the clock (polish)"),
     CONSTANT(WORKER_GAP, 0, "", 0, 1,
              "the incumbent's gap from which the second core searches the tree"),
-    CONSTANT(DIVE_EVERY, 1, "nodes", 1, INFINITY,
-             "nodes between two branch dives"),
+    CONSTANT(DIVE_EVERY, 1, "nodes", 1, INFINITY, "nodes between two branch dives"),
     CONSTANT(BALANCE_SHARE, 0, "", 0, 1,
              "balance_workers: a worker whose best bound lies this share of its gap above the "
              "other's asks for a node"),
@@ -136,16 +131,11 @@ static const hv_milp_param_t params[] = {
              "the share of the time left after the root for row windows on the search's thread"),
     CONSTANT(WINDOW_LIMIT_S, 0, "s", 0, INFINITY,
              "a row window's sub-solve on the search's thread"),
-    CONSTANT(RINS_LIMIT_S, 0, "s", 0, INFINITY,
-             "a neighbourhood's sub-solve"),
-    CONSTANT(RINS_MAX_FREE, 1, "fruits", 1, INFINITY,
-             "fruits freed in one neighbourhood at most"),
-    CONSTANT(RINS_CALL_S, 0, "s", 0, INFINITY,
-             "time for the neighbourhoods at one master point"),
-    CONSTANT(SR_MAX, 1, "cuts", 1, INFINITY,
-             "subset-row cuts at most (all made at the root)"),
-    CONSTANT(SR_PER_ROUND, 1, "cuts", 1, INFINITY,
-             "subset-row cuts added per separation round"),
+    CONSTANT(RINS_LIMIT_S, 0, "s", 0, INFINITY, "a neighbourhood's sub-solve"),
+    CONSTANT(RINS_MAX_FREE, 1, "fruits", 1, INFINITY, "fruits freed in one neighbourhood at most"),
+    CONSTANT(RINS_CALL_S, 0, "s", 0, INFINITY, "time for the neighbourhoods at one master point"),
+    CONSTANT(SR_MAX, 1, "cuts", 1, INFINITY, "subset-row cuts at most (all made at the root)"),
+    CONSTANT(SR_PER_ROUND, 1, "cuts", 1, INFINITY, "subset-row cuts added per separation round"),
     CONSTANT(SR_PER_FRUIT, 1, "cuts", 1, INFINITY,
              "new cuts per fruit per round (spreads them over the row)"),
     CONSTANT(SR_MIN_VIOL, 0, "", 0, 1,
@@ -158,8 +148,7 @@ static const hv_milp_param_t params[] = {
              "a grown stretch must raise its rise by more than this to grow again"),
     CONSTANT(REGION_KICKS, 1, "kicks", 0, INFINITY,
              "local-search kicks on the plan a stretch's solution gives"),
-    CONSTANT(REGION_GROW, 1, "stops", 1, INFINITY,
-             "stops a stretch grows by on either side"),
+    CONSTANT(REGION_GROW, 1, "stops", 1, INFINITY, "stops a stretch grows by on either side"),
     CONSTANT(COUNT_MIN_SCORE, 0, "", 0, 0.5,
              "an interval count this far from an integer is branched on before any fruit"),
     CONSTANT(IV_MIN_FRAC, 0, "", 0, 0.5,
@@ -178,12 +167,10 @@ static const hv_milp_param_t params[] = {
              "binding_splits: the weight of a fruit whose arm never binds"),
     CONSTANT(STALL_ITERS_PER_ROW, 1, "iterations", 1, INFINITY,
              "primal simplex iterations per master row before the dual simplex finishes the call"),
-    CONSTANT(HELPER_WINDOW_LIMIT_S, 0, "s", 0, INFINITY,
-             "helper thread: a row window's sub-solve"),
+    CONSTANT(HELPER_WINDOW_LIMIT_S, 0, "s", 0, INFINITY, "helper thread: a row window's sub-solve"),
     CONSTANT(HELPER_KICKS, 1, "kicks", 0, INFINITY,
              "helper thread: local-search kicks after a round of widths found nothing"),
-    CONSTANT(HELPER_KICKS_CHUNK, 1, "kicks", 1, INFINITY,
-             "helper thread: kicks run at a time"),
+    CONSTANT(HELPER_KICKS_CHUNK, 1, "kicks", 1, INFINITY, "helper thread: kicks run at a time"),
     CONSTANT(HELPER_MEMO, 1, "windows", 1, INFINITY,
              "helper thread: windows remembered as solved without gain"),
     CONSTANT(CLOCK_EVERY_POINTS, 1, "points", 1, INFINITY,
@@ -265,7 +252,8 @@ static void write_number(FILE *f, double v, int integer)
 void hv_milp_params_write(FILE *f)
 {
     fputs("| name | kind | default | unit | range | meaning |\n"
-          "| --- | --- | --- | --- | --- | --- |\n", f);
+          "| --- | --- | --- | --- | --- | --- |\n",
+          f);
     for (size_t i = 0; i < N_PARAMS; ++i) {
         const hv_milp_param_t *p = &params[i];
         fprintf(f, "| %s | %s | ", p->name, p->is_option ? "option" : "constant");

@@ -12,7 +12,6 @@
 #include "hv/weighted_select.h"
 #include "milp_tunables.h"
 
-
 void hv_pricer_init(hv_pricer_t *pr)
 {
     memset(pr, 0, sizeof *pr);
@@ -37,8 +36,7 @@ void hv_pricer_free(hv_pricer_t *pr)
 }
 
 /* Appends a frontier point; 0 when out of memory or past the deadline (pr->timed_out). */
-static int push_pt(hv_pricer_t *pr, double w, double p, int32_t item, int32_t parent,
-                   int32_t *idx)
+static int push_pt(hv_pricer_t *pr, double w, double p, int32_t item, int32_t parent, int32_t *idx)
 {
     if (pr->t_deadline_s > 0.0 && (pr->points % CLOCK_EVERY_POINTS) == 0 &&
         hv_milp_now_s() >= pr->t_deadline_s) {
@@ -114,9 +112,8 @@ static double cut_penalty(const double *pen, uint64_t m)
 /* The frontier of one arm's items into pr->cur[0 .. *len), without the points that cannot
  * lead to v < 0. `cross`: the cuts with items on both arms; a point keeps the ones it holds
  * once to the end, since the other arm may complete them (milp_pricing.h). */
-static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
-                       const double *pen, uint64_t cross, const front_bound_t *fb,
-                       double offset, size_t *len)
+static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n, const double *pen,
+                       uint64_t cross, const front_bound_t *fb, double offset, size_t *len)
 {
     int cuts = 0; /* some item is in a cut: points carry cut states */
     for (size_t k = 0; k < n && pen != NULL; ++k) {
@@ -168,7 +165,7 @@ static int build_front(hv_pricer_t *pr, const hv_price_item_t *items, size_t n,
             live |= items[q].cuts;
         }
         size_t i = 0, j = 0, nn = 0;
-        gi = 0; /* the first partner point with time > w */
+        gi = 0;                    /* the first partner point with time > w */
         double last_p = -INFINITY; /* the best profit so far less all penalties it may pay */
         while (i < ncur || j < ncur) {
             double wa = i < ncur ? pr->cur[i].w : INFINITY;
@@ -313,9 +310,8 @@ static int best_weight(hv_pricer_t *pr, const hv_price_item_t *a, size_t na,
 /* Points pt[0 .. n) grouped by their cross-arm cuts held once: *k classes, class c holds
  * ord[beg[c] .. beg[c + 1]) in frontier (time) order, its cuts in mask[c]. Returns 0 when
  * out of memory. */
-static int classify(hv_pricer_t *pr, int arm, const hv_front_ref_t *pt, size_t n,
-                    uint64_t cross, size_t *k_out, uint64_t **mask_out, uint32_t **ord_out,
-                    uint32_t **beg_out)
+static int classify(hv_pricer_t *pr, int arm, const hv_front_ref_t *pt, size_t n, uint64_t cross,
+                    size_t *k_out, uint64_t **mask_out, uint32_t **ord_out, uint32_t **beg_out)
 {
     hv_cross_scratch_t *cs = &pr->cross[arm];
     if (!hv_grow((void **)&cs->mask, &cs->mask_cap, n + 1, sizeof *cs->mask) ||
@@ -363,8 +359,7 @@ static int classify(hv_pricer_t *pr, int arm, const hv_front_ref_t *pt, size_t n
  * of memory. */
 static int cross_merge(hv_pricer_t *pr, const hv_front_ref_t *fa, size_t n_a,
                        const hv_front_ref_t *fb, size_t n_b, uint64_t cross, double offset,
-                       const double *pen, double *best, double *best_pen, int32_t *ba,
-                       int32_t *bb)
+                       const double *pen, double *best, double *best_pen, int32_t *ba, int32_t *bb)
 {
     uint64_t *ma, *mb;
     uint32_t *oa, *ob, *ga, *gb;
@@ -517,8 +512,8 @@ hv_status_t hv_pricer_best(hv_pricer_t *pr, const hv_price_item_t *left, size_t 
     const hv_front_ref_t *fa_pts = pr->left_front, *fb_pts = pr->cur;
     double best = v_bound, best_pen = 0.0;
     int32_t ba = -1, bb = -1;
-    if (cross != 0 && !cross_merge(pr, fa_pts, n_a, fb_pts, n_b, cross, offset_ms, pen_ms,
-                                   &best, &best_pen, &ba, &bb)) {
+    if (cross != 0 && !cross_merge(pr, fa_pts, n_a, fb_pts, n_b, cross, offset_ms, pen_ms, &best,
+                                   &best_pen, &ba, &bb)) {
         return HV_ERR_PLAN_NOMEM;
     }
     /* walk both frontiers in time order: at each time M the most profitable point of each

@@ -5,10 +5,9 @@
 #include "hv/milp_region.h"
 #include "hv/plan_status.h"
 
-hv_status_t hv_region_rise(const hv_instance_t *inst, uint32_t s0, uint32_t s1,
-                           const double *pi_ms, const double *v_ms, double need_ms,
-                           const hv_milp_options_t *opt, const hv_milp_subsolver_t *solver,
-                           double t_deadline_s, uint32_t *plan,
+hv_status_t hv_region_rise(const hv_instance_t *inst, uint32_t s0, uint32_t s1, const double *pi_ms,
+                           const double *v_ms, double need_ms, const hv_milp_options_t *opt,
+                           const hv_milp_subsolver_t *solver, double t_deadline_s, uint32_t *plan,
                            hv_region_result_t *res)
 {
     *res = (hv_region_result_t){0.0, 0.0, 0, 1, 0}; /* no fruit: a rise of 0, exactly */
@@ -53,8 +52,8 @@ hv_status_t hv_region_rise(const hv_instance_t *inst, uint32_t s0, uint32_t s1,
         }
         hv_price_bound_result_t br;
         if (st == HV_OK) {
-            st = solver->bound(solver, &sub, opt, skip, base_ms + need_ms, t_deadline_s,
-                               sub_plan, &br);
+            st = solver->bound(solver, &sub, opt, skip, base_ms + need_ms, t_deadline_s, sub_plan,
+                               &br);
         }
         if (st == HV_OK) {
             res->rise_ms = isfinite(br.lb_ms) ? fmax(0.0, br.lb_ms - base_ms) : 0.0;

@@ -126,9 +126,8 @@ static hv_status_t sub_build(const hv_instance_t *in, const unsigned char *free_
 
 hv_status_t hv_rins_improve(const hv_instance_t *inst, const hv_milp_options_t *opt,
                             const hv_milp_subsolver_t *sub, const unsigned char *free_fruit,
-                            const unsigned char *pair_open,
-                            double limit_s, hv_assignment_t *plan, double *t_s, int *better,
-                            hv_milp_result_t *res_out)
+                            const unsigned char *pair_open, double limit_s, hv_assignment_t *plan,
+                            double *t_s, int *better, hv_milp_result_t *res_out)
 {
     if (better != NULL) {
         *better = 0;

@@ -14,7 +14,6 @@
 #include "hv/plan_status.h"
 #include "milp_tunables.h"
 
-
 typedef struct queued {
     double lb_ms;
     size_t first, n;         /* its steps: steps[first .. first + n) */
@@ -26,7 +25,7 @@ struct hv_share {
     pthread_cond_t cv;  /* a node was queued, the search ended, or a worker failed */
     size_t n_workers, waiting;
     int done, failed;
-    double *open_lb; /* per worker: the best bound it holds open (hv_share_balance) */
+    double *open_lb;      /* per worker: the best bound it holds open (hv_share_balance) */
     unsigned char *asked; /* per worker: it asked for a node without waiting */
     size_t nf;
     uint32_t *best;

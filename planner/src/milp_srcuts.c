@@ -8,7 +8,6 @@
 #include "hv/plan_status.h"
 #include "milp_tunables.h"
 
-
 hv_status_t hv_src_init(hv_src_t *s, size_t n_fruits)
 {
     memset(s, 0, sizeof *s);

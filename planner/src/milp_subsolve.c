@@ -1,8 +1,7 @@
 /* Options for the MILP's own sub-solves (milp_subsolve.h). */
 #include "hv/milp_subsolve.h"
 
-void hv_milp_subsolve_options(const hv_milp_options_t *opt, double limit_s,
-                              hv_milp_options_t *out)
+void hv_milp_subsolve_options(const hv_milp_options_t *opt, double limit_s, hv_milp_options_t *out)
 {
     *out = *opt;
     out->verbose = 0;

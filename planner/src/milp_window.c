@@ -11,8 +11,8 @@
 
 /* The plan's fruits per stop into count[], its used stops, ascending, into used[];
  * returns their number. */
-static size_t used_stops(const hv_instance_t *inst, const hv_assignment_t *plan,
-                         uint32_t *count, uint32_t *used)
+static size_t used_stops(const hv_instance_t *inst, const hv_assignment_t *plan, uint32_t *count,
+                         uint32_t *used)
 {
     memset(count, 0, inst->n_stops * sizeof *count);
     for (size_t f = 0; f < inst->n_fruits; ++f) {
@@ -90,11 +90,10 @@ static uint64_t key_mix(uint64_t h, uint32_t w)
  * used[i - 1] and used[i + width]. *better = 1 when the plan was improved (and updated).
  * Skipped when the memo holds the window; recorded there when solved without gain. */
 static hv_status_t window_once(const hv_instance_t *inst, const hv_milp_options_t *so,
-                               const hv_milp_subsolver_t *solver,
-                               const uint32_t *used, size_t k, size_t i, unsigned width,
-                               unsigned char *keep, uint32_t *back, hv_assignment_t *plan,
-                               int *better, hv_window_stats_t *stats, hv_window_memo_t *memo,
-                               int full_limit)
+                               const hv_milp_subsolver_t *solver, const uint32_t *used, size_t k,
+                               size_t i, unsigned width, unsigned char *keep, uint32_t *back,
+                               hv_assignment_t *plan, int *better, hv_window_stats_t *stats,
+                               hv_window_memo_t *memo, int full_limit)
 {
     *better = 0;
     size_t lo, hi;
@@ -160,9 +159,8 @@ static hv_status_t window_once(const hv_instance_t *inst, const hv_milp_options_
  * re-planned twice a pass), the cheapest sub-problem first (candidate stops times fruits): a
  * window at alpha 2.5-4 takes 0.02-0.5 s, and the dear ones often run out their limit
  * without a gain (SOLVER.md's history). Returns the number of windows. */
-static size_t pass_order(const hv_instance_t *inst, const uint32_t *count,
-                         const uint32_t *used, size_t k, unsigned width, uint32_t *order,
-                         double *cost)
+static size_t pass_order(const hv_instance_t *inst, const uint32_t *count, const uint32_t *used,
+                         size_t k, unsigned width, uint32_t *order, double *cost)
 {
     if (k <= width) {
         return 0;
@@ -188,11 +186,10 @@ static size_t pass_order(const hv_instance_t *inst, const uint32_t *count,
 }
 
 hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t *opt,
-                              const hv_milp_subsolver_t *sub, unsigned width,
-                              double window_limit_s, double t_deadline_s,
-                              hv_assignment_t *plan, double *t_s, hv_window_stats_t *stats,
-                              hv_window_memo_t *memo, hv_window_better_fn better_fn,
-                              void *better_ctx)
+                              const hv_milp_subsolver_t *sub, unsigned width, double window_limit_s,
+                              double t_deadline_s, hv_assignment_t *plan, double *t_s,
+                              hv_window_stats_t *stats, hv_window_memo_t *memo,
+                              hv_window_better_fn better_fn, void *better_ctx)
 {
     hv_window_stats_t dummy;
     if (stats == NULL) {
@@ -213,8 +210,7 @@ hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t
     hv_assignment_t saved;
     hv_status_t st = HV_ERR_PLAN_NOMEM;
     if (used != NULL && count != NULL && order != NULL && cost != NULL && keep != NULL &&
-        back != NULL &&
-        (memo != NULL || hv_window_memo_init(&own, 4 * ns) == HV_OK) &&
+        back != NULL && (memo != NULL || hv_window_memo_init(&own, 4 * ns) == HV_OK) &&
         hv_assignment_alloc(&saved, inst->n_fruits) == HV_OK) {
         st = HV_OK;
         if (memo == NULL) {

@@ -39,9 +39,9 @@ static size_t stops_of(const hv_online_t *o, double m)
 hv_status_t hv_online_init(hv_online_t *o, const hv_instance_params_t *params,
                            const hv_pick_model_t *model, const hv_online_options_t *opt)
 {
-    if (o == NULL || params == NULL || model == NULL || opt == NULL ||
-        !isfinite(opt->window_m) || !isfinite(opt->commit_m) || opt->window_m <= 0 ||
-        opt->commit_m <= 0 || opt->commit_m > opt->window_m) {
+    if (o == NULL || params == NULL || model == NULL || opt == NULL || !isfinite(opt->window_m) ||
+        !isfinite(opt->commit_m) || opt->window_m <= 0 || opt->commit_m <= 0 ||
+        opt->commit_m > opt->window_m) {
         return HV_ERR_ARG;
     }
     memset(o, 0, sizeof *o);
@@ -80,8 +80,7 @@ static int known_id(const hv_online_t *o, const char *id)
     return 0;
 }
 
-hv_status_t hv_online_detect(hv_online_t *o, const hv_fruit_t *fruit,
-                             hv_online_verdict_t *verdict)
+hv_status_t hv_online_detect(hv_online_t *o, const hv_fruit_t *fruit, hv_online_verdict_t *verdict)
 {
     if (o == NULL || fruit == NULL || verdict == NULL ||
         memchr(fruit->id, '\0', sizeof fruit->id) == NULL) {
@@ -188,9 +187,12 @@ typedef struct pick_key {
 static int by_stop_side_y(const void *a, const void *b)
 {
     const pick_key_t *p = a, *q = b;
-    if (p->stop != q->stop) return p->stop < q->stop ? -1 : 1;
-    if (p->side != q->side) return p->side < q->side ? -1 : 1;
-    if (p->y != q->y) return p->y < q->y ? -1 : 1;
+    if (p->stop != q->stop)
+        return p->stop < q->stop ? -1 : 1;
+    if (p->side != q->side)
+        return p->side < q->side ? -1 : 1;
+    if (p->y != q->y)
+        return p->y < q->y ? -1 : 1;
     return p->fruit < q->fruit ? -1 : p->fruit > q->fruit;
 }
 
@@ -217,8 +219,8 @@ static hv_status_t record_stops(hv_online_t *o, const uint32_t *fruits, size_t n
                 st = HV_ERR_PLAN_NOMEM;
                 break;
             }
-            o->stops[o->n_stops++] = (hv_online_stop_t){k[i].stop, stop_y(o, k[i].stop),
-                                                        o->n_order, 0};
+            o->stops[o->n_stops++] =
+                (hv_online_stop_t){k[i].stop, stop_y(o, k[i].stop), o->n_order, 0};
         }
         o->fruit_of[o->n_order++] = k[i].fruit;
         o->stops[o->n_stops - 1].count++;
@@ -327,7 +329,8 @@ hv_status_t hv_online_step(hv_online_t *o, hv_online_step_result_t *r)
         /* every open fruit must still have a stop ahead (or have been committed) */
         for (size_t k = 0; k < n_open && st == HV_OK; ++k) {
             size_t b = full.fruit_begin[k], e = full.fruit_begin[k + 1];
-            if (o->fruit_stop[open[k]] == HV_NO_STOP && (b == e || full.pairs[e - 1].stop < o->pos)) {
+            if (o->fruit_stop[open[k]] == HV_NO_STOP &&
+                (b == e || full.pairs[e - 1].stop < o->pos)) {
                 st = HV_ERR_PLAN_UNASSIGNED;
             }
         }
@@ -351,8 +354,7 @@ hv_status_t hv_online_recommit(hv_online_t *o, size_t commit_end, const uint32_t
     }
     for (size_t k = 0; k < n; ++k) {
         if (fruits[k] >= o->n_fruits || o->why[fruits[k]] != 0 ||
-            o->fruit_stop[fruits[k]] != HV_NO_STOP || stops[k] < o->pos ||
-            stops[k] >= commit_end) {
+            o->fruit_stop[fruits[k]] != HV_NO_STOP || stops[k] < o->pos || stops[k] >= commit_end) {
             return HV_ERR_ARG;
         }
         for (size_t i = 0; i < k; ++i) {

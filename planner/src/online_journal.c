@@ -81,7 +81,7 @@ typedef struct replay {
     int line;
     uint32_t *fruits, *stops; /* the F records of the horizon being read */
     size_t n, cap;
-    size_t group_off;         /* where its first F record starts */
+    size_t group_off; /* where its first F record starts */
 } replay_t;
 
 static hv_status_t bad(replay_t *r, hv_status_t code, const char *what)
@@ -95,13 +95,15 @@ static hv_status_t header(replay_t *r, const char *line)
     const hv_instance_params_t *p = &r->o->params;
     double y0, len, margin, step;
     int end = 0;
-    if (sscanf(line, "HVP 1 start=%lf length=%lf margin=%lf step=%lf%n", &y0, &len, &margin,
-               &step, &end) != 4 || line[end] != '\0') {
+    if (sscanf(line, "HVP 1 start=%lf length=%lf margin=%lf step=%lf%n", &y0, &len, &margin, &step,
+               &end) != 4 ||
+        line[end] != '\0') {
         return bad(r, HV_ERR_PLAN_FORMAT, "not an online planner's journal (version 1)");
     }
     if (y0 != p->row_start_m || len != p->row_length_m || margin != p->stop_margin_m ||
         step != p->stop_step_m) {
-        return bad(r, HV_ERR_PLAN_FORMAT, "the journal of another course (row, stop margin "
+        return bad(r, HV_ERR_PLAN_FORMAT,
+                   "the journal of another course (row, stop margin "
                    "or stop step of the config differ)");
     }
     return HV_OK;
@@ -125,10 +127,10 @@ static hv_status_t replay_line(replay_t *r, char *line, size_t len, size_t off)
         hv_fruit_t f;
         char side[4], id[40];
         memset(&f, 0, sizeof f);
-        if (sscanf(line, "D %3s %39s x=%lf y=%lf z=%lf yaw=%lf%n", side, id, &f.x_m, &f.y_m,
-                   &f.z_m, &f.yaw_rad, &end) != 6 || line[end] != '\0' ||
-            (strcmp(side, "L") != 0 && strcmp(side, "R") != 0) || strlen(id) >= sizeof f.id ||
-            hv_fruit_id_check(id, strlen(id), NULL) != HV_OK) {
+        if (sscanf(line, "D %3s %39s x=%lf y=%lf z=%lf yaw=%lf%n", side, id, &f.x_m, &f.y_m, &f.z_m,
+                   &f.yaw_rad, &end) != 6 ||
+            line[end] != '\0' || (strcmp(side, "L") != 0 && strcmp(side, "R") != 0) ||
+            strlen(id) >= sizeof f.id || hv_fruit_id_check(id, strlen(id), NULL) != HV_OK) {
             return bad(r, HV_ERR_PLAN_FORMAT, "bad detection record");
         }
         memcpy(f.id, id, strlen(id) + 1);
@@ -174,19 +176,20 @@ static hv_status_t replay_line(replay_t *r, char *line, size_t len, size_t off)
         size_t commit_end, n;
         if (sscanf(line, "H %zu n=%zu%n", &commit_end, &n, &end) != 2 || line[end] != '\0' ||
             n != r->n) {
-            return bad(r, HV_ERR_PLAN_FORMAT, "bad horizon record (or not as many fruit "
+            return bad(r, HV_ERR_PLAN_FORMAT,
+                       "bad horizon record (or not as many fruit "
                        "records before it as it says)");
         }
         if (hv_online_recommit(r->o, commit_end, r->fruits, r->stops, n) != HV_OK) {
-            return bad(r, HV_ERR_ARG, "a horizon that cannot be what was committed (a fruit "
+            return bad(r, HV_ERR_ARG,
+                       "a horizon that cannot be what was committed (a fruit "
                        "unknown, committed twice or out of reach, or the course behind)");
         }
         r->n = 0;
         r->j->horizons++;
         return HV_OK;
     }
-    default:
-        return bad(r, HV_ERR_PLAN_FORMAT, "unknown record");
+    default: return bad(r, HV_ERR_PLAN_FORMAT, "unknown record");
     }
 }
 
@@ -247,8 +250,7 @@ hv_status_t hv_online_journal_open(hv_online_journal_t *j, const char *path, hv_
         st = put(j, 1, "HVP 1 start=%.17g length=%.17g margin=%.17g step=%.17g", p->row_start_m,
                  p->row_length_m, p->stop_margin_m, p->stop_step_m);
         if (st != HV_OK) {
-            snprintf(err, errlen, "%s: cannot write the journal header: %s", path,
-                     strerror(errno));
+            snprintf(err, errlen, "%s: cannot write the journal header: %s", path, strerror(errno));
             hv_online_journal_close(j);
         }
     }

@@ -3,8 +3,8 @@
 
 #include "hv/pick_model.h"
 
-static hv_status_t ik_cost(const void *ctx, const hv_fruit_t *fr, double stop_y_m,
-                           double *cost_s, hv_pick_why_t *why)
+static hv_status_t ik_cost(const void *ctx, const hv_fruit_t *fr, double stop_y_m, double *cost_s,
+                           hv_pick_why_t *why)
 {
     const hv_ik_model_t *ik = ctx;
     double move_s = 0.0;
@@ -33,8 +33,8 @@ hv_status_t hv_pick_model_ik(const hv_config_t *cfg, hv_ik_model_t *ik, hv_pick_
         hv_grid_t area;
         hv_config_arm(cfg, (hv_side_t)s, &ik->arm[s]);
         hv_config_grid(cfg, (hv_side_t)s, &area);
-        hv_status_t st = hv_pick_reach_span(&ik->arm[s], &area, &model->y_rel_min[s],
-                                            &model->y_rel_max[s]);
+        hv_status_t st =
+            hv_pick_reach_span(&ik->arm[s], &area, &model->y_rel_min[s], &model->y_rel_max[s]);
         if (st != HV_OK) {
             return st;
         }

@@ -17,9 +17,12 @@ typedef struct slot {
 static int cmp_slot(const void *a, const void *b)
 {
     const slot_t *x = a, *y = b;
-    if (x->pass != y->pass) return x->pass - y->pass;
-    if (x->stop != y->stop) return x->stop < y->stop ? -1 : 1;
-    if (x->y != y->y) return x->y < y->y ? -1 : 1;
+    if (x->pass != y->pass)
+        return x->pass - y->pass;
+    if (x->stop != y->stop)
+        return x->stop < y->stop ? -1 : 1;
+    if (x->y != y->y)
+        return x->y < y->y ? -1 : 1;
     return strcmp(x->id, y->id);
 }
 
@@ -57,8 +60,7 @@ static hv_status_t copy_meta(hv_plan_t *plan, const hv_plan_meta_t *m)
 }
 
 hv_status_t hv_plan_build(const hv_instance_t *inst, const hv_assignment_t *a,
-                          const unsigned char *passes, const hv_plan_meta_t *meta,
-                          hv_plan_t *plan)
+                          const unsigned char *passes, const hv_plan_meta_t *meta, hv_plan_t *plan)
 {
     if (inst == NULL || a == NULL || meta == NULL || plan == NULL || meta->method == NULL ||
         meta->solver_status == NULL || a->n_fruits != inst->n_fruits) {

@@ -29,7 +29,10 @@ static hv_status_t ck_fail(ck_t *c, hv_status_t code, const char *field, const c
     return code;
 }
 
-static int near(double a, double b, double tol) { return fabs(a - b) <= tol; }
+static int near(double a, double b, double tol)
+{
+    return fabs(a - b) <= tol;
+}
 
 typedef struct id_ref {
     const char *id;
@@ -60,9 +63,8 @@ static int why_known(const char *reason)
     return 0;
 }
 
-hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
-                          const hv_fruit_t *fruits, size_t n_fruits,
-                          const hv_pick_model_t *model, char *err, size_t errlen)
+hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg, const hv_fruit_t *fruits,
+                          size_t n_fruits, const hv_pick_model_t *model, char *err, size_t errlen)
 {
     ck_t c = {err, errlen};
     if (plan == NULL || cfg == NULL || (fruits == NULL && n_fruits > 0) || model == NULL ||
@@ -75,8 +77,7 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
     if (!(plan->stop_step_m > 0) || !isfinite(plan->stop_step_m) ||
         !near(plan->stop_step_m, cfg->grid_step_m, 1e-12)) {
         return ck_fail(&c, HV_ERR_PLAN_CHECK_PARAMS, "params.stop_step_m",
-                       "%g, configuration grid.step is %g", plan->stop_step_m,
-                       cfg->grid_step_m);
+                       "%g, configuration grid.step is %g", plan->stop_step_m, cfg->grid_step_m);
     }
     const double tau = hv_config_stop_time_s(cfg);
     if (!near(plan->stop_penalty_s, tau, 1e-12)) {
@@ -94,15 +95,15 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
                        "%g, configuration vehicle.speed is %g", plan->vehicle_speed_mps,
                        cfg->vehicle_speed_mps);
     }
-    if (!isfinite(plan->row_start_m) || !isfinite(plan->row_length_m) ||
-        plan->row_length_m < 0 || plan->row_length_m / plan->stop_step_m > 1e7) {
+    if (!isfinite(plan->row_start_m) || !isfinite(plan->row_length_m) || plan->row_length_m < 0 ||
+        plan->row_length_m / plan->stop_step_m > 1e7) {
         return ck_fail(&c, HV_ERR_PLAN_CHECK_PARAMS, "params.row_length_m", "invalid (%g)",
                        plan->row_length_m);
     }
-    double margin = cfg->stops_beyond_ends ? hv_pick_margin_of_spans(model->y_rel_min,
-                                                                     model->y_rel_max,
-                                                                     cfg->grid_step_m)
-                                           : 0.0;
+    double margin =
+        cfg->stops_beyond_ends
+            ? hv_pick_margin_of_spans(model->y_rel_min, model->y_rel_max, cfg->grid_step_m)
+            : 0.0;
     if (!near(plan->stop_margin_m, margin, 1e-9)) {
         return ck_fail(&c, HV_ERR_PLAN_CHECK_PARAMS, "params.stop_margin_m",
                        "%.9g, the configuration gives %.9g (row.stops_beyond_ends = %d)",
@@ -112,8 +113,8 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
     double travel = course / cfg->vehicle_speed_mps;
     if (!near(plan->travel_time_s, travel, tol)) {
         return ck_fail(&c, HV_ERR_PLAN_CHECK_PARAMS, "params.travel_time_s",
-                       "%.9g, (row length + 2 stop margin) / speed is %.9g",
-                       plan->travel_time_s, travel);
+                       "%.9g, (row length + 2 stop margin) / speed is %.9g", plan->travel_time_s,
+                       travel);
     }
     double y0 = plan->row_start_m - margin;
     int serial = strcmp(plan->method, "serial") == 0;
@@ -155,8 +156,8 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
         double y = y0 + (double)sp->index * plan->stop_step_m;
         if (!near(sp->y_m, y, 1e-9)) {
             st = ck_fail(&c, HV_ERR_PLAN_CHECK_STOP, field,
-                         "y_m %.9g is not candidate stop %u (y %.9g)", sp->y_m,
-                         (unsigned)sp->index, y);
+                         "y_m %.9g is not candidate stop %u (y %.9g)", sp->y_m, (unsigned)sp->index,
+                         y);
             break;
         }
         if (sp->pass < 0 || sp->pass > (serial ? 1 : 0)) {
@@ -215,9 +216,8 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
                 hv_status_t ls = model->cost(model->ctx, fr, y, &cost, &why);
                 if (ls != HV_OK) {
                     st = ck_fail(&c, HV_ERR_PLAN_CHECK_PAIR, field,
-                                 "stop %u (y %.3f) cannot reach it (%s: %s)",
-                                 (unsigned)sp->index, y, hv_pick_why_name(why),
-                                 hv_status_name(ls));
+                                 "stop %u (y %.3f) cannot reach it (%s: %s)", (unsigned)sp->index,
+                                 y, hv_pick_why_name(why), hv_status_name(ls));
                     break;
                 }
                 if (!near(pk->cost_s, cost, tol)) {
@@ -240,12 +240,14 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
         }
         snprintf(field, sizeof field, "stops[%zu]", s);
         double cs = arm_sum[0] > arm_sum[1] ? arm_sum[0] : arm_sum[1];
-        const struct { const char *name; double have, want; } vals[5] = {
-            {"C_left_s", sp->c_left_s, arm_sum[0]},
-            {"C_right_s", sp->c_right_s, arm_sum[1]},
-            {"C_s", sp->c_s, cs},
-            {"idle_left_s", sp->idle_left_s, cs - arm_sum[0]},
-            {"idle_right_s", sp->idle_right_s, cs - arm_sum[1]}};
+        const struct {
+            const char *name;
+            double have, want;
+        } vals[5] = {{"C_left_s", sp->c_left_s, arm_sum[0]},
+                     {"C_right_s", sp->c_right_s, arm_sum[1]},
+                     {"C_s", sp->c_s, cs},
+                     {"idle_left_s", sp->idle_left_s, cs - arm_sum[0]},
+                     {"idle_right_s", sp->idle_right_s, cs - arm_sum[1]}};
         for (int v = 0; v < 5; ++v) {
             if (!near(vals[v].have, vals[v].want, tol)) {
                 st = ck_fail(&c, HV_ERR_PLAN_CHECK_TOTAL, field, "%s %.9g, recomputed %.9g",
@@ -295,8 +297,10 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
     /* --- every fruit accounted for --- */
     for (size_t f = 0; f < n_fruits && st == HV_OK; ++f) {
         if (!seen[f]) {
-            st = ck_fail(&c, HV_ERR_PLAN_CHECK_MISSING, "fruit", "\"%s\" is neither picked nor "
-                         "listed unreachable", fruits[f].id);
+            st = ck_fail(&c, HV_ERR_PLAN_CHECK_MISSING, "fruit",
+                         "\"%s\" is neither picked nor "
+                         "listed unreachable",
+                         fruits[f].id);
         }
     }
 
@@ -307,12 +311,14 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
         double travel_total = travel * (serial ? 2.0 : 1.0);
         double makespan = pick_sum + stop_time + travel_total;
         double thr = makespan > 0 ? (double)planned / makespan : 0.0;
-        const struct { const char *name; double have, want; } tot[5] = {
-            {"totals.pick_time_s", plan->pick_time_s, pick_sum},
-            {"totals.stop_time_s", plan->stop_time_s, stop_time},
-            {"totals.travel_time_s", plan->total_travel_time_s, travel_total},
-            {"totals.makespan_s", plan->makespan_s, makespan},
-            {"totals.throughput_fruit_per_s", plan->throughput_fruit_per_s, thr}};
+        const struct {
+            const char *name;
+            double have, want;
+        } tot[5] = {{"totals.pick_time_s", plan->pick_time_s, pick_sum},
+                    {"totals.stop_time_s", plan->stop_time_s, stop_time},
+                    {"totals.travel_time_s", plan->total_travel_time_s, travel_total},
+                    {"totals.makespan_s", plan->makespan_s, makespan},
+                    {"totals.throughput_fruit_per_s", plan->throughput_fruit_per_s, thr}};
         for (int v = 0; v < 5; ++v) {
             if (!near(tot[v].have, tot[v].want, tol)) {
                 st = ck_fail(&c, HV_ERR_PLAN_CHECK_TOTAL, tot[v].name, "%.9g, recomputed %.9g",
@@ -328,8 +334,7 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
                          "%zu, the plan picks %zu", plan->fruits_planned, planned);
         } else if (st == HV_OK && plan->fruits_unreachable != plan->n_unreachable) {
             st = ck_fail(&c, HV_ERR_PLAN_CHECK_TOTAL, "totals.fruits_unreachable",
-                         "%zu, the plan lists %zu", plan->fruits_unreachable,
-                         plan->n_unreachable);
+                         "%zu, the plan lists %zu", plan->fruits_unreachable, plan->n_unreachable);
         }
     }
     free(refs);
@@ -339,8 +344,8 @@ hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
 
 /* `given` when not NULL, else the plan's `input` resolved against the plan's folder. */
 static hv_status_t input_path(const char *given, const char *plan_path, const char *input,
-                              const char *field, char *buf, size_t cap, const char **out,
-                              char *err, size_t errlen)
+                              const char *field, char *buf, size_t cap, const char **out, char *err,
+                              size_t errlen)
 {
     ck_t c = {err, errlen};
     if (given != NULL) {
@@ -348,8 +353,10 @@ static hv_status_t input_path(const char *given, const char *plan_path, const ch
         return HV_OK;
     }
     if (plan_path == NULL) {
-        return ck_fail(&c, HV_ERR_ARG, field, "no path given and no plan file to resolve "
-                       "\"%s\" against", input);
+        return ck_fail(&c, HV_ERR_ARG, field,
+                       "no path given and no plan file to resolve "
+                       "\"%s\" against",
+                       input);
     }
     hv_status_t st = hv_plan_input_resolve(plan_path, input, buf, cap);
     if (st != HV_OK) {
@@ -369,8 +376,8 @@ hv_status_t hv_plan_check_files(const hv_plan_t *plan, const char *plan_path,
         return HV_ERR_ARG;
     }
     char bufs[4][2 * HV_PLAN_PATH_LEN];
-    hv_status_t st = input_path(config_path, plan_path, plan->config, "inputs.config",
-                                bufs[0], sizeof bufs[0], &config_path, err, errlen);
+    hv_status_t st = input_path(config_path, plan_path, plan->config, "inputs.config", bufs[0],
+                                sizeof bufs[0], &config_path, err, errlen);
     if (st == HV_OK) {
         st = input_path(fruits_path, plan_path, plan->fruit_map, "inputs.fruit_map", bufs[1],
                         sizeof bufs[1], &fruits_path, err, errlen);
@@ -398,8 +405,8 @@ hv_status_t hv_plan_check_files(const hv_plan_t *plan, const char *plan_path,
     }
     hv_ik_model_t ik;
     hv_pick_model_t model;
-    if (st == HV_OK && (st = hv_pick_model_ik(&cfg, &ik, &model)) != HV_OK &&
-        err != NULL && errlen > 0) {
+    if (st == HV_OK && (st = hv_pick_model_ik(&cfg, &ik, &model)) != HV_OK && err != NULL &&
+        errlen > 0) {
         snprintf(err, errlen, "%s: an arm reaches none of its fruit area (%s)", config_path,
                  hv_status_name(st));
     }

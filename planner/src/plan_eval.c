@@ -34,11 +34,10 @@ hv_status_t hv_instance_pair_cost(const hv_instance_t *inst, uint32_t fruit, uin
     return HV_OK;
 }
 
-hv_status_t hv_assignment_eval_ws(const hv_instance_t *inst, const hv_assignment_t *a,
-                                  double *work, hv_eval_t *ev)
+hv_status_t hv_assignment_eval_ws(const hv_instance_t *inst, const hv_assignment_t *a, double *work,
+                                  hv_eval_t *ev)
 {
-    if (inst == NULL || a == NULL || work == NULL || ev == NULL ||
-        a->n_fruits != inst->n_fruits) {
+    if (inst == NULL || a == NULL || work == NULL || ev == NULL || a->n_fruits != inst->n_fruits) {
         return HV_ERR_ARG;
     }
     memset(ev, 0, sizeof *ev);
@@ -87,8 +86,7 @@ hv_status_t hv_assignment_eval_ws(const hv_instance_t *inst, const hv_assignment
     return st;
 }
 
-hv_status_t hv_assignment_eval(const hv_instance_t *inst, const hv_assignment_t *a,
-                               hv_eval_t *ev)
+hv_status_t hv_assignment_eval(const hv_instance_t *inst, const hv_assignment_t *a, hv_eval_t *ev)
 {
     if (inst == NULL) {
         return HV_ERR_ARG;

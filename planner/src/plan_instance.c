@@ -157,17 +157,17 @@ static hv_status_t fruit_pairs(hv_instance_t *inst, size_t *cap, const hv_pick_m
         }
     }
     if (inst->n_pairs == inst->fruit_begin[f]) {
-        inst->why[f] = beyond ? HV_WHY_ROW_END
-                     : height ? (unsigned char)HV_PICK_HEIGHT
-                     : yaw    ? (unsigned char)HV_PICK_YAW
-                              : (unsigned char)HV_PICK_DEPTH;
+        inst->why[f] = beyond   ? HV_WHY_ROW_END
+                       : height ? (unsigned char)HV_PICK_HEIGHT
+                       : yaw    ? (unsigned char)HV_PICK_YAW
+                                : (unsigned char)HV_PICK_DEPTH;
     }
     return HV_OK;
 }
 
 hv_status_t hv_instance_build(const hv_instance_params_t *params, const hv_fruit_t *fruits,
-                              size_t n_fruits, const hv_pick_model_t *model,
-                              hv_instance_t *inst, hv_diag_t *diag)
+                              size_t n_fruits, const hv_pick_model_t *model, hv_instance_t *inst,
+                              hv_diag_t *diag)
 {
     if (params == NULL || (fruits == NULL && n_fruits > 0) || model == NULL ||
         model->cost == NULL || inst == NULL) {

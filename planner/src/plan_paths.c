@@ -27,8 +27,7 @@ static hv_status_t fits(int n, char *out, size_t cap)
     return HV_OK;
 }
 
-hv_status_t hv_plan_input_resolve(const char *plan_path, const char *input, char *out,
-                                  size_t cap)
+hv_status_t hv_plan_input_resolve(const char *plan_path, const char *input, char *out, size_t cap)
 {
     if (plan_path == NULL || input == NULL || out == NULL || cap == 0 || input[0] == '\0') {
         return HV_ERR_ARG;
@@ -103,12 +102,12 @@ static hv_status_t relative(const char *from, const char *to, const char *base, 
         }
         len += 3;
     }
-    return fits(snprintf(out + len, cap - len, "%s%s%s", down, *down ? "/" : "", base),
-                out, cap - len);
+    return fits(snprintf(out + len, cap - len, "%s%s%s", down, *down ? "/" : "", base), out,
+                cap - len);
 }
 
-hv_status_t hv_plan_input_relative(const char *plan_path, const char *input, char *out,
-                                   size_t cap, char *err, size_t errlen)
+hv_status_t hv_plan_input_relative(const char *plan_path, const char *input, char *out, size_t cap,
+                                   char *err, size_t errlen)
 {
     if (plan_path == NULL || input == NULL || out == NULL || cap == 0 || input[0] == '\0') {
         return HV_ERR_ARG;
@@ -134,8 +133,7 @@ hv_status_t hv_plan_input_relative(const char *plan_path, const char *input, cha
     if (from != NULL && to != NULL) {
         st = relative(from, to, base, out, cap);
         if (st != HV_OK && err != NULL && errlen > 0) {
-            snprintf(err, errlen, "%s: longer than %zu bytes relative to %s", input, cap - 1,
-                     from);
+            snprintf(err, errlen, "%s: longer than %zu bytes relative to %s", input, cap - 1, from);
         }
     }
     free(from);

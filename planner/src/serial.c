@@ -7,8 +7,7 @@
 #include "hv/plan_status.h"
 
 hv_status_t hv_serial_solve(const hv_instance_t *inst, const hv_milp_options_t *opt,
-                            hv_assignment_t *out, unsigned char *passes,
-                            hv_serial_result_t *res)
+                            hv_assignment_t *out, unsigned char *passes, hv_serial_result_t *res)
 {
     if (inst == NULL || opt == NULL || out == NULL || passes == NULL || res == NULL ||
         out->n_fruits != inst->n_fruits) {

@@ -1,6 +1,7 @@
 """Checks shared by the udp (namespace) and vcan (host or guest) suites: hv-can-tool (the C
 transports and the cantools-generated C code) against python-can + cantools (Python).
 Each check raises AssertionError with what differed."""
+
 import os
 import random
 import select
@@ -15,7 +16,9 @@ SLOW = 20 if os.environ.get("HV_IN_GUEST") == "1" else 1
 
 
 def tool_path():
-    build = os.environ.get("HV_BUILD_DIR", os.path.join(os.path.dirname(__file__), "..", "..", "build"))
+    build = os.environ.get(
+        "HV_BUILD_DIR", os.path.join(os.path.dirname(__file__), "..", "..", "build")
+    )
     return os.path.join(build, "executor", "can", "hv-can-tool")
 
 
@@ -58,19 +61,28 @@ def frame_text(can_id, data):
 
 def start_tool(args, timeout=10.0):
     """hv-can-tool started in the background, returned once it printed 'ready'."""
-    proc = subprocess.Popen([tool_path()] + args, stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(
+        [tool_path()] + args,
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     deadline = time.monotonic() + timeout * SLOW
     while True:
         left = deadline - time.monotonic()
         ready, _, _ = select.select([proc.stderr], [], [], max(left, 0))
         if not ready:
             proc.kill()
-            raise AssertionError(f"hv-can-tool {' '.join(args)}: no 'ready' within {timeout * SLOW} s")
+            raise AssertionError(
+                f"hv-can-tool {' '.join(args)}: no 'ready' within {timeout * SLOW} s"
+            )
         line = proc.stderr.readline()
         if not line:
             proc.wait()
-            raise AssertionError(f"hv-can-tool {' '.join(args)} exited {proc.returncode} before ready")
+            raise AssertionError(
+                f"hv-can-tool {' '.join(args)} exited {proc.returncode} before ready"
+            )
         if line.startswith("ready "):
             return proc
 
@@ -81,8 +93,9 @@ def finish(proc, timeout=30.0):
 
 
 def run_tool(args, stdin="", timeout=30.0):
-    p = subprocess.run([tool_path()] + args, input=stdin, capture_output=True, text=True,
-                       timeout=timeout * SLOW)
+    p = subprocess.run(
+        [tool_path()] + args, input=stdin, capture_output=True, text=True, timeout=timeout * SLOW
+    )
     return p.returncode, p.stdout, p.stderr
 
 
@@ -98,12 +111,18 @@ def check_python_to_c(spec, per_message=3, seed=1):
     """python-can sends every DBC message (cantools-encoded); C receives the same bytes."""
     vec = vectors(per_message, seed)
     proto = load()
-    rx = start_tool(["--bus", spec, "recv", "--count", str(len(vec)), "--timeout-ms", str(5000 * SLOW)])
+    rx = start_tool(
+        ["--bus", spec, "recv", "--count", str(len(vec)), "--timeout-ms", str(5000 * SLOW)]
+    )
     with open_bus(spec) as bus:
         import can
+
         for name, _, data in vec:
-            bus.send(can.Message(arbitration_id=proto.message(name).frame_id, data=data,
-                                 is_extended_id=False))
+            bus.send(
+                can.Message(
+                    arbitration_id=proto.message(name).frame_id, data=data, is_extended_id=False
+                )
+            )
     rc, out, err = finish(rx)
     assert rc == 0, f"C receiver exit {rc}: {err}"
     got = out.split()
@@ -115,13 +134,17 @@ def check_python_to_c(spec, per_message=3, seed=1):
 def check_c_to_python(spec, per_message=3, seed=2):
     """C packs every DBC message with the generated code and sends it; python-can receives
     it and cantools decodes the values and the very bytes cantools would have sent."""
-    import can
     vec = vectors(per_message, seed)
     proto = load()
     lines = "".join(msg_line(n, v) + "\n" for n, v, _ in vec)
     with open_bus(spec) as bus:
-        sender = subprocess.Popen([tool_path(), "--bus", spec, "send-msg"], stdin=subprocess.PIPE,
-                                  stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        sender = subprocess.Popen(
+            [tool_path(), "--bus", spec, "send-msg"],
+            stdin=subprocess.PIPE,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
         _, err = sender.communicate(lines, timeout=30 * SLOW)
         assert sender.returncode == 0, f"C sender exit {sender.returncode}: {err}"
         received = []
@@ -137,21 +160,39 @@ def check_c_to_python(spec, per_message=3, seed=2):
         assert bytes(m.data) == data, f"{name}: C sent {bytes(m.data).hex()}, cantools {data.hex()}"
         decoded = msg.decode(bytes(m.data), decode_choices=False)
         for sig in msg.signals:
-            assert abs(decoded[sig.name] - values[sig.name]) <= sig.scale / 2 + 1e-12, (name, sig.name)
+            assert abs(decoded[sig.name] - values[sig.name]) <= sig.scale / 2 + 1e-12, (
+                name,
+                sig.name,
+            )
 
 
 def check_filters(spec):
     """A C bus filtered to node 3 (left arm, id & 0x7E0 == 0x060) gets only its frames."""
     import can
+
     proto = load()
     left = sorted(m.frame_id for m in proto.messages if m.frame_id & 0x7E0 == 0x060)
-    rx = start_tool(["--bus", spec, "recv", "--count", "0", "--timeout-ms", str(1500 * SLOW),
-                     "--filter", "060:7E0"])
+    rx = start_tool(
+        [
+            "--bus",
+            spec,
+            "recv",
+            "--count",
+            "0",
+            "--timeout-ms",
+            str(1500 * SLOW),
+            "--filter",
+            "060:7E0",
+        ]
+    )
     vec = vectors(1, seed=3)
     with open_bus(spec) as bus:
         for name, _, data in vec:
-            bus.send(can.Message(arbitration_id=proto.message(name).frame_id, data=data,
-                                 is_extended_id=False))
+            bus.send(
+                can.Message(
+                    arbitration_id=proto.message(name).frame_id, data=data, is_extended_id=False
+                )
+            )
         # an extended id with the same low bits must not pass a standard-id filter
         bus.send(can.Message(arbitration_id=0x00000064, data=b"\x01", is_extended_id=True))
     rc, out, err = finish(rx)

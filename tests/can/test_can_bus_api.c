@@ -57,11 +57,14 @@ static void open_errors(void **state)
     assert_int_equal(hv_can_udp_open(&bus, "10.0.0.1", 0, NULL, NULL, 0), HV_CAN_ERR_ADDRESS);
     assert_int_equal(hv_can_udp_open(&bus, "not-an-address", 0, NULL, NULL, 0), HV_CAN_ERR_ADDRESS);
     assert_int_equal(hv_can_udp_open(&bus, NULL, 0, "127.0.0.x", NULL, 0), HV_CAN_ERR_ADDRESS);
-    assert_int_equal(hv_can_udp_open(&bus, NULL, 0, NULL, many, HV_CAN_MAX_FILTERS + 1), HV_CAN_ERR_FILTERS);
+    assert_int_equal(hv_can_udp_open(&bus, NULL, 0, NULL, many, HV_CAN_MAX_FILTERS + 1),
+                     HV_CAN_ERR_FILTERS);
     assert_int_equal(hv_can_udp_open(&bus, NULL, 0, NULL, NULL, 1), HV_ERR_ARG);
     assert_int_equal(hv_can_socketcan_open(&bus, "", NULL, 0), HV_ERR_ARG);
-    assert_int_equal(hv_can_socketcan_open(&bus, "a-name-longer-than-ifnamsiz", NULL, 0), HV_ERR_ARG);
-    assert_int_equal(hv_can_socketcan_open(&bus, "vcan0", many, HV_CAN_MAX_FILTERS + 1), HV_CAN_ERR_FILTERS);
+    assert_int_equal(hv_can_socketcan_open(&bus, "a-name-longer-than-ifnamsiz", NULL, 0),
+                     HV_ERR_ARG);
+    assert_int_equal(hv_can_socketcan_open(&bus, "vcan0", many, HV_CAN_MAX_FILTERS + 1),
+                     HV_CAN_ERR_FILTERS);
     /* no such interface: NO_DEVICE where the kernel has CAN, UNSUPPORTED where it has not */
     hv_status_t st = hv_can_socketcan_open(&bus, "hvnosuch0", NULL, 0);
     assert_true(st == HV_CAN_ERR_NO_DEVICE || st == HV_CAN_ERR_UNSUPPORTED);

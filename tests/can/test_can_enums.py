@@ -1,6 +1,7 @@
 """The command, state, health and end-effector enums, in C (the build's hv/can_enums.h) and
 in Python (harvest.canbus.enums), are the DBC's value tables as cantools reads them, and
 the generator refuses a DBC whose nodes disagree or whose table nobody named."""
+
 import os
 import re
 import subprocess
@@ -11,34 +12,41 @@ import pytest
 
 from harvest.canbus import enums, protocol
 
-SOURCE_DIR = os.environ.get("HV_SOURCE_DIR",
-                            os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+SOURCE_DIR = os.environ.get(
+    "HV_SOURCE_DIR", os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+)
 BUILD_DIR = os.environ.get("HV_BUILD_DIR", os.path.join(SOURCE_DIR, "build"))
 HEADER = os.path.join(BUILD_DIR, "executor", "can", "generated", "enums", "hv", "can_enums.h")
 DBC = os.path.join(SOURCE_DIR, "executor", "can", "harvest.dbc")
 
 # What the C names and Python enums promise (DESIGN §6): the kind of message (its name
 # without the node) and signal -> C prefix and Python enum.
-CONTRACT = {("Command", "Command"): ("CMD", enums.Command),
-            ("Status", "State"): ("STATE", enums.State),
-            ("Heartbeat", "Health"): ("HEALTH", enums.Health),
-            ("EeCommand", "Action"): ("EE_ACTION", enums.EeAction),
-            ("EeStatus", "Action"): ("EE_ACTION", enums.EeAction),
-            ("EeStatus", "State"): ("EE_STATE", enums.EeState),
-            ("PlanStatus", "State"): ("PLAN_STATE", enums.PlanState)}
+CONTRACT = {
+    ("Command", "Command"): ("CMD", enums.Command),
+    ("Status", "State"): ("STATE", enums.State),
+    ("Heartbeat", "Health"): ("HEALTH", enums.Health),
+    ("EeCommand", "Action"): ("EE_ACTION", enums.EeAction),
+    ("EeStatus", "Action"): ("EE_ACTION", enums.EeAction),
+    ("EeStatus", "State"): ("EE_STATE", enums.EeState),
+    ("PlanStatus", "State"): ("PLAN_STATE", enums.PlanState),
+}
 NODE_PREFIXES = [prefix for _, prefix in protocol.NODES.values()]
 
 
 def _kind(message_name):
     prefix = next(p for p in NODE_PREFIXES if message_name.startswith(p))
-    return message_name[len(prefix):]
+    return message_name[len(prefix) :]
 
 
 def _dbc_tables():
     """[(message, signal, {value: label})] of every enumerated signal, read by cantools."""
     db = cantools.database.load_file(DBC, strict=True)
-    return [(m.name, s.name, {int(k): str(v) for k, v in s.choices.items()})
-            for m in db.messages for s in m.signals if s.choices]
+    return [
+        (m.name, s.name, {int(k): str(v) for k, v in s.choices.items()})
+        for m in db.messages
+        for s in m.signals
+        if s.choices
+    ]
 
 
 def _header_constants():
@@ -87,9 +95,21 @@ def _variant(tmp_path, old, new, count=1):
 
 def _generate(dbc, out):
     env = dict(os.environ)
-    return subprocess.run([sys.executable, "-m", "harvest.canbus.dbc_enums", "--dbc", str(dbc),
-                           "--c-header", str(out)], env=env, text=True,
-                          stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    return subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "harvest.canbus.dbc_enums",
+            "--dbc",
+            str(dbc),
+            "--c-header",
+            str(out),
+        ],
+        env=env,
+        text=True,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
 
 
 def test_the_generator_writes_the_same_header_as_the_build(tmp_path):
@@ -100,15 +120,21 @@ def test_the_generator_writes_the_same_header_as_the_build(tmp_path):
     assert {n: int(v) for n, v in re.findall(r"\b(HV_CAN_\w+) = (\d+)", text)} == consts
 
 
-@pytest.mark.parametrize("old,new,why", [
-    # one arm's command table gains a value the others lack
-    ('VAL_ 130 Command 0 "NONE"', 'VAL_ 130 Command 7 "REBOOT" 0 "NONE"', "differ from"),
-    # a value table on a signal no enum names
-    ('VAL_ 33 Health 0 "OK"', 'VAL_ 66 CommandSeq 0 "FIRST" ;\nVAL_ 33 Health 0 "OK"',
-     "VehicleCommand.CommandSeq has a value table that no enum"),
-    # a label that is no identifier in C or Python
-    ('2 "HOMING"', '2 "HOMING NOW"', "is not an upper-case identifier"),
-])
+@pytest.mark.parametrize(
+    "old,new,why",
+    [
+        # one arm's command table gains a value the others lack
+        ('VAL_ 130 Command 0 "NONE"', 'VAL_ 130 Command 7 "REBOOT" 0 "NONE"', "differ from"),
+        # a value table on a signal no enum names
+        (
+            'VAL_ 33 Health 0 "OK"',
+            'VAL_ 66 CommandSeq 0 "FIRST" ;\nVAL_ 33 Health 0 "OK"',
+            "VehicleCommand.CommandSeq has a value table that no enum",
+        ),
+        # a label that is no identifier in C or Python
+        ('2 "HOMING"', '2 "HOMING NOW"', "is not an upper-case identifier"),
+    ],
+)
 def test_the_generator_refuses_a_dbc_it_cannot_type(tmp_path, old, new, why):
     out = tmp_path / "can_enums.h"
     r = _generate(_variant(tmp_path, old, new), out)
@@ -118,8 +144,9 @@ def test_the_generator_refuses_a_dbc_it_cannot_type(tmp_path, old, new, why):
 
 def test_a_dbc_with_other_values_than_the_enums_is_refused(tmp_path):
     # every node's State table swaps two values: consistent, but not what the enums say
-    other = protocol.Protocol(str(_variant(tmp_path, '4 "FAULT" 5 "ESTOP" ;', '4 "ESTOP" 5 "FAULT" ;',
-                                           count=-1)))
+    other = protocol.Protocol(
+        str(_variant(tmp_path, '4 "FAULT" 5 "ESTOP" ;', '4 "ESTOP" 5 "FAULT" ;', count=-1))
+    )
     with pytest.raises(enums.EnumError, match="State values"):
         enums.check_same(other)
     enums.check_same(protocol.load(DBC))  # the repository's DBC is the one read at import

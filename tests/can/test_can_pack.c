@@ -33,10 +33,18 @@ static void setpoint_at_joint_limits(void **state)
         assert_int_equal(harvest_can_left_arm_setpoint_unpack(&back, buf, sizeof buf), 0);
         assert_memory_equal(&sp, &back, sizeof sp);
         /* within half a step of the commanded value: 0.05 mm, 0.00005 rad */
-        assert_float_equal(harvest_can_left_arm_setpoint_joint1_position_decode(back.joint1_position), q[0], 0.5e-4);
-        assert_float_equal(harvest_can_left_arm_setpoint_joint2_position_decode(back.joint2_position), q[1], 0.5e-4);
-        assert_float_equal(harvest_can_left_arm_setpoint_joint3_position_decode(back.joint3_position), q[2], 0.5e-4);
-        assert_float_equal(harvest_can_left_arm_setpoint_joint4_position_decode(back.joint4_position), q[3], 0.5e-4);
+        assert_float_equal(
+            harvest_can_left_arm_setpoint_joint1_position_decode(back.joint1_position), q[0],
+            0.5e-4);
+        assert_float_equal(
+            harvest_can_left_arm_setpoint_joint2_position_decode(back.joint2_position), q[1],
+            0.5e-4);
+        assert_float_equal(
+            harvest_can_left_arm_setpoint_joint3_position_decode(back.joint3_position), q[2],
+            0.5e-4);
+        assert_float_equal(
+            harvest_can_left_arm_setpoint_joint4_position_decode(back.joint4_position), q[3],
+            0.5e-4);
         assert_int_equal(back.setpoint_seq, corner ? 31 : 0);
     }
 }
@@ -110,7 +118,8 @@ static void heartbeat_time_scale_limits(void **state)
     assert_int_equal(harvest_can_left_arm_heartbeat_pack(buf, &hb, sizeof buf), 5);
     assert_int_equal(harvest_can_left_arm_heartbeat_unpack(&back, buf, sizeof buf), 0);
     assert_int_equal(back.time_scale, 65535);
-    assert_float_equal(harvest_can_left_arm_heartbeat_time_scale_decode(back.time_scale), 655.35, 1e-9);
+    assert_float_equal(harvest_can_left_arm_heartbeat_time_scale_decode(back.time_scale), 655.35,
+                       1e-9);
     assert_false(harvest_can_left_arm_heartbeat_time_scale_is_in_range(0)); /* 0x is not a scale */
 }
 
@@ -120,7 +129,7 @@ static void short_buffers_rejected(void **state)
     struct harvest_can_right_arm_status_t st;
     uint8_t buf[8] = {0};
     harvest_can_right_arm_status_init(&st);
-    assert_true(harvest_can_right_arm_status_pack(buf, &st, 4) < 0);   /* DBC length 5 */
+    assert_true(harvest_can_right_arm_status_pack(buf, &st, 4) < 0); /* DBC length 5 */
     assert_true(harvest_can_right_arm_status_unpack(&st, buf, 4) < 0);
     assert_int_equal(harvest_can_right_arm_status_pack(buf, &st, 5), 5);
 }
@@ -128,11 +137,16 @@ static void short_buffers_rejected(void **state)
 static void ids_follow_layout(void **state)
 {
     (void)state;
-    assert_int_equal(HARVEST_CAN_ESTOP_FRAME_ID, HV_CAN_ID(HV_CAN_NODE_BROADCAST, HV_CAN_CMD_ESTOP));
-    assert_int_equal(HARVEST_CAN_EXECUTOR_HEARTBEAT_FRAME_ID, HV_CAN_ID(HV_CAN_NODE_EXECUTOR, HV_CAN_CMD_HEARTBEAT));
-    assert_int_equal(HARVEST_CAN_VEHICLE_MOVE_FRAME_ID, HV_CAN_ID(HV_CAN_NODE_VEHICLE, HV_CAN_CMD_SETPOINT));
-    assert_int_equal(HARVEST_CAN_LEFT_ARM_SETPOINT_FRAME_ID, HV_CAN_ID(HV_CAN_NODE_ARM_LEFT, HV_CAN_CMD_SETPOINT));
-    assert_int_equal(HARVEST_CAN_RIGHT_ARM_EE_STATUS_FRAME_ID, HV_CAN_ID(HV_CAN_NODE_ARM_RIGHT, HV_CAN_CMD_EE_STATUS));
+    assert_int_equal(HARVEST_CAN_ESTOP_FRAME_ID,
+                     HV_CAN_ID(HV_CAN_NODE_BROADCAST, HV_CAN_CMD_ESTOP));
+    assert_int_equal(HARVEST_CAN_EXECUTOR_HEARTBEAT_FRAME_ID,
+                     HV_CAN_ID(HV_CAN_NODE_EXECUTOR, HV_CAN_CMD_HEARTBEAT));
+    assert_int_equal(HARVEST_CAN_VEHICLE_MOVE_FRAME_ID,
+                     HV_CAN_ID(HV_CAN_NODE_VEHICLE, HV_CAN_CMD_SETPOINT));
+    assert_int_equal(HARVEST_CAN_LEFT_ARM_SETPOINT_FRAME_ID,
+                     HV_CAN_ID(HV_CAN_NODE_ARM_LEFT, HV_CAN_CMD_SETPOINT));
+    assert_int_equal(HARVEST_CAN_RIGHT_ARM_EE_STATUS_FRAME_ID,
+                     HV_CAN_ID(HV_CAN_NODE_ARM_RIGHT, HV_CAN_CMD_EE_STATUS));
     assert_int_equal(HV_CAN_ID_NODE(HARVEST_CAN_RIGHT_ARM_STATUS_FRAME_ID), HV_CAN_NODE_ARM_RIGHT);
     assert_int_equal(HV_CAN_ID_CMD(HARVEST_CAN_RIGHT_ARM_STATUS_FRAME_ID), HV_CAN_CMD_STATUS);
 }

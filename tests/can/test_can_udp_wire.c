@@ -85,9 +85,16 @@ static void decodes_python_can_bytes(void **state)
     msgpack_packer pk;
     msgpack_sbuffer_init(&sb);
     msgpack_packer_init(&pk, &sb, msgpack_sbuffer_write);
-    static const char *const keys[] = {"timestamp", "arbitration_id", "is_extended_id",
-                                       "is_remote_frame", "is_error_frame", "channel", "dlc",
-                                       "data", "is_fd", "bitrate_switch",
+    static const char *const keys[] = {"timestamp",
+                                       "arbitration_id",
+                                       "is_extended_id",
+                                       "is_remote_frame",
+                                       "is_error_frame",
+                                       "channel",
+                                       "dlc",
+                                       "data",
+                                       "is_fd",
+                                       "bitrate_switch",
                                        "error_state_indicator"};
     msgpack_pack_map(&pk, 11);
     for (int i = 0; i < 11; i++) {
@@ -98,7 +105,10 @@ static void decodes_python_can_bytes(void **state)
         case 1: msgpack_pack_int(&pk, 0x64); break;
         case 5: msgpack_pack_nil(&pk); break;
         case 6: msgpack_pack_int(&pk, 2); break;
-        case 7: msgpack_pack_bin(&pk, 2); msgpack_pack_bin_body(&pk, "\x01\x02", 2); break;
+        case 7:
+            msgpack_pack_bin(&pk, 2);
+            msgpack_pack_bin_body(&pk, "\x01\x02", 2);
+            break;
         default: msgpack_pack_false(&pk); break;
         }
     }
@@ -150,9 +160,9 @@ static void malformed_datagrams_rejected(void **state)
     static const uint8_t huge_array[] = {0xdd, 0x7f, 0xff, 0xff, 0xff, 0, 0, 0};
     static const uint8_t not_a_map[] = {0x93, 1, 2, 3};
     static const uint8_t id_only_negative[] = {0x81, 0xae, 'a', 'r', 'b', 'i', 't', 'r', 'a',
-                                               't', 'i', 'o', 'n', '_', 'i', 'd', 0xff};
+                                               't',  'i',  'o', 'n', '_', 'i', 'd', 0xff};
     static const uint8_t id_only_ok[] = {0x81, 0xae, 'a', 'r', 'b', 'i', 't', 'r', 'a',
-                                         't', 'i', 'o', 'n', '_', 'i', 'd', 0x05};
+                                         't',  'i',  'o', 'n', '_', 'i', 'd', 0x05};
     uint8_t trailing[sizeof id_only_ok + 1];
     memcpy(trailing, id_only_ok, sizeof id_only_ok);
     trailing[sizeof id_only_ok] = 0xc0;
@@ -163,7 +173,8 @@ static void malformed_datagrams_rejected(void **state)
     assert_int_equal(decode(state, huge_str_key, sizeof huge_str_key, &f), HV_CAN_ERR_MALFORMED);
     assert_int_equal(decode(state, huge_array, sizeof huge_array, &f), HV_CAN_ERR_MALFORMED);
     assert_int_equal(decode(state, not_a_map, sizeof not_a_map, &f), HV_CAN_ERR_MALFORMED);
-    assert_int_equal(decode(state, id_only_negative, sizeof id_only_negative, &f), HV_CAN_ERR_MALFORMED);
+    assert_int_equal(decode(state, id_only_negative, sizeof id_only_negative, &f),
+                     HV_CAN_ERR_MALFORMED);
     assert_int_equal(decode(state, trailing, sizeof trailing, &f), HV_CAN_ERR_MALFORMED);
     assert_int_equal(decode(state, id_only_ok, sizeof id_only_ok - 1, &f), HV_CAN_ERR_MALFORMED);
     /* python-can's defaults: a map with only arbitration_id is an extended, empty frame */
@@ -192,7 +203,8 @@ static void every_prefix_and_bit_flip_is_safe(void **state)
             hv_status_t st = decode(state, copy, len, &f);
             if (st == HV_OK) {
                 assert_true(f.dlc <= 8);
-                assert_true(f.id <= ((f.flags & HV_CAN_FLAG_EXT) ? HV_CAN_EFF_MASK : HV_CAN_SFF_MASK));
+                assert_true(f.id <=
+                            ((f.flags & HV_CAN_FLAG_EXT) ? HV_CAN_EFF_MASK : HV_CAN_SFF_MASK));
             } else {
                 assert_true(st == HV_CAN_ERR_MALFORMED || st == HV_CAN_ERR_UNSUPPORTED);
             }

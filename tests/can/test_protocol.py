@@ -1,6 +1,7 @@
 """The DBC, the Python side (cantools) and the C side (cantools-generated code behind
 hv-can-tool) agree: same ids and layout, identical bytes for the same values, identical
 values for the same bytes. No bus needed."""
+
 import os
 import random
 import re
@@ -19,7 +20,10 @@ SOURCE = os.environ.get("HV_SOURCE_DIR", os.path.join(os.path.dirname(__file__),
 @pytest.fixture(scope="module")
 def tool():
     if not os.path.exists(cc.tool_path()):
-        pytest.fail(f"hv-can-tool not built at {cc.tool_path()} (HV_BUILD_DIR={os.environ.get('HV_BUILD_DIR')})")
+        pytest.fail(
+            f"hv-can-tool not built at {cc.tool_path()} "
+            f"(HV_BUILD_DIR={os.environ.get('HV_BUILD_DIR')})"
+        )
     return cc.tool_path()
 
 
@@ -47,8 +51,11 @@ def test_every_id_follows_node_command_layout():
 def test_sequence_counters_are_echoed():
     """Every request's sequence signal reappears, same width, in its answer."""
     proto = load()
-    pairs = [("Setpoint", "Status", "SetpointSeq"), ("Command", "Status", "CommandSeq"),
-             ("EeCommand", "EeStatus", "EeSeq")]
+    pairs = [
+        ("Setpoint", "Status", "SetpointSeq"),
+        ("Command", "Status", "CommandSeq"),
+        ("EeCommand", "EeStatus", "EeSeq"),
+    ]
     for prefix in ("LeftArm", "RightArm"):
         for req, ans, sig in pairs:
             a = proto.message(prefix + req).get_signal_by_name(sig)
@@ -107,7 +114,9 @@ def test_c_and_cantools_decode_identically(tool):
             frames.append((m, pattern))
         for _ in range(60):
             frames.append((m, bytes(rng.getrandbits(8) for _ in range(m.length))))
-    rc, out, err = cc.run_tool(["unpack"], stdin="".join(cc.frame_text(m.frame_id, d) + "\n" for m, d in frames))
+    rc, out, err = cc.run_tool(
+        ["unpack"], stdin="".join(cc.frame_text(m.frame_id, d) + "\n" for m, d in frames)
+    )
     assert rc == 0, err
     lines = out.splitlines()
     assert len(lines) == len(frames)
@@ -118,16 +127,25 @@ def test_c_and_cantools_decode_identically(tool):
         py_values = m.decode(data, decode_choices=False)
         assert c_values.keys() == py_values.keys()
         for k, v in py_values.items():
-            assert c_values[k] == pytest.approx(float(v), rel=1e-12, abs=1e-12), (m.name, k, data.hex())
+            assert c_values[k] == pytest.approx(float(v), rel=1e-12, abs=1e-12), (
+                m.name,
+                k,
+                data.hex(),
+            )
 
 
 def test_c_pack_rejects_bad_input_lines(tool):
-    for line, what in (("NoSuchMessage A=1", "no message"),
-                       ("Estop EstopActive=1", "signal 'Counter' missing"),
-                       ("Estop EstopActive=1 Counter=x", "not a number"),
-                       ("Estop EstopActive=1 Counter=1 Bogus=2", "no signal 'Bogus'"),
-                       ("LeftArmSetpoint Joint1Position=0.6 Joint2Position=0 Joint3Position=0 "
-                        "Joint4Position=0 SetpointSeq=0", "Joint1Position=0.6 outside the DBC range")):
+    for line, what in (
+        ("NoSuchMessage A=1", "no message"),
+        ("Estop EstopActive=1", "signal 'Counter' missing"),
+        ("Estop EstopActive=1 Counter=x", "not a number"),
+        ("Estop EstopActive=1 Counter=1 Bogus=2", "no signal 'Bogus'"),
+        (
+            "LeftArmSetpoint Joint1Position=0.6 Joint2Position=0 Joint3Position=0 "
+            "Joint4Position=0 SetpointSeq=0",
+            "Joint1Position=0.6 outside the DBC range",
+        ),
+    ):
         rc, out, err = cc.run_tool(["pack"], stdin=line + "\n")
         assert rc == 2 and what in err and "line 1" in err, (line, rc, err)
 
@@ -137,13 +155,17 @@ def test_options_in_both_gnu_forms(tool):
     import subprocess
 
     line = "Estop EstopActive=1 Counter=7\n"
-    runs = [[tool, "--timeout-ms", "5", "pack"], [tool, "--timeout-ms=5", "pack"],
-            [tool, "pack", "--timeout-ms=5"]]
+    runs = [
+        [tool, "--timeout-ms", "5", "pack"],
+        [tool, "--timeout-ms=5", "pack"],
+        [tool, "pack", "--timeout-ms=5"],
+    ]
     outs = [subprocess.run(r, input=line, capture_output=True, text=True) for r in runs]
     assert all(o.returncode == 0 for o in outs), [o.stderr for o in outs]
     assert len({o.stdout for o in outs}) == 1 and outs[0].stdout.startswith("000#")
-    bad = subprocess.run([tool, "--timeout-ms=x", "pack"], input=line, capture_output=True,
-                         text=True)
+    bad = subprocess.run(
+        [tool, "--timeout-ms=x", "pack"], input=line, capture_output=True, text=True
+    )
     assert bad.returncode == 2 and "bad value 'x' for --timeout-ms" in bad.stderr
     unknown = subprocess.run([tool, "--speed=3", "list"], capture_output=True, text=True)
     assert unknown.returncode == 2 and "unknown option --speed=3" in unknown.stderr

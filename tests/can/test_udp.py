@@ -1,6 +1,7 @@
 """C udp transport <-> python-can udp_multicast, every message type both ways, filters,
 timeout, malformed datagrams. Runs in a private network namespace of its own, with
 224.0.0.0/4 routed to lo, so no datagram can leave the machine."""
+
 import os
 import socket
 import sys
@@ -44,33 +45,42 @@ def test_receive_timeout():
 
 
 def _valid(**override):
-    d = {"timestamp": 1.5, "arbitration_id": 0x123, "is_extended_id": False,
-         "is_remote_frame": False, "is_error_frame": False, "channel": None, "dlc": 2,
-         "data": b"\x01\x02", "is_fd": False, "bitrate_switch": False,
-         "error_state_indicator": False}
+    d = {
+        "timestamp": 1.5,
+        "arbitration_id": 0x123,
+        "is_extended_id": False,
+        "is_remote_frame": False,
+        "is_error_frame": False,
+        "channel": None,
+        "dlc": 2,
+        "data": b"\x01\x02",
+        "is_fd": False,
+        "bitrate_switch": False,
+        "error_state_indicator": False,
+    }
     d.update(override)
     return msgpack.packb({k: v for k, v in d.items() if v is not KeyError}, use_bin_type=True)
 
 
 GARBAGE = [
-    b"",                                           # empty datagram
-    b"\xc1",                                       # never-used msgpack byte
+    b"",  # empty datagram
+    b"\xc1",  # never-used msgpack byte
     b"hello, not msgpack at all",
-    _valid()[:-3],                                 # truncated map
-    _valid() + b"\x00",                            # trailing byte
-    b"\xdf\xff\xff\xff\xff",                       # map claiming 2^32 entries in 5 bytes
-    b"\xdd\x7f\xff\xff\xff" + b"\x00" * 8,         # array claiming 2^31 items
-    msgpack.packb([1, 2, 3]),                      # not a map
-    _valid(arbitration_id=0x800),                  # standard id too wide
-    _valid(arbitration_id=-1),                     # negative id
-    _valid(dlc=9, data=b"\x00" * 9),               # classic frame with 9 bytes
-    _valid(dlc=3),                                 # dlc disagrees with data
-    _valid(data="text"),                           # data as str instead of bin
-    _valid(is_extended_id=1),                      # int instead of bool
-    _valid(unknown_key=1),                         # python-can would reject it too
-    _valid(arbitration_id=KeyError),               # arbitration_id missing
+    _valid()[:-3],  # truncated map
+    _valid() + b"\x00",  # trailing byte
+    b"\xdf\xff\xff\xff\xff",  # map claiming 2^32 entries in 5 bytes
+    b"\xdd\x7f\xff\xff\xff" + b"\x00" * 8,  # array claiming 2^31 items
+    msgpack.packb([1, 2, 3]),  # not a map
+    _valid(arbitration_id=0x800),  # standard id too wide
+    _valid(arbitration_id=-1),  # negative id
+    _valid(dlc=9, data=b"\x00" * 9),  # classic frame with 9 bytes
+    _valid(dlc=3),  # dlc disagrees with data
+    _valid(data="text"),  # data as str instead of bin
+    _valid(is_extended_id=1),  # int instead of bool
+    _valid(unknown_key=1),  # python-can would reject it too
+    _valid(arbitration_id=KeyError),  # arbitration_id missing
     _valid(is_remote_frame=True, is_error_frame=True, data=b"", dlc=0),
-    _valid(bitrate_switch=True),                   # BRS on a classic frame
+    _valid(bitrate_switch=True),  # BRS on a classic frame
     msgpack.packb({"arbitration_id": 1, "arbitration_id ": 2, 3: 4}),  # non-str key
 ]
 FD_FRAME = _valid(is_fd=True, dlc=12, data=bytes(12))  # valid, but CAN FD: unsupported

@@ -4,6 +4,7 @@ filters, a receive timeout, error frames, and a flood of 100 000 frames with no 
 Where this machine has a usable vcan0 (a developer's laptop, the vehicle, or inside the
 test-bed guest) the checks run directly. Elsewhere test_checks_in_guest boots the QEMU
 guest once (testbed/run-in-guest) and runs this same file inside it."""
+
 import os
 import re
 import sys
@@ -21,7 +22,9 @@ FLOOD = 100_000
 DIRECT_TESTS = 6  # the tests below that need vcan; the guest run must pass all of them
 
 needs_vcan = pytest.mark.skipif(
-    IFACE is None, reason="SKIPPED: no vcan here (kernel without CAN); covered by test_checks_in_guest")
+    IFACE is None,
+    reason="SKIPPED: no vcan here (kernel without CAN); covered by test_checks_in_guest",
+)
 
 
 @pytest.fixture(scope="module", autouse=True)
@@ -54,10 +57,17 @@ def test_receive_timeout():
 def test_error_frames_counted():
     """An error frame (CAN_ERR_FLAG) is returned flagged and counted, not taken for data."""
     import can
+
     rx = cc.start_tool(["--bus", SPEC, "recv", "--count", "2", "--timeout-ms", str(5000 * cc.SLOW)])
     with can.Bus(interface="socketcan", channel=IFACE) as bus:
-        bus.send(can.Message(arbitration_id=0x004, is_error_frame=True, is_extended_id=False,
-                             data=bytes([0, 0x04, 0, 0, 0, 0, 0, 0])))
+        bus.send(
+            can.Message(
+                arbitration_id=0x004,
+                is_error_frame=True,
+                is_extended_id=False,
+                data=bytes([0, 0x04, 0, 0, 0, 0, 0, 0]),
+            )
+        )
         bus.send(can.Message(arbitration_id=0x123, data=b"\x01", is_extended_id=False))
     rc, out, err = cc.finish(rx)
     assert rc == 0, err
@@ -81,17 +91,35 @@ def _backlog_drops():
 def test_flood_100k_no_loss():
     """100 000 frames C -> C as fast as the sender can go: all arrive, in order."""
     drops_before = _backlog_drops()
-    sink = cc.start_tool(["--bus", SPEC, "sink", "--count", str(FLOOD), "--id", "7F0",
-                          "--filter", "7F0:7FF", "--rcvbuf", str(256 << 20),
-                          "--timeout-ms", str(5000 * cc.SLOW)])
-    rc, out, err = cc.run_tool(["--bus", SPEC, "flood", "--count", str(FLOOD), "--id", "7F0",
-                                "--timeout-ms", "-1"], timeout=120)
+    sink = cc.start_tool(
+        [
+            "--bus",
+            SPEC,
+            "sink",
+            "--count",
+            str(FLOOD),
+            "--id",
+            "7F0",
+            "--filter",
+            "7F0:7FF",
+            "--rcvbuf",
+            str(256 << 20),
+            "--timeout-ms",
+            str(5000 * cc.SLOW),
+        ]
+    )
+    rc, out, err = cc.run_tool(
+        ["--bus", SPEC, "flood", "--count", str(FLOOD), "--id", "7F0", "--timeout-ms", "-1"],
+        timeout=120,
+    )
     assert rc == 0, err
     src, sout, serr = cc.finish(sink, timeout=120)
     print(out.strip(), "|", sout.strip())
     backlog = _backlog_drops() - drops_before
     assert src == 0, f"sink: {sout} {serr} (kernel input backlog drops during the flood: {backlog})"
-    m = re.search(r"received=(\d+) expected=(\d+) gaps=(\d+) corrupt=(\d+) kernel_drops=(\d+)", sout)
+    m = re.search(
+        r"received=(\d+) expected=(\d+) gaps=(\d+) corrupt=(\d+) kernel_drops=(\d+)", sout
+    )
     assert m and m.groups() == (str(FLOOD), str(FLOOD), "0", "0", "0"), sout
 
 
@@ -100,9 +128,21 @@ def test_checks_in_guest():
         pytest.skip(f"SKIPPED: ran directly on this machine's {IFACE}")
     if in_guest():
         pytest.fail("inside the test-bed guest but vcan0 is not usable")
-    proc = guest_or_skip(run_in_guest(
-        [sys.executable, "-m", "pytest", "-q", "-rs", "-p", "no:cacheprovider", os.path.abspath(__file__)],
-        timeout=800))
+    proc = guest_or_skip(
+        run_in_guest(
+            [
+                sys.executable,
+                "-m",
+                "pytest",
+                "-q",
+                "-rs",
+                "-p",
+                "no:cacheprovider",
+                os.path.abspath(__file__),
+            ],
+            timeout=800,
+        )
+    )
     print(proc.stdout)
     print(proc.stderr, file=sys.stderr)
     assert proc.returncode == 0, f"guest run failed (exit {proc.returncode})"

@@ -22,8 +22,8 @@ typedef struct fixture {
     size_t file_len;
 } fixture_t;
 
-static void index_to_pose(const hv_grid_t *g, size_t i, uint32_t *ix, uint32_t *iy,
-                          uint32_t *iz, uint32_t *iyaw)
+static void index_to_pose(const hv_grid_t *g, size_t i, uint32_t *ix, uint32_t *iy, uint32_t *iz,
+                          uint32_t *iyaw)
 {
     uint32_t ny = g->axis[HV_AX_Y].count, nyaw = g->axis[HV_AX_YAW].count,
              nz = g->axis[HV_AX_Z].count;
@@ -97,10 +97,9 @@ static void test_roundtrip_and_cells(void **state)
         index_to_pose(&t.grid, i, &ix, &iy, &iz, &iyaw);
         assert_int_equal(hv_costtab_cell(&t, ix, iy, iz, iyaw), f->costs[i]);
         uint16_t c = 0;
-        hv_status_t st = hv_costtab_lookup(&t, ax_val(&t.grid, HV_AX_X, ix),
-                                           ax_val(&t.grid, HV_AX_Y, iy),
-                                           ax_val(&t.grid, HV_AX_Z, iz),
-                                           ax_val(&t.grid, HV_AX_YAW, iyaw), &c);
+        hv_status_t st =
+            hv_costtab_lookup(&t, ax_val(&t.grid, HV_AX_X, ix), ax_val(&t.grid, HV_AX_Y, iy),
+                              ax_val(&t.grid, HV_AX_Z, iz), ax_val(&t.grid, HV_AX_YAW, iyaw), &c);
         if (f->costs[i] == HV_COST_UNREACHABLE) {
             assert_int_equal(st, HV_ERR_UNREACHABLE);
         } else {
@@ -125,9 +124,8 @@ static void test_lookup_nearest_cell_and_row(void **state)
     assert_int_equal(hv_axis_index(&g->axis[HV_AX_X], x), ix);
     assert_int_equal(hv_axis_index(&g->axis[HV_AX_Y], y), iy);
     const uint8_t *row;
-    assert_int_equal(hv_costtab_row(&t, x, ax_val(g, HV_AX_Z, iz), ax_val(g, HV_AX_YAW, iyaw),
-                                    &row),
-                     HV_OK);
+    assert_int_equal(
+        hv_costtab_row(&t, x, ax_val(g, HV_AX_Z, iz), ax_val(g, HV_AX_YAW, iyaw), &row), HV_OK);
     for (uint32_t k = 0; k < g->axis[HV_AX_Y].count; k++) {
         assert_int_equal(hv_costtab_row_at(row, k), hv_costtab_cell(&t, ix, k, iz, iyaw));
     }
@@ -186,11 +184,33 @@ static void fix_header_crc(uint8_t *b)
     }
 }
 
-static void dmg_magic(uint8_t *b, size_t n) { (void)n; b[0] = 'X'; }
-static void dmg_version(uint8_t *b, size_t n) { (void)n; b[8] = 2; fix_header_crc(b); }
-static void dmg_header_size(uint8_t *b, size_t n) { (void)n; b[12] = 0; b[13] = 1; fix_header_crc(b); }
-static void dmg_header_bit(uint8_t *b, size_t n) { (void)n; b[100] ^= 0x10; }
-static void dmg_payload_bit(uint8_t *b, size_t n) { b[n - 1] ^= 0x01; }
+static void dmg_magic(uint8_t *b, size_t n)
+{
+    (void)n;
+    b[0] = 'X';
+}
+static void dmg_version(uint8_t *b, size_t n)
+{
+    (void)n;
+    b[8] = 2;
+    fix_header_crc(b);
+}
+static void dmg_header_size(uint8_t *b, size_t n)
+{
+    (void)n;
+    b[12] = 0;
+    b[13] = 1;
+    fix_header_crc(b);
+}
+static void dmg_header_bit(uint8_t *b, size_t n)
+{
+    (void)n;
+    b[100] ^= 0x10;
+}
+static void dmg_payload_bit(uint8_t *b, size_t n)
+{
+    b[n - 1] ^= 0x01;
+}
 static void dmg_grid_step(uint8_t *b, size_t n)
 {
     (void)n;
@@ -204,7 +224,12 @@ static void dmg_grid_count(uint8_t *b, size_t n)
     b[40 + 16] = (uint8_t)(b[40 + 16] + 1); /* x count + 1: payload size no longer fits */
     fix_header_crc(b);
 }
-static void dmg_side(uint8_t *b, size_t n) { (void)n; b[20] = 5; fix_header_crc(b); }
+static void dmg_side(uint8_t *b, size_t n)
+{
+    (void)n;
+    b[20] = 5;
+    fix_header_crc(b);
+}
 
 static void test_bad_files(void **state)
 {
@@ -273,7 +298,10 @@ static void test_expect_arm_names_the_difference(void **state)
     hv_diag_t d;
     assert_int_equal(hv_costtab_open(&t, f->file, f->file_len, NULL), HV_OK);
     assert_int_equal(hv_costtab_expect_arm(&t, &f->arm, &f->grid, &d), HV_OK);
-    struct { const char *field; hv_arm_t arm; } cases[6];
+    struct {
+        const char *field;
+        hv_arm_t arm;
+    } cases[6];
     for (int i = 0; i < 6; i++) {
         cases[i].arm = f->arm;
     }

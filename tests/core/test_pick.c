@@ -41,8 +41,7 @@ static void test_solve_round_trip(void **state)
             double yaw = p.heading_rad - hv_side_normal_heading((hv_side_t)side);
             double qs[HV_NJOINTS], t = -1.0;
             hv_pick_why_t why = HV_PICK_HEIGHT;
-            assert_int_equal(hv_pick_solve(&arm, p.x_m, p.y_m, p.z_m, yaw, qs, &t, &why),
-                             HV_OK);
+            assert_int_equal(hv_pick_solve(&arm, p.x_m, p.y_m, p.z_m, yaw, qs, &t, &why), HV_OK);
             assert_int_equal(why, HV_PICK_OK);
             assert_float_equal(t, hv_scara_move_time(&arm, arm.home, qs), 1e-12);
             hv_pose_t back;
@@ -66,8 +65,7 @@ static void test_why_names_the_cause(void **state)
                      HV_ERR_UNREACHABLE);
     assert_int_equal(why, HV_PICK_HEIGHT);
     /* 1 m away laterally: outside the annulus */
-    assert_int_equal(hv_pick_solve(&arm, 1.2, -0.2, 0.60, 0.0, NULL, &t, &why),
-                     HV_ERR_UNREACHABLE);
+    assert_int_equal(hv_pick_solve(&arm, 1.2, -0.2, 0.60, 0.0, NULL, &t, &why), HV_ERR_UNREACHABLE);
     assert_int_equal(why, HV_PICK_DEPTH);
     /* in reach, but joint 4 held at home cannot turn the wrist to the stem */
     hv_arm_t stiff = arm;

@@ -125,8 +125,8 @@ static void test_ik_random_poses_respect_limits(void **state)
     uint64_t seed = 99;
     int ok = 0, bad = 0;
     for (int n = 0; n < 20000; n++) {
-        hv_pose_t p = {urand(&seed, -0.2, 1.0), urand(&seed, -1.0, 1.0),
-                       urand(&seed, 0.2, 1.0), urand(&seed, -M_PI, M_PI)};
+        hv_pose_t p = {urand(&seed, -0.2, 1.0), urand(&seed, -1.0, 1.0), urand(&seed, 0.2, 1.0),
+                       urand(&seed, -M_PI, M_PI)};
         double q[4];
         hv_status_t st = hv_scara_ik(&arm, &p, q);
         if (st == HV_OK) {

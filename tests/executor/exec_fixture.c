@@ -9,7 +9,7 @@
 #include "hv/config.h"
 #include "hv/file_io.h"
 
-#define TICK_NS 10000000ull  /* 10 ms */
+#define TICK_NS 10000000ull /* 10 ms */
 
 static hv_arm_t arms[2];
 
@@ -176,9 +176,9 @@ static void node_act(fx_t *fx, const hv_exec_action_t *a)
     switch (a->kind) {
     case HV_ACT_COMMAND:
         /* the DBC: only CLEAR_ESTOP releases an e-stop; a refused command is not echoed */
-        if (n->estop && (a->u.cmd.command == HV_CAN_CMD_CLEAR_FAULT ||
-                         a->u.cmd.command == HV_CAN_CMD_ENABLE ||
-                         a->u.cmd.command == HV_CAN_CMD_HOME))
+        if (n->estop &&
+            (a->u.cmd.command == HV_CAN_CMD_CLEAR_FAULT || a->u.cmd.command == HV_CAN_CMD_ENABLE ||
+             a->u.cmd.command == HV_CAN_CMD_HOME))
             break;
         n->cmd_seq = a->u.cmd.seq;
         switch (a->u.cmd.command) {
@@ -276,8 +276,7 @@ static void node_act(fx_t *fx, const hv_exec_action_t *a)
             n->pos_m = a->u.move.target_m; /* where it will be */
         }
         break;
-    default:
-        break;
+    default: break;
     }
     status_event(fx, a->node);
 }
@@ -298,9 +297,18 @@ static void nodes_progress(fx_t *fx)
         int side = i == HV_EXEC_LEFT ? 0 : 1;
         if (n->pending && fx->now_ns >= n->busy_until_ns) {
             switch (n->pending) {
-            case 1: n->reached = 1; n->state = HV_CAN_STATE_IDLE; break;
-            case 3: n->arrived = 1; n->state = HV_CAN_STATE_IDLE; break;
-            case 4: n->homed = 1; n->state = HV_CAN_STATE_IDLE; break;
+            case 1:
+                n->reached = 1;
+                n->state = HV_CAN_STATE_IDLE;
+                break;
+            case 3:
+                n->arrived = 1;
+                n->state = HV_CAN_STATE_IDLE;
+                break;
+            case 4:
+                n->homed = 1;
+                n->state = HV_CAN_STATE_IDLE;
+                break;
             case 2:
                 if (n->pending_ee_action == HV_CAN_EE_ACTION_CUT) {
                     if (fx->f.cut_fail[side] > 0) {

@@ -11,34 +11,35 @@
 #include "hv/exec_sm.h"
 
 #define FX_MAX_EVENTS 64
-#define FX_MAX_LOG 4096
+#define FX_MAX_LOG    4096
 
 typedef struct fx_node {
-    int alive;          /* sends heartbeats */
+    int alive; /* sends heartbeats */
     double time_scale;
     int state, homed, reached, sp_seq, cmd_seq, fault_bits;
-    int move_seq, arrived; double pos_m;
+    int move_seq, arrived;
+    double pos_m;
     int ee_state, ee_action, ee_seq, held;
-    uint64_t busy_until_ns;  /* pending motion / action completes then */
-    int pending;             /* 0 none, 1 setpoint, 2 ee, 3 move, 4 home */
+    uint64_t busy_until_ns; /* pending motion / action completes then */
+    int pending;            /* 0 none, 1 setpoint, 2 ee, 3 move, 4 home */
     int pending_ee_action;
     int estop;
 } fx_node_t;
 
 typedef struct fx_faults {
-    int reject_setpoints[2];    /* reject the next n approach setpoints of the arm */
-    int joint_fault_at[2];      /* raise a joint fault at the n-th setpoint (1-based), 0 never */
-    int joint_fault_every[2];   /* raise a joint fault on every approach setpoint */
-    int stall[2];               /* setpoints never reach */
-    int cut_fail[2];            /* the next n cuts fail */
-    int drop[2];                /* the next n cut fruits fall while returning */
-    int home_never[2];          /* HOME never completes */
-    int home_faults[2];         /* HOME puts the arm in FAULT (after start-up's homing) */
-    int move_never;             /* the vehicle never arrives */
-    int vehicle_fault_on_move;  /* the vehicle faults on its n-th move */
-    int comm_fault_arm;         /* >0: the left arm reports comm timeout on setpoint n */
-    int estop_at_cut;           /* >0: the right arm reports ESTOP on its n-th cut */
-    int drop_next[16];          /* the bus loses the next n frames of this action kind */
+    int reject_setpoints[2];   /* reject the next n approach setpoints of the arm */
+    int joint_fault_at[2];     /* raise a joint fault at the n-th setpoint (1-based), 0 never */
+    int joint_fault_every[2];  /* raise a joint fault on every approach setpoint */
+    int stall[2];              /* setpoints never reach */
+    int cut_fail[2];           /* the next n cuts fail */
+    int drop[2];               /* the next n cut fruits fall while returning */
+    int home_never[2];         /* HOME never completes */
+    int home_faults[2];        /* HOME puts the arm in FAULT (after start-up's homing) */
+    int move_never;            /* the vehicle never arrives */
+    int vehicle_fault_on_move; /* the vehicle faults on its n-th move */
+    int comm_fault_arm;        /* >0: the left arm reports comm timeout on setpoint n */
+    int estop_at_cut;          /* >0: the right arm reports ESTOP on its n-th cut */
+    int drop_next[16];         /* the bus loses the next n frames of this action kind */
 } fx_faults_t;
 
 typedef struct fx_log_entry {
@@ -51,7 +52,7 @@ typedef struct fx {
     hv_exec_params_t prm;
     hv_exec_sm_t sm;
     uint64_t now_ns;
-    uint64_t motion_ns;  /* every fake motion and action takes this long (real) */
+    uint64_t motion_ns; /* every fake motion and action takes this long (real) */
     fx_node_t node[HV_EXEC_NODES];
     fx_faults_t f;
     int setpoints_sent[2], cuts_sent[2], moves_sent;

@@ -4,6 +4,7 @@ sim) and harvest-exec on one CAN bus, their records, and checks of the harvest j
 The udp bus is python-can's udp_multicast on loopback; callers run inside a private
 network namespace (harvest.canbus.netns) so nothing leaves the machine.
 """
+
 import collections
 import json
 import os
@@ -13,8 +14,9 @@ import sys
 import time
 import zlib
 
-SOURCE = os.environ.get("HV_SOURCE_DIR", os.path.dirname(os.path.dirname(os.path.dirname(
-    os.path.abspath(__file__)))))
+SOURCE = os.environ.get(
+    "HV_SOURCE_DIR", os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+)
 BUILD = os.environ.get("HV_BUILD_DIR", os.path.join(SOURCE, "build"))
 EXEC = os.path.join(BUILD, "executor", "harvest-exec")
 MAKE_PLAN = os.path.join(BUILD, "tests", "executor", "make-test-plan")
@@ -44,6 +46,7 @@ def enter_udp_netns():
     """Reasons the udp tests cannot run (empty when they can); when they can, this process
     has moved into a private network namespace, so the multicast stays on its loopback."""
     from harvest.canbus import netns
+
     reasons = missing_pieces()
     if not reasons:
         try:
@@ -61,14 +64,16 @@ ONLINE_URL = "udpm://239.255.76.67:7667?ttl=0"
 
 def enter_online_netns():
     """enter_udp_netns() for the online tests, which need the planner's programs too."""
-    missing = [f"harvest-plan-online not built at {PLAN_ONLINE} (needs GLPK and LCM)"
-               for p in (PLAN_ONLINE, HARVEST_PLAN) if not os.access(p, os.X_OK)][:1]
+    missing = [
+        f"harvest-plan-online not built at {PLAN_ONLINE} (needs GLPK and LCM)"
+        for p in (PLAN_ONLINE, HARVEST_PLAN)
+        if not os.access(p, os.X_OK)
+    ][:1]
     return missing or enter_udp_netns()
 
 
 def make_plan(path, stops, per_arm, seed=1):
-    subprocess.run([MAKE_PLAN, CONFIG, str(path), str(stops), str(per_arm), str(seed)],
-                   check=True)
+    subprocess.run([MAKE_PLAN, CONFIG, str(path), str(stops), str(per_arm), str(seed)], check=True)
     with open(path) as f:
         return json.load(f)
 
@@ -93,14 +98,27 @@ class Sim:
     def __init__(self, workdir, time_scale, faults=(), extra=()):
         self.record = os.path.join(workdir, "sim.jsonl")
         self.log = open(os.path.join(workdir, "sim.log"), "w")
-        argv = [sys.executable, "-m", "harvest", "sim", "--interface", "udp_multicast",
-                "--channel", GROUP, "--time-scale", str(time_scale), "--record", self.record]
+        argv = [
+            sys.executable,
+            "-m",
+            "harvest",
+            "sim",
+            "--interface",
+            "udp_multicast",
+            "--channel",
+            GROUP,
+            "--time-scale",
+            str(time_scale),
+            "--record",
+            self.record,
+        ]
         argv += ["--exec-timeout", str(HEARTBEAT_TIMEOUT_S)]
         for f in faults:
             argv += ["--fault", f]
         argv += list(extra)
-        self.proc = subprocess.Popen(argv, stdout=self.log, stderr=subprocess.STDOUT, env=env(),
-                                     cwd=SOURCE)
+        self.proc = subprocess.Popen(
+            argv, stdout=self.log, stderr=subprocess.STDOUT, env=env(), cwd=SOURCE
+        )
 
     def stop(self):
         if self.proc.poll() is None:
@@ -125,22 +143,45 @@ class Sim:
 
 
 def exec_argv(plan, journal, summary, time_scale, extra=()):
-    return [EXEC, "--plan", str(plan), "--config", CONFIG, "--journal", str(journal),
-            "--summary", str(summary), "--transport", "udp", "--channel", GROUP,
-            "--time-scale", str(time_scale), "--heartbeat-timeout", str(HEARTBEAT_TIMEOUT_S)
-            ] + list(extra)
+    return [
+        EXEC,
+        "--plan",
+        str(plan),
+        "--config",
+        CONFIG,
+        "--journal",
+        str(journal),
+        "--summary",
+        str(summary),
+        "--transport",
+        "udp",
+        "--channel",
+        GROUP,
+        "--time-scale",
+        str(time_scale),
+        "--heartbeat-timeout",
+        str(HEARTBEAT_TIMEOUT_S),
+    ] + list(extra)
 
 
 def run_exec(plan, journal, summary, time_scale, extra=(), timeout=240):
-    proc = subprocess.run(exec_argv(plan, journal, summary, time_scale, extra),
-                          capture_output=True, text=True, timeout=timeout)
+    proc = subprocess.run(
+        exec_argv(plan, journal, summary, time_scale, extra),
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+    )
     with open(summary) as f:
         return proc, json.load(f)
 
 
 def start_exec(plan, journal, summary, time_scale, extra=()):
-    return subprocess.Popen(exec_argv(plan, journal, summary, time_scale, extra),
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    return subprocess.Popen(
+        exec_argv(plan, journal, summary, time_scale, extra),
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
 
 
 def read_journal(path):
@@ -181,8 +222,10 @@ def outcome_order(records):
 
 def sim_picks(sim):
     """Cuts the simulated arms completed: (node, rounded joint positions, vehicle position)."""
-    return [(e["node"], tuple(round(q, 3) for q in e["positions"]),
-             round(e["vehicle_position"], 3)) for e in sim.events("pick")]
+    return [
+        (e["node"], tuple(round(q, 3) for q in e["positions"]), round(e["vehicle_position"], 3))
+        for e in sim.events("pick")
+    ]
 
 
 def assert_every_fruit_cut_once(plan, sim):
@@ -222,8 +265,11 @@ def wait_for(pred, timeout, period=0.05):
 def start_can_logger(path):
     """python-can's own logger on the test's bus, writing `path` (.blf or .asc by extension)."""
     return subprocess.Popen(
-        [sys.executable, "-m", "can.logger", "-i", "udp_multicast", "-c", GROUP,
-         "-f", str(path)], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        [sys.executable, "-m", "can.logger", "-i", "udp_multicast", "-c", GROUP, "-f", str(path)],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
 
 
 def stop_can_logger(proc):
@@ -260,9 +306,14 @@ def mcap_matches_log(mcap_path, log_path):
 
     types = lcm_types.load()
 
-    expected = [(ev.channel, ev.timestamp * 1000,
-                 lcm_schema.to_json(lcm_types.decode(ev.channel, ev.data, types)))
-                for ev in lcm.EventLog(str(log_path), "r")]
+    expected = [
+        (
+            ev.channel,
+            ev.timestamp * 1000,
+            lcm_schema.to_json(lcm_types.decode(ev.channel, ev.data, types)),
+        )
+        for ev in lcm.EventLog(str(log_path), "r")
+    ]
     got = []
     with open(mcap_path, "rb") as f:
         for schema, channel, message in make_reader(f).iter_messages(log_time_order=False):
@@ -275,7 +326,6 @@ def mcap_matches_log(mcap_path, log_path):
     return len(got)
 
 
-
 def replayed_frames(log_path, timeout_s=60.0):
     """Replay a CAN log onto the test's bus with python-can's player and count, on a bus
     of our own, the frames that arrive (the player's order and timing kept)."""
@@ -283,9 +333,22 @@ def replayed_frames(log_path, timeout_s=60.0):
 
     with can.Bus(interface="udp_multicast", channel=GROUP) as bus:
         player = subprocess.Popen(
-            [sys.executable, "-m", "can.player", "-i", "udp_multicast", "-c", GROUP,
-             "-s", "0.05", str(log_path)], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-            text=True)
+            [
+                sys.executable,
+                "-m",
+                "can.player",
+                "-i",
+                "udp_multicast",
+                "-c",
+                GROUP,
+                "-s",
+                "0.05",
+                str(log_path),
+            ],
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
         n, deadline = 0, time.monotonic() + timeout_s
         while time.monotonic() < deadline:
             if bus.recv(timeout=0.5) is not None:

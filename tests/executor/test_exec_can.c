@@ -61,8 +61,8 @@ static void test_encode_actions(void **state)
     assert_int_equal(hv_exec_can_encode(&a, &tx, &f, &has), HV_OK);
     struct harvest_can_vehicle_move_t mv;
     assert_int_equal(harvest_can_vehicle_move_unpack(&mv, f.data, f.dlc), 0);
-    assert_float_equal(harvest_can_vehicle_move_target_position_decode(mv.target_position),
-                       1.2345, 1e-4);
+    assert_float_equal(harvest_can_vehicle_move_target_position_decode(mv.target_position), 1.2345,
+                       1e-4);
     assert_int_equal(mv.move_seq, 9);
 
     memset(&a, 0, sizeof a);

@@ -2,6 +2,7 @@
 no CAN message and DBC frames too short to decode, sent while harvest-exec and the simulator
 run a row. Both count and drop them, and the row still completes. In a private network
 namespace (multicast on lo only)."""
+
 import json
 import os
 import socket
@@ -27,17 +28,25 @@ PORT = 43113  # harvest-exec's and the simulator's default udp port
 def _bad_datagrams():
     """Datagrams python-can's udp_multicast and the C transport both refuse."""
     ok = pack_message(can.Message(arbitration_id=0x43, data=bytes(8), is_extended_id=False))
-    return [b"", b"\xc1", b"garbage, not msgpack", ok[:-3], ok + b"\x00",
-            msgpack.packb([0x43, 8]), msgpack.packb({"arbitration_id": 0x43, "x": 1}),
-            pack_message(can.Message(arbitration_id=0x43, data=bytes(2), dlc=5,
-                                     is_extended_id=False))]
+    return [
+        b"",
+        b"\xc1",
+        b"garbage, not msgpack",
+        ok[:-3],
+        ok + b"\x00",
+        msgpack.packb([0x43, 8]),
+        msgpack.packb({"arbitration_id": 0x43, "x": 1}),
+        pack_message(can.Message(arbitration_id=0x43, data=bytes(2), dlc=5, is_extended_id=False)),
+    ]
 
 
 def _short_frames(proto):
     """Well-formed datagrams of a DBC frame the executor decodes, shorter than the DBC's."""
     m = proto.message("VehicleStatus")
-    return [pack_message(can.Message(arbitration_id=m.frame_id, data=bytes(n),
-                                     is_extended_id=False)) for n in range(m.length)]
+    return [
+        pack_message(can.Message(arbitration_id=m.frame_id, data=bytes(n), is_extended_id=False))
+        for n in range(m.length)
+    ]
 
 
 def test_row_completes_with_bad_input_counted_and_dropped(tmp_path):
@@ -70,6 +79,7 @@ def test_row_completes_with_bad_input_counted_and_dropped(tmp_path):
     stop = sim.events("stop")[-1]
     assert stop["reason"] == "stop requested", stop
     assert stop["stats"]["rx_bad_datagram"] == len(garbage), stop["stats"]
-    assert len([e for e in sim.events("rx_rejected") if e["reason"] == "bad_datagram"]) == \
-        len(garbage)
+    assert len([e for e in sim.events("rx_rejected") if e["reason"] == "bad_datagram"]) == len(
+        garbage
+    )
     assert sum(a for a in stop["picks"].values()) == n

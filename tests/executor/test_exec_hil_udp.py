@@ -3,6 +3,7 @@ multicast (python-can's udp_multicast wire format) inside a private network name
 
 A whole 2 m row, each injected fault, an operator stop and SIGKILL-and-resume.
 """
+
 import collections
 import json
 import os
@@ -19,7 +20,7 @@ import exec_hil as H  # noqa: E402
 _skip = H.enter_udp_netns()
 pytestmark = pytest.mark.skipif(bool(_skip), reason="SKIPPED: " + "; ".join(_skip))
 
-ROW_SCALE = 5.0     # simulated s per wall s for the makespan check (bus delays scale with it)
+ROW_SCALE = 5.0  # simulated s per wall s for the makespan check (bus delays scale with it)
 FAULT_SCALE = 20.0  # faster for the fault runs (no timing asserted there)
 
 
@@ -42,8 +43,9 @@ def test_whole_row_in_plan_order_within_5_percent(tmp_path, sim_factory):
     order = H.plan_order(plan)
     n = len(order["L"]) + len(order["R"])
     sim = sim_factory(ROW_SCALE)
-    proc, summary = H.run_exec(tmp_path / "plan.json", tmp_path / "j.journal",
-                               tmp_path / "summary.json", ROW_SCALE)
+    proc, summary = H.run_exec(
+        tmp_path / "plan.json", tmp_path / "j.journal", tmp_path / "summary.json", ROW_SCALE
+    )
     assert proc.returncode == 0, proc.stderr
     assert summary["phase"] == "row_done"
     assert summary["picked"] == n and summary["failed"] == 0 and summary["skipped"] == 0
@@ -72,37 +74,81 @@ def test_telemetry_logged_and_plotted(tmp_path, sim_factory):
     sim = sim_factory(FAULT_SCALE)
     url = "udpm://239.255.76.67:7667?ttl=0"
     logger = subprocess.Popen(
-        [sys.executable, "-m", "harvest", "telemetry", "log", "--url", url, "--out",
-         str(tmp_path / "run.lcmlog"), "--until-done", "--grace", "0.5", "--ready-file",
-         str(tmp_path / "ready")],
-        env=H.env(), cwd=H.SOURCE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        [
+            sys.executable,
+            "-m",
+            "harvest",
+            "telemetry",
+            "log",
+            "--url",
+            url,
+            "--out",
+            str(tmp_path / "run.lcmlog"),
+            "--until-done",
+            "--grace",
+            "0.5",
+            "--ready-file",
+            str(tmp_path / "ready"),
+        ],
+        env=H.env(),
+        cwd=H.SOURCE,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     can_logger = H.start_can_logger(tmp_path / "bus.blf")
     assert H.wait_for(lambda: (tmp_path / "ready").exists(), 30)
-    proc, summary = H.run_exec(tmp_path / "plan.json", tmp_path / "j.journal",
-                               tmp_path / "summary.json", FAULT_SCALE, ["--lcm-url", url])
+    proc, summary = H.run_exec(
+        tmp_path / "plan.json",
+        tmp_path / "j.journal",
+        tmp_path / "summary.json",
+        FAULT_SCALE,
+        ["--lcm-url", url],
+    )
     assert proc.returncode == 0, proc.stderr
     out, err = logger.communicate(timeout=30)
     assert logger.returncode == 0, err
     H.stop_can_logger(can_logger)
     # the bus log, read back with the DBC: one cut command per fruit the simulator cut
     cut = collections.Counter(node for node, _, _ in H.sim_picks(sim))
-    assert H.cut_commands(tmp_path / "bus.blf") == {"left_arm": cut["left_arm"],
-                                                   "right_arm": cut["right_arm"]}
+    assert H.cut_commands(tmp_path / "bus.blf") == {
+        "left_arm": cut["left_arm"],
+        "right_arm": cut["right_arm"],
+    }
     # and python-can's player puts every frame of it back on the bus (now quiet)
     import can
+
     sim.stop()
-    assert H.replayed_frames(tmp_path / "bus.blf") == sum(1 for _ in can.LogReader(
-        str(tmp_path / "bus.blf")))
+    assert H.replayed_frames(tmp_path / "bus.blf") == sum(
+        1 for _ in can.LogReader(str(tmp_path / "bus.blf"))
+    )
     # the telemetry log as MCAP: every message, in order, typed by its channel's schema
-    r = subprocess.run([sys.executable, "-m", "harvest", "telemetry", "mcap",
-                        str(tmp_path / "run.lcmlog"), "--out", str(tmp_path / "run.mcap")],
-                       env=H.env(), cwd=H.SOURCE, capture_output=True, text=True)
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "harvest",
+            "telemetry",
+            "mcap",
+            str(tmp_path / "run.lcmlog"),
+            "--out",
+            str(tmp_path / "run.mcap"),
+        ],
+        env=H.env(),
+        cwd=H.SOURCE,
+        capture_output=True,
+        text=True,
+    )
     assert r.returncode == 0, r.stderr
     assert H.mcap_matches_log(tmp_path / "run.mcap", tmp_path / "run.lcmlog") > 0
     assert "HARVEST_ARM_LEFT" in out and "HARVEST_CAN_STATS" in out, out
-    r = subprocess.run([sys.executable, "-m", "harvest", "telemetry", "summary",
-                        str(tmp_path / "run.lcmlog")], env=H.env(), cwd=H.SOURCE,
-                       capture_output=True, text=True)
+    r = subprocess.run(
+        [sys.executable, "-m", "harvest", "telemetry", "summary", str(tmp_path / "run.lcmlog")],
+        env=H.env(),
+        cwd=H.SOURCE,
+        capture_output=True,
+        text=True,
+    )
     assert r.returncode == 0, r.stderr
     tsum = json.loads(r.stdout)
     assert tsum["picked"] == n and tsum["fruits_planned"] == n
@@ -110,10 +156,24 @@ def test_telemetry_logged_and_plotted(tmp_path, sim_factory):
     assert tsum["final_phase"] == "row_done"
     assert abs(tsum["executed_makespan_s"] - summary["executed_makespan_s"]) < 0.5
     assert abs(tsum["expected_makespan_s"] - summary["expected_makespan_s"]) < 1e-6
-    g = subprocess.run([sys.executable, "-m", "harvest", "telemetry", "gantt",
-                        str(tmp_path / "run.lcmlog"), "--out", str(tmp_path / "g.png"),
-                        "--out", str(tmp_path / "g.svg")], env=H.env(), cwd=H.SOURCE,
-                       capture_output=True, text=True)
+    g = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "harvest",
+            "telemetry",
+            "gantt",
+            str(tmp_path / "run.lcmlog"),
+            "--out",
+            str(tmp_path / "g.png"),
+            "--out",
+            str(tmp_path / "g.svg"),
+        ],
+        env=H.env(),
+        cwd=H.SOURCE,
+        capture_output=True,
+        text=True,
+    )
     assert g.returncode == 0, g.stderr
     assert (tmp_path / "g.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert b"<svg" in (tmp_path / "g.svg").read_bytes()[:400]
@@ -133,8 +193,9 @@ def test_recoverable_fault_row_completes(tmp_path, sim_factory, name):
     plan = H.make_plan(tmp_path / "plan.json", stops=2, per_arm=3, seed=5)
     n = sum(len(s["left"]) + len(s["right"]) for s in plan["stops"])
     sim = sim_factory(FAULT_SCALE, RECOVERABLE[name])
-    proc, summary = H.run_exec(tmp_path / "plan.json", tmp_path / "j.journal",
-                               tmp_path / "summary.json", FAULT_SCALE)
+    proc, summary = H.run_exec(
+        tmp_path / "plan.json", tmp_path / "j.journal", tmp_path / "summary.json", FAULT_SCALE
+    )
     assert proc.returncode == 0, proc.stderr
     assert summary["phase"] == "row_done"
     _, recs = H.read_journal(tmp_path / "j.journal")
@@ -154,10 +215,14 @@ def test_recoverable_fault_row_completes(tmp_path, sim_factory, name):
 # A node that falls silent altogether is caught by whichever comes first: its heartbeat
 # timeout or the timeout of what the executor was waiting for from it; both end in SAFE.
 SAFE = {
-    "vehicle_heartbeat_lost": (["silent:after_s=40,node=vehicle,frames=heartbeat"],
-                               {"lost_heartbeat"}),
-    "arm_heartbeat_lost": (["silent:after_s=40,node=right_arm,frames=heartbeat"],
-                           {"lost_heartbeat"}),
+    "vehicle_heartbeat_lost": (
+        ["silent:after_s=40,node=vehicle,frames=heartbeat"],
+        {"lost_heartbeat"},
+    ),
+    "arm_heartbeat_lost": (
+        ["silent:after_s=40,node=right_arm,frames=heartbeat"],
+        {"lost_heartbeat"},
+    ),
     "arm_silent": (["silent:after_s=40,node=left_arm"], {"lost_heartbeat", "timeout"}),
 }
 
@@ -165,10 +230,11 @@ SAFE = {
 @pytest.mark.parametrize("name", sorted(SAFE))
 def test_fatal_fault_ends_safe_with_journal_intact(tmp_path, sim_factory, name):
     faults, reasons = SAFE[name]
-    plan = H.make_plan(tmp_path / "plan.json", stops=3, per_arm=3, seed=7)
+    H.make_plan(tmp_path / "plan.json", stops=3, per_arm=3, seed=7)
     sim = sim_factory(FAULT_SCALE, faults)
-    proc, summary = H.run_exec(tmp_path / "plan.json", tmp_path / "j.journal",
-                               tmp_path / "summary.json", FAULT_SCALE)
+    proc, summary = H.run_exec(
+        tmp_path / "plan.json", tmp_path / "j.journal", tmp_path / "summary.json", FAULT_SCALE
+    )
     assert proc.returncode == 3, proc.stderr
     assert summary["phase"] == "safe" and summary["safe_reason"] in reasons, summary
     _, recs = H.read_journal(tmp_path / "j.journal")  # verifies every record's CRC
@@ -181,12 +247,18 @@ def test_fatal_fault_ends_safe_with_journal_intact(tmp_path, sim_factory, name):
 
 
 def test_operator_stop_is_an_estop(tmp_path, sim_factory):
-    plan = H.make_plan(tmp_path / "plan.json", stops=3, per_arm=3, seed=9)
+    H.make_plan(tmp_path / "plan.json", stops=3, per_arm=3, seed=9)
     sim = sim_factory(FAULT_SCALE)
-    p = H.start_exec(tmp_path / "plan.json", tmp_path / "j.journal", tmp_path / "s.json",
-                     FAULT_SCALE)
-    assert H.wait_for(lambda: os.path.exists(tmp_path / "j.journal") and
-                      b"\nF " in (tmp_path / "j.journal").read_bytes(), 60)
+    p = H.start_exec(
+        tmp_path / "plan.json", tmp_path / "j.journal", tmp_path / "s.json", FAULT_SCALE
+    )
+    assert H.wait_for(
+        lambda: (
+            os.path.exists(tmp_path / "j.journal")
+            and b"\nF " in (tmp_path / "j.journal").read_bytes()
+        ),
+        60,
+    )
     p.send_signal(signal.SIGTERM)
     out, err = p.communicate(timeout=30)
     assert p.returncode == 3, err
@@ -197,8 +269,9 @@ def test_operator_stop_is_an_estop(tmp_path, sim_factory):
 
 
 @pytest.mark.parametrize("kill_after_outcomes", [3, 8])
-def test_sigkill_and_resume_loses_nothing_picks_nothing_twice(tmp_path, sim_factory,
-                                                              kill_after_outcomes):
+def test_sigkill_and_resume_loses_nothing_picks_nothing_twice(
+    tmp_path, sim_factory, kill_after_outcomes
+):
     plan = H.make_plan(tmp_path / "plan.json", stops=3, per_arm=3, seed=11)
     order = H.plan_order(plan)
     n = len(order["L"]) + len(order["R"])
@@ -219,8 +292,7 @@ def test_sigkill_and_resume_loses_nothing_picks_nothing_twice(tmp_path, sim_fact
     assert 0 < len(done_before) < n
     # the nodes notice the lost heartbeat and stop; a new executor resumes
     time.sleep(1.0)
-    proc, summary = H.run_exec(tmp_path / "plan.json", journal, tmp_path / "s2.json",
-                               FAULT_SCALE)
+    proc, summary = H.run_exec(tmp_path / "plan.json", journal, tmp_path / "s2.json", FAULT_SCALE)
     assert proc.returncode == 0, proc.stderr
     assert "resuming" in proc.stderr
     _, recs = H.read_journal(journal)

@@ -5,6 +5,7 @@ QEMU test-bed guest (testbed/run-in-guest, DESIGN §6), else SKIPPED with the re
 The guest runs code ~20x slower than the host, so the row here is short and slow (time
 scale 2); the 5 % makespan check is the udp test's (test_exec_hil_udp.py).
 """
+
 import os
 import sys
 
@@ -25,19 +26,60 @@ def _run_row(tmp_path, iface):
     plan = H.make_plan(tmp_path / "plan.json", stops=1, per_arm=2, seed=13)
     order = H.plan_order(plan)
     import subprocess
+
     log = open(tmp_path / "sim_vcan.log", "w")
     record = tmp_path / "sim_vcan.jsonl"
-    proc = subprocess.Popen([sys.executable, "-m", "harvest", "sim", "--interface", "socketcan",
-                             "--channel", iface, "--time-scale", str(SCALE), "--record",
-                             str(record), "--exec-timeout", str(SLOW_HEARTBEAT_S)], stdout=log, stderr=subprocess.STDOUT, env=H.env(),
-                            cwd=H.SOURCE)
+    proc = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "harvest",
+            "sim",
+            "--interface",
+            "socketcan",
+            "--channel",
+            iface,
+            "--time-scale",
+            str(SCALE),
+            "--record",
+            str(record),
+            "--exec-timeout",
+            str(SLOW_HEARTBEAT_S),
+        ],
+        stdout=log,
+        stderr=subprocess.STDOUT,
+        env=H.env(),
+        cwd=H.SOURCE,
+    )
     try:
-        r = subprocess.run([H.EXEC, "--plan", str(tmp_path / "plan.json"), "--config", H.CONFIG,
-                            "--journal", str(tmp_path / "j.journal"), "--summary",
-                            str(tmp_path / "s.json"), "--transport", "socketcan", "--channel",
-                            iface, "--time-scale", str(SCALE), "--startup-timeout", "60",
-                            "--heartbeat-timeout", str(SLOW_HEARTBEAT_S), "--latency", "2"],
-                           capture_output=True, text=True, timeout=500)
+        r = subprocess.run(
+            [
+                H.EXEC,
+                "--plan",
+                str(tmp_path / "plan.json"),
+                "--config",
+                H.CONFIG,
+                "--journal",
+                str(tmp_path / "j.journal"),
+                "--summary",
+                str(tmp_path / "s.json"),
+                "--transport",
+                "socketcan",
+                "--channel",
+                iface,
+                "--time-scale",
+                str(SCALE),
+                "--startup-timeout",
+                "60",
+                "--heartbeat-timeout",
+                str(SLOW_HEARTBEAT_S),
+                "--latency",
+                "2",
+            ],
+            capture_output=True,
+            text=True,
+            timeout=500,
+        )
     finally:
         proc.terminate()
         proc.wait(timeout=60)
@@ -47,6 +89,7 @@ def _run_row(tmp_path, iface):
     assert H.outcome_order(recs) == order
     assert all(o[0] == "picked" for o in H.outcomes(recs).values())
     import json
+
     picks = [json.loads(line) for line in open(record) if '"event":"pick"' in line.replace(" ", "")]
     assert len(picks) == len(order["L"]) + len(order["R"])
 
@@ -63,10 +106,23 @@ def test_whole_row_on_vcan(tmp_path):
         pytest.skip("SKIPPED: inside the guest but vcan0 is not usable")
     if not os.path.exists(guest.RUNNER):
         pytest.skip(f"SKIPPED: no vcan here and no test-bed guest runner ({guest.RUNNER})")
-    proc = guest.run_in_guest([sys.executable, "-m", "pytest", "-q", "-rs", "-p",
-                               "no:cacheprovider", os.path.abspath(__file__),
-                               "--basetemp", str(tmp_path / "guest")],
-                              timeout=540, rw=[tmp_path], cwd=H.SOURCE)
+    proc = guest.run_in_guest(
+        [
+            sys.executable,
+            "-m",
+            "pytest",
+            "-q",
+            "-rs",
+            "-p",
+            "no:cacheprovider",
+            os.path.abspath(__file__),
+            "--basetemp",
+            str(tmp_path / "guest"),
+        ],
+        timeout=540,
+        rw=[tmp_path],
+        cwd=H.SOURCE,
+    )
     reason = guest.skip_reason(proc)
     if reason:
         pytest.skip(reason)

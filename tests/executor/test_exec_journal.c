@@ -66,8 +66,7 @@ static void test_write_replay(void **state)
     assert_int_equal(hv_exec_journal_cut(&j, 2, 2, 5.0), HV_OK);
     assert_int_equal(hv_exec_journal_outcome(&j, 3, HV_OUT_SKIPPED, HV_RSN_REJECTED, 3, 6.0),
                      HV_OK);
-    assert_int_equal(hv_exec_journal_outcome(&j, 99, HV_OUT_PICKED, HV_RSN_OK, 1, 4.0),
-                     HV_ERR_ARG);
+    assert_int_equal(hv_exec_journal_outcome(&j, 99, HV_OUT_PICKED, HV_RSN_OK, 1, 4.0), HV_ERR_ARG);
     hv_exec_journal_close(&j);
 
     assert_int_equal(hv_exec_journal_open(&j, path, &fx->plan, &prog, err, sizeof err), HV_OK);
@@ -157,9 +156,9 @@ static void test_other_plan(void **state)
     assert_int_equal(hv_exec_journal_open(&j, path, &a->plan, &prog, err, sizeof err),
                      HV_ERR_EXEC_JOURNAL_FORMAT);
     /* unwritable place */
-    assert_int_equal(hv_exec_journal_open(&j, "/nonexistent/dir/j", &a->plan, &prog, err,
-                                          sizeof err),
-                     HV_ERR_EXEC_JOURNAL_IO);
+    assert_int_equal(
+        hv_exec_journal_open(&j, "/nonexistent/dir/j", &a->plan, &prog, err, sizeof err),
+        HV_ERR_EXEC_JOURNAL_IO);
     free(a);
     free(b);
 }
@@ -222,8 +221,7 @@ static void test_estop_clear_record(void **state)
         snprintf(bad, sizeof bad, "bad%zu.journal", k);
         char bpath[160];
         path_of(bpath, sizeof bpath, bad);
-        assert_int_equal(hv_exec_journal_open(&j, bpath, &fx->plan, &prog, err, sizeof err),
-                         HV_OK);
+        assert_int_equal(hv_exec_journal_open(&j, bpath, &fx->plan, &prog, err, sizeof err), HV_OK);
         hv_exec_journal_close(&j);
         append_record(bpath, bad_lines[k]);
         assert_int_equal(hv_exec_journal_open(&j, bpath, &fx->plan, &prog, err, sizeof err),
@@ -253,7 +251,9 @@ static void write_journal(const fx_t *fx, hv_exec_journal_t *j, int upto)
                                          a->u.jr.attempt, 0.0);
             break;
         case HV_JR_DONE: st = hv_exec_journal_done(j, 0.0); break;
-        case HV_JR_ESTOP_CLEAR: st = hv_exec_journal_estop_clear(j, "test", a->u.jr.nodes, 0.0); break;
+        case HV_JR_ESTOP_CLEAR:
+            st = hv_exec_journal_estop_clear(j, "test", a->u.jr.nodes, 0.0);
+            break;
         }
         assert_int_equal(st, HV_OK);
     }
@@ -527,12 +527,11 @@ static void test_online_records_refused(void **state)
     assert_non_null(strstr(err, "online"));
     char offline[128];
     path_of(offline, sizeof offline, "offline.journal");
-    assert_int_equal(hv_exec_journal_open(&j, offline, &src->plan, &prog, err, sizeof err),
-                     HV_OK);
+    assert_int_equal(hv_exec_journal_open(&j, offline, &src->plan, &prog, err, sizeof err), HV_OK);
     hv_exec_journal_close(&j);
     empty_plan(fx);
-    assert_int_equal(hv_exec_journal_open_online(&j, offline, &fx->plan, &prog, err,
-                                                 sizeof err), HV_ERR_EXEC_JOURNAL_PLAN);
+    assert_int_equal(hv_exec_journal_open_online(&j, offline, &fx->plan, &prog, err, sizeof err),
+                     HV_ERR_EXEC_JOURNAL_PLAN);
     /* a flipped digit in a pick record: its checksum fails, line 4 named */
     char text[2048];
     read_text(path, text, sizeof text);

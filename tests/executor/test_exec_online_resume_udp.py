@@ -14,6 +14,7 @@ Judged by the simulator's record: every fruit of the committed plan (which the c
 finds holds every reachable fruit of the map exactly once) was cut exactly once at its
 stop, none twice, and the vehicle reached the course's end.
 """
+
 import json
 import os
 import signal
@@ -39,33 +40,91 @@ class Row:
     def __init__(self, tmp_path):
         self.dir = tmp_path
         self.fruits, self.cfg = tmp_path / "fruits.csv", tmp_path / "harvest.cfg"
-        subprocess.run([sys.executable, "-m", "harvest", "scenario", "--distribution", "long",
-                        "--length", str(LENGTH_M), "--left", "40", "--seed", "7", "--out",
-                        str(self.fruits), "--config-out", str(self.cfg)], check=True,
-                       env=H.env(), cwd=H.SOURCE, capture_output=True)
+        subprocess.run(
+            [
+                sys.executable,
+                "-m",
+                "harvest",
+                "scenario",
+                "--distribution",
+                "long",
+                "--length",
+                str(LENGTH_M),
+                "--left",
+                "40",
+                "--seed",
+                "7",
+                "--out",
+                str(self.fruits),
+                "--config-out",
+                str(self.cfg),
+            ],
+            check=True,
+            env=H.env(),
+            cwd=H.SOURCE,
+            capture_output=True,
+        )
         with open(self.fruits) as f:
             self.n_map = len(f.read().splitlines()) - 1
-        self.sim = H.Sim(str(tmp_path), SCALE, extra=["--config", str(self.cfg), "--fruits",
-                                                       str(self.fruits), "--lcm-url", URL])
+        self.sim = H.Sim(
+            str(tmp_path),
+            SCALE,
+            extra=["--config", str(self.cfg), "--fruits", str(self.fruits), "--lcm-url", URL],
+        )
         self.procs = []
 
     def planner(self, n, journal="planner.journal"):
         p = subprocess.Popen(
-            [PLAN_ONLINE, "--config", str(self.cfg), "--lcm-url", URL, "--time-limit", "2",
-             "--threads", "1", "--journal", str(self.dir / journal),
-             "--summary", str(self.dir / f"planner{n}.json"),
-             "--out", str(self.dir / "plan.json")],
-            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+            [
+                PLAN_ONLINE,
+                "--config",
+                str(self.cfg),
+                "--lcm-url",
+                URL,
+                "--time-limit",
+                "2",
+                "--threads",
+                "1",
+                "--journal",
+                str(self.dir / journal),
+                "--summary",
+                str(self.dir / f"planner{n}.json"),
+                "--out",
+                str(self.dir / "plan.json"),
+            ],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
         self.procs.append(p)
         return p
 
     def executor(self, n, stderr=subprocess.PIPE):
         p = subprocess.Popen(
-            [H.EXEC, "--online", "--lcm-url", URL, "--config", str(self.cfg), "--journal",
-             str(self.dir / "exec.journal"), "--summary", str(self.dir / f"exec{n}.json"),
-             "--transport", "udp", "--channel", H.GROUP, "--time-scale", str(SCALE),
-             "--heartbeat-timeout", str(H.HEARTBEAT_TIMEOUT_S)],
-            stdout=subprocess.PIPE, stderr=stderr, text=True)
+            [
+                H.EXEC,
+                "--online",
+                "--lcm-url",
+                URL,
+                "--config",
+                str(self.cfg),
+                "--journal",
+                str(self.dir / "exec.journal"),
+                "--summary",
+                str(self.dir / f"exec{n}.json"),
+                "--transport",
+                "udp",
+                "--channel",
+                H.GROUP,
+                "--time-scale",
+                str(SCALE),
+                "--heartbeat-timeout",
+                str(H.HEARTBEAT_TIMEOUT_S),
+            ],
+            stdout=subprocess.PIPE,
+            stderr=stderr,
+            text=True,
+        )
         self.procs.append(p)
         return p
 
@@ -118,9 +177,19 @@ def judge(row, ex_proc, pl_proc, n_cut_before, planner_resumed):
     # the planner: every map fruit accepted once, over both of its runs when it restarted
     assert pl["done"] and det["accepted"] + det["unreachable"] == row.n_map, pl
     assert det["duplicate"] == det["late"] == 0 and pl["frames_lost"] == 0, pl
-    check = subprocess.run([HARVEST_PLAN, "check", str(row.dir / "plan.json"), "--config",
-                            str(row.cfg), "--fruits", str(row.fruits)],
-                           capture_output=True, text=True)
+    check = subprocess.run(
+        [
+            HARVEST_PLAN,
+            "check",
+            str(row.dir / "plan.json"),
+            "--config",
+            str(row.cfg),
+            "--fruits",
+            str(row.fruits),
+        ],
+        capture_output=True,
+        text=True,
+    )
     assert check.returncode == 0, check.stdout + check.stderr
     # the restarted executor: the whole plan, nothing refused; some of it done before the kill
     assert ex["phase"] == "row_done" and ex["plan_final"] and ex["plan_refused"] == 0, ex

@@ -8,6 +8,7 @@ map is in the committed plan exactly once (harvest-plan check against the map), 
 simulated arms cut as many fruits at each stop as the plan has there and no fruit twice,
 and the vehicle reached the course's end; each bad detection was refused with its reason.
 """
+
 import json
 import os
 import subprocess
@@ -29,28 +30,92 @@ LENGTH_M = 5.0
 def scenario(tmp_path):
     """A 5 m row (8 fruits per m and side) and its config: (map, config, map lines)."""
     fruits, cfg = tmp_path / "fruits.csv", tmp_path / "harvest.cfg"
-    subprocess.run([sys.executable, "-m", "harvest", "scenario", "--distribution", "long",
-                    "--length", str(LENGTH_M), "--left", "40", "--seed", "5", "--out",
-                    str(fruits), "--config-out", str(cfg)], check=True, env=H.env(),
-                   cwd=H.SOURCE, capture_output=True)
+    subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "harvest",
+            "scenario",
+            "--distribution",
+            "long",
+            "--length",
+            str(LENGTH_M),
+            "--left",
+            "40",
+            "--seed",
+            "5",
+            "--out",
+            str(fruits),
+            "--config-out",
+            str(cfg),
+        ],
+        check=True,
+        env=H.env(),
+        cwd=H.SOURCE,
+        capture_output=True,
+    )
     with open(fruits) as f:
         return fruits, cfg, len(f.read().splitlines()) - 1
 
 
 def test_online_row_every_fruit_once(tmp_path):
     fruits, cfg, n_map = scenario(tmp_path)
-    sim = H.Sim(str(tmp_path), SCALE, extra=["--config", str(cfg), "--fruits", str(fruits),
-                                             "--lcm-url", URL, "--camera-bad", "1"])
+    sim = H.Sim(
+        str(tmp_path),
+        SCALE,
+        extra=[
+            "--config",
+            str(cfg),
+            "--fruits",
+            str(fruits),
+            "--lcm-url",
+            URL,
+            "--camera-bad",
+            "1",
+        ],
+    )
     planner = None
     try:
         planner = subprocess.Popen(
-            [PLAN_ONLINE, "--config", str(cfg), "--lcm-url", URL, "--time-limit", "2", "--threads", "1",
-             "--summary", str(tmp_path / "planner.json"), "--out", str(tmp_path / "plan.json")],
-            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        argv = [H.EXEC, "--online", "--lcm-url", URL, "--config", str(cfg), "--journal",
-                str(tmp_path / "j.journal"), "--summary", str(tmp_path / "exec.json"),
-                "--transport", "udp", "--channel", H.GROUP, "--time-scale", str(SCALE),
-                "--heartbeat-timeout", str(H.HEARTBEAT_TIMEOUT_S)]
+            [
+                PLAN_ONLINE,
+                "--config",
+                str(cfg),
+                "--lcm-url",
+                URL,
+                "--time-limit",
+                "2",
+                "--threads",
+                "1",
+                "--summary",
+                str(tmp_path / "planner.json"),
+                "--out",
+                str(tmp_path / "plan.json"),
+            ],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        argv = [
+            H.EXEC,
+            "--online",
+            "--lcm-url",
+            URL,
+            "--config",
+            str(cfg),
+            "--journal",
+            str(tmp_path / "j.journal"),
+            "--summary",
+            str(tmp_path / "exec.json"),
+            "--transport",
+            "udp",
+            "--channel",
+            H.GROUP,
+            "--time-scale",
+            str(SCALE),
+            "--heartbeat-timeout",
+            str(H.HEARTBEAT_TIMEOUT_S),
+        ]
         proc = subprocess.run(argv, capture_output=True, text=True, timeout=400)
         p_out, p_err = planner.communicate(timeout=60)
     finally:
@@ -75,8 +140,19 @@ def test_online_row_every_fruit_once(tmp_path):
     kinds = sorted(e["kind"] for e in sim.events("camera_bad"))
     assert kinds == ["duplicate", "late", "outside_row"], kinds
     # the committed plan holds every reachable map fruit exactly once (the checker, by IK)
-    check = subprocess.run([HARVEST_PLAN, "check", str(tmp_path / "plan.json"), "--config",
-                            str(cfg), "--fruits", str(fruits)], capture_output=True, text=True)
+    check = subprocess.run(
+        [
+            HARVEST_PLAN,
+            "check",
+            str(tmp_path / "plan.json"),
+            "--config",
+            str(cfg),
+            "--fruits",
+            str(fruits),
+        ],
+        capture_output=True,
+        text=True,
+    )
     assert check.returncode == 0, check.stdout + check.stderr
     assert plan["totals"]["fruits_planned"] == pl["fruits_committed"] == det["accepted"]
     # the executor ran all of it, and grew its plan as the planner committed

@@ -28,12 +28,15 @@ static const char *good =
     " \"stops\": [\n"
     "  {\"index\": 40, \"y_m\": 0.4, \"pass\": 0, \"C_left_s\": 9.5, \"C_right_s\": 0,\n"
     "   \"C_s\": 9.5, \"idle_left_s\": 0, \"idle_right_s\": 9.5, \"left\": [\n"
-    "     {\"id\": \"a\\u0031\", \"x\": -0.4, \"y\": 0.45, \"z\": 0.5, \"yaw\": 0.1, \"cost_s\": 4.5, \"start_s\": 0},\n"
-    "     {\"id\": \"17\", \"x\": -0.41, \"y\": 0.35, \"z\": 0.6, \"yaw\": -0.2e0, \"cost_s\": 5, \"start_s\": 4.5}],\n"
+    "     {\"id\": \"a\\u0031\", \"x\": -0.4, \"y\": 0.45, \"z\": 0.5, \"yaw\": 0.1, \"cost_s\": "
+    "4.5, \"start_s\": 0},\n"
+    "     {\"id\": \"17\", \"x\": -0.41, \"y\": 0.35, \"z\": 0.6, \"yaw\": -0.2e0, \"cost_s\": 5, "
+    "\"start_s\": 4.5}],\n"
     "   \"right\": []},\n"
     "  {\"index\": 120, \"y_m\": 1.2, \"pass\": 0, \"C_left_s\": 0, \"C_right_s\": 3.25,\n"
     "   \"C_s\": 3.25, \"idle_left_s\": 3.25, \"idle_right_s\": 0, \"left\": [], \"right\": [\n"
-    "     {\"id\": \"17\", \"x\": 0.4, \"y\": 1.1, \"z\": 0.55, \"yaw\": 0, \"cost_s\": 3.25, \"start_s\": 0}]}\n"
+    "     {\"id\": \"17\", \"x\": 0.4, \"y\": 1.1, \"z\": 0.55, \"yaw\": 0, \"cost_s\": 3.25, "
+    "\"start_s\": 0}]}\n"
     " ],\n"
     " \"unreachable\": []}\n";
 
@@ -96,15 +99,15 @@ static void test_bad(void **state)
            "stops[0].left[1].cost_s");
     expect("\"cost_s\": 3.25", "\"cost_s\": -1", HV_ERR_EXEC_PLAN_FIELD,
            "stops[1].right[0].cost_s");
-    expect("\"id\": \"17\", \"x\": -0.41", "\"id\": \"a1\", \"x\": -0.41",
-           HV_ERR_EXEC_PLAN_RANGE, "stops[0].left[1].id");
+    expect("\"id\": \"17\", \"x\": -0.41", "\"id\": \"a1\", \"x\": -0.41", HV_ERR_EXEC_PLAN_RANGE,
+           "stops[0].left[1].id");
     expect("\"id\": \"17\", \"x\": 0.4", "\"id\": \"\", \"x\": 0.4", HV_ERR_EXEC_PLAN_ID,
            "stops[1].right[0].id: empty");
     /* an id the journal could not read back: a newline (as the user wrote), a space */
-    expect("\"id\": \"17\", \"x\": 0.4", "\"id\": \"1\\n7\", \"x\": 0.4",
-           HV_ERR_EXEC_PLAN_ID, "stops[1].right[0].id: character 0x0a at position 2");
-    expect("\"id\": \"17\", \"x\": -0.41", "\"id\": \"1 7\", \"x\": -0.41",
-           HV_ERR_EXEC_PLAN_ID, "stops[0].left[1].id: character 0x20");
+    expect("\"id\": \"17\", \"x\": 0.4", "\"id\": \"1\\n7\", \"x\": 0.4", HV_ERR_EXEC_PLAN_ID,
+           "stops[1].right[0].id: character 0x0a at position 2");
+    expect("\"id\": \"17\", \"x\": -0.41", "\"id\": \"1 7\", \"x\": -0.41", HV_ERR_EXEC_PLAN_ID,
+           "stops[0].left[1].id: character 0x20");
     /* stops out of driving order: swapped y_m, a stop listed twice, a pass going back */
     expect("\"y_m\": 1.2", "\"y_m\": 0.3", HV_ERR_EXEC_PLAN_ORDER,
            "stops[1].y_m: 0.3 not after 0.4 of stops[0] in pass 0");

@@ -1,6 +1,7 @@
 """harvest-exec refuses a bad plan file before it touches the journal or the bus: stops out
 of driving order and fruit ids outside the id set (docs/PLAN_FORMAT.md), each with one line
 naming the file and the field. No bus is opened, so no network namespace is needed."""
+
 import json
 import os
 import subprocess
@@ -16,9 +17,24 @@ pytestmark = pytest.mark.skipif(bool(_missing), reason="SKIPPED: " + "; ".join(_
 
 
 def _exec(plan, journal):
-    return subprocess.run([H.EXEC, "--plan", str(plan), "--config", H.CONFIG, "--journal",
-                           str(journal), "--transport", "udp", "--channel", H.GROUP],
-                          capture_output=True, text=True, timeout=60)
+    return subprocess.run(
+        [
+            H.EXEC,
+            "--plan",
+            str(plan),
+            "--config",
+            H.CONFIG,
+            "--journal",
+            str(journal),
+            "--transport",
+            "udp",
+            "--channel",
+            H.GROUP,
+        ],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
 
 
 def _edited(tmp_path, edit):

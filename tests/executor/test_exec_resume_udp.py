@@ -7,6 +7,7 @@ Each stop leaves the nodes holding an e-stop, so each restart first goes without
 operator's clear (it must stay safe, exit 4, and send the nodes no command at all) and
 then with --clear-estop (it must resume and finish the row).
 """
+
 import os
 import signal
 import sys
@@ -64,15 +65,16 @@ def restart_until_done(tmp_path, path, plan, sim):
     assert H.sim_commands(sim) == commands, "a restart without the clear sent a command"
     assert [r for r in H.read_journal(journal)[1] if r[0] == "E"] == []
 
-    proc, summary = H.run_exec(path, journal, tmp_path / "s3.json", SCALE,
-                               ["--clear-estop", OPERATOR])
+    proc, summary = H.run_exec(
+        path, journal, tmp_path / "s3.json", SCALE, ["--clear-estop", OPERATOR]
+    )
     assert proc.returncode == 0, proc.stderr
     assert summary["phase"] == "row_done" and summary["estop_cleared"] is True
     assert f"cleared by {OPERATOR} (journalled)" in proc.stderr
     _, recs = H.read_journal(journal)
     clears = [r for r in recs if r[0] == "E"]
     assert len(clears) == 1 and clears[0][1] == OPERATOR, clears
-    assert set(clears[0][2][len("nodes="):].split(",")) <= set(NODE_NAMES)
+    assert set(clears[0][2][len("nodes=") :].split(",")) <= set(NODE_NAMES)
     outs = H.outcomes(recs)  # one outcome per fruit across the runs
     assert len(outs) == len(H.plan_order(plan)["L"]) * 2
     assert all(o[0] == "picked" for o in outs.values()), outs
@@ -80,7 +82,7 @@ def restart_until_done(tmp_path, path, plan, sim):
     H.assert_every_fruit_cut_once(plan, sim)
     assert H.row_end_reached(plan, sim)
     # the nodes got CLEAR_ESTOP only in the run with the operator's clear
-    assert [c for c in H.sim_commands(sim)[len(commands):] if c[1] == "CLEAR_ESTOP"]
+    assert [c for c in H.sim_commands(sim)[len(commands) :] if c[1] == "CLEAR_ESTOP"]
 
 
 def test_resume_after_sigterm(tmp_path, row):
@@ -107,8 +109,9 @@ def test_resume_after_a_node_estop_and_the_operators_clear(tmp_path, row):
 def test_resume_after_an_arm_fault(tmp_path, row):
     path, plan, start_sim = row
     # the left arm faults at its 2nd cut and again while homing to recover from it
-    sim = start_sim(["joint_fault:node=left_arm,joint=2,pick=2",
-                     "joint_fault:node=left_arm,joint=1,home=2"])
+    sim = start_sim(
+        ["joint_fault:node=left_arm,joint=2,pick=2", "joint_fault:node=left_arm,joint=1,home=2"]
+    )
     assert run_to_safe(tmp_path, path) == ("fault", "left_arm")
     restart_until_done(tmp_path, path, plan, sim)
 

@@ -392,7 +392,7 @@ static void test_operator_and_journal_stop(void **state)
     for (int which = 0; which < 2; which++) {
         fx_t *fx = new_fx(1, 2);
         fx->motion_ns = 300000000ull; /* a slower row, so it is still running */
-    fx_start(fx, NULL);
+        fx_start(fx, NULL);
         fx_run(fx, 1.0);
         hv_exec_event_t ev;
         memset(&ev, 0, sizeof ev);
@@ -488,9 +488,9 @@ static void test_estop_then_restarts(void **state)
 
 typedef struct hand {
     fx_t *fx;
-    hv_exec_actions_t out; /* the last step's actions */
+    hv_exec_actions_t out;                               /* the last step's actions */
     int sent[HV_EXEC_NODES][HV_CAN_CMD_CLEAR_ESTOP + 1]; /* commands sent so far, by kind */
-    int seq[HV_EXEC_NODES];                          /* the last command's sequence number */
+    int seq[HV_EXEC_NODES];                              /* the last command's sequence number */
 } hand_t;
 
 static void hand_step(hand_t *h, hv_exec_event_t *ev)
@@ -762,8 +762,9 @@ static void test_bad_input(void **state)
     assert_string_equal(hv_exec_phase_name(HV_PH_ROW_DONE), "row_done");
     assert_string_equal(hv_exec_safe_reason_name(HV_SAFE_ESTOP_LATCHED), "estop_latched");
     char list[32];
-    assert_int_equal(hv_exec_node_list((1u << HV_EXEC_VEHICLE) | (1u << HV_EXEC_RIGHT), list,
-                                       sizeof list), HV_OK);
+    assert_int_equal(
+        hv_exec_node_list((1u << HV_EXEC_VEHICLE) | (1u << HV_EXEC_RIGHT), list, sizeof list),
+        HV_OK);
     assert_string_equal(list, "vehicle,right_arm");
     assert_int_equal(hv_exec_node_list(0, list, sizeof list), HV_OK);
     assert_string_equal(list, "");

@@ -74,7 +74,8 @@ static void test_memq_round_trip(void **state)
     lcm_t *lcm = (lcm_t *)tm.impl; /* memq is per lcm_t: subscribe on the same instance */
     got_t g;
     memset(&g, 0, sizeof g);
-    harvest_lcm_plan_t_subscription_t *s1 = harvest_lcm_plan_t_subscribe(lcm, "HARVEST_PLAN", on_plan, &g);
+    harvest_lcm_plan_t_subscription_t *s1 =
+        harvest_lcm_plan_t_subscribe(lcm, "HARVEST_PLAN", on_plan, &g);
     harvest_lcm_exec_state_t_subscription_t *s2 =
         harvest_lcm_exec_state_t_subscribe(lcm, "HARVEST_EXEC_STATE", on_state, &g);
     harvest_lcm_fruit_event_t_subscription_t *s3 =

@@ -1,6 +1,7 @@
 """The telemetry viewer and its CLI without an executor: a log written here with the
 generated LCM types (the same lcm-gen output the C side uses) is read back into the
 planned and actual timelines, summarised and plotted; bad input gets a clear error."""
+
 import json
 import os
 import subprocess
@@ -45,8 +46,12 @@ def _write_log(path):
         s = T["plan_stop_t"]()
         s.drive_s, s.expected_s = drive, exp
         plan.stops.append(s)
-    plan.picks = [_pick("a", 0, 0, 6.0), _pick("b", 0, 0, 4.0), _pick("c", 1, 0, 7.0),
-                  _pick("d", 1, 1, 3.0)]
+    plan.picks = [
+        _pick("a", 0, 0, 6.0),
+        _pick("b", 0, 0, 4.0),
+        _pick("c", 1, 0, 7.0),
+        _pick("d", 1, 1, 3.0),
+    ]
     plan.n_picks = len(plan.picks)
     log = lcm.EventLog(str(path), "w", overwrite=True)
     t = 1_000_000
@@ -105,32 +110,79 @@ def test_timeline_and_summary(tmp_path):
 
 def test_cli(tmp_path):
     _write_log(tmp_path / "t.lcmlog")
-    r = subprocess.run([sys.executable, "-m", "harvest", "telemetry", "summary",
-                        str(tmp_path / "t.lcmlog")], capture_output=True, text=True, env=env())
+    r = subprocess.run(
+        [sys.executable, "-m", "harvest", "telemetry", "summary", str(tmp_path / "t.lcmlog")],
+        capture_output=True,
+        text=True,
+        env=env(),
+    )
     assert r.returncode == 0, r.stderr
     assert json.loads(r.stdout)["picked"] == 2
-    r = subprocess.run([sys.executable, "-m", "harvest", "telemetry", "gantt",
-                        str(tmp_path / "t.lcmlog"), "--out", str(tmp_path / "g.pdf")],
-                       capture_output=True, text=True, env=env())
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "harvest",
+            "telemetry",
+            "gantt",
+            str(tmp_path / "t.lcmlog"),
+            "--out",
+            str(tmp_path / "g.pdf"),
+        ],
+        capture_output=True,
+        text=True,
+        env=env(),
+    )
     assert r.returncode == 2 and "g.pdf" in r.stderr
-    r = subprocess.run([sys.executable, "-m", "harvest", "telemetry", "summary",
-                        str(tmp_path / "missing.lcmlog")], capture_output=True, text=True,
-                       env=env())
+    r = subprocess.run(
+        [sys.executable, "-m", "harvest", "telemetry", "summary", str(tmp_path / "missing.lcmlog")],
+        capture_output=True,
+        text=True,
+        env=env(),
+    )
     assert r.returncode == 1 and "telemetry:" in r.stderr
-    r = subprocess.run([sys.executable, "-m", "harvest", "telemetry", "--lcm-python",
-                        str(tmp_path), "summary", str(tmp_path / "t.lcmlog")],
-                       capture_output=True, text=True, env=env())
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "harvest",
+            "telemetry",
+            "--lcm-python",
+            str(tmp_path),
+            "summary",
+            str(tmp_path / "t.lcmlog"),
+        ],
+        capture_output=True,
+        text=True,
+        env=env(),
+    )
     assert r.returncode == 1 and "generated LCM types missing" in r.stderr
-    r = subprocess.run([sys.executable, "-m", "harvest", "telemetry", "--help"],
-                       capture_output=True, text=True, env=env())
+    r = subprocess.run(
+        [sys.executable, "-m", "harvest", "telemetry", "--help"],
+        capture_output=True,
+        text=True,
+        env=env(),
+    )
     assert r.returncode == 0 and "gantt" in r.stdout
 
 
 def test_mcap_export(tmp_path):
     _write_log(tmp_path / "t.lcmlog")
-    r = subprocess.run([sys.executable, "-m", "harvest", "telemetry", "mcap",
-                        str(tmp_path / "t.lcmlog"), "--out", str(tmp_path / "t.mcap")],
-                       capture_output=True, text=True, env=env())
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "harvest",
+            "telemetry",
+            "mcap",
+            str(tmp_path / "t.lcmlog"),
+            "--out",
+            str(tmp_path / "t.mcap"),
+        ],
+        capture_output=True,
+        text=True,
+        env=env(),
+    )
     assert r.returncode == 0, r.stderr
     assert "HARVEST_EXEC_STATE 3, HARVEST_FRUIT 9, HARVEST_PLAN 1" in r.stdout
     assert H.mcap_matches_log(tmp_path / "t.mcap", tmp_path / "t.lcmlog") == 13

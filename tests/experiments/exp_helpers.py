@@ -1,12 +1,14 @@
 """Paths and programs the experiment tests share (the build named by $HV_BUILD_DIR)."""
+
 import os
 import subprocess
 import sys
 
 import pytest
 
-SOURCE_DIR = os.environ.get("HV_SOURCE_DIR",
-                            os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+SOURCE_DIR = os.environ.get(
+    "HV_SOURCE_DIR", os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+)
 BUILD_DIR = os.environ.get("HV_BUILD_DIR", os.path.join(SOURCE_DIR, "build"))
 CONFIG = os.path.join(SOURCE_DIR, "config", "harvest.cfg")
 PLANNER = os.path.join(BUILD_DIR, "planner", "harvest-plan")
@@ -21,5 +23,11 @@ def require(path, what):
 def harvest(*args, **kw):
     """Run `python -m harvest ...` as a user would, with host/ on the path."""
     env = dict(os.environ, HV_BUILD_DIR=BUILD_DIR)
-    return subprocess.run([sys.executable, "-m", "harvest", *args], env=env, text=True,
-                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, **kw)
+    return subprocess.run(
+        [sys.executable, "-m", "harvest", *args],
+        env=env,
+        text=True,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        **kw,
+    )

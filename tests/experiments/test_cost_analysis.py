@@ -1,21 +1,25 @@
 """Cost tables read with numpy, and the paper's two analysis figures, from the real costgen."""
+
 import json
 import subprocess
 
 import numpy as np
 import pytest
+from exp_helpers import CONFIG, COSTGEN, harvest, require
 
 from harvest.experiments import cost_table
-
-from exp_helpers import CONFIG, COSTGEN, harvest, require
 
 
 @pytest.fixture(scope="module")
 def tables(tmp_path_factory):
     require(COSTGEN, "tools/costgen")
     d = tmp_path_factory.mktemp("tables")
-    r = subprocess.run([COSTGEN, "--config", CONFIG, "--side", "both", "--out-dir", str(d),
-                        "--quiet"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    r = subprocess.run(
+        [COSTGEN, "--config", CONFIG, "--side", "both", "--out-dir", str(d), "--quiet"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+    )
     assert r.returncode == 0, r.stdout
     return {s: str(d / f"costtab_{n}.bin") for s, n in (("L", "left"), ("R", "right"))}
 
@@ -24,8 +28,9 @@ def tables(tmp_path_factory):
 def analysis_dir(tmp_path_factory):
     require(COSTGEN, "tools/costgen")
     out = tmp_path_factory.mktemp("analysis")
-    r = harvest("experiments", "analysis", "--out", str(out), "--config", CONFIG,
-                "--costgen", COSTGEN)
+    r = harvest(
+        "experiments", "analysis", "--out", str(out), "--config", CONFIG, "--costgen", COSTGEN
+    )
     assert r.returncode == 0, r.stderr
     return out
 

@@ -1,6 +1,7 @@
 """`experiments fov-width` and `experiments cost-models`: runs derived from the main run
 (FOV at other window widths, the other cost model), on the quick set with the real planner,
 and the report's tables made from them."""
+
 import filecmp
 import json
 import os
@@ -9,11 +10,10 @@ import statistics
 import subprocess
 
 import pytest
+from exp_helpers import CONFIG, COSTGEN, PLANNER, harvest, require
 
 from harvest.experiments import cost_models, report, results, sensitivity
 from harvest.experiments.runner import METHODS, QUICK_ALPHAS, QUICK_SEEDS
-
-from exp_helpers import CONFIG, COSTGEN, PLANNER, harvest, require
 
 TIME_LIMIT_S = "20"
 WIDTHS = (0.1, 0.25, 1.0)
@@ -21,8 +21,21 @@ MAIN_WIDTH = "0.25"
 
 
 def _exp(step, out, *extra):
-    r = harvest("experiments", step, "--quick", "--out", str(out), "--config", CONFIG,
-                "--time-limit", TIME_LIMIT_S, "--fov-width", MAIN_WIDTH, "--no-progress", *extra)
+    r = harvest(
+        "experiments",
+        step,
+        "--quick",
+        "--out",
+        str(out),
+        "--config",
+        CONFIG,
+        "--time-limit",
+        TIME_LIMIT_S,
+        "--fov-width",
+        MAIN_WIDTH,
+        "--no-progress",
+        *extra,
+    )
     return r
 
 
@@ -31,8 +44,12 @@ def derived(tmp_path_factory):
     require(PLANNER, "planner/harvest-plan")
     require(COSTGEN, "tools/costgen")
     out = tmp_path_factory.mktemp("derived")
-    for step, extra in (("run", ()), ("cost-models", ()),
-                        ("fov-width", ("--fov-widths", ",".join(map(str, WIDTHS)))), ("report", ())):
+    for step, extra in (
+        ("run", ()),
+        ("cost-models", ()),
+        ("fov-width", ("--fov-widths", ",".join(map(str, WIDTHS)))),
+        ("report", ()),
+    ):
         r = _exp(step, out, *extra)
         assert r.returncode == 0, (step, r.stdout + r.stderr)
     return out
@@ -81,7 +98,9 @@ def test_the_width_changes_fov_and_a_proven_milp_beats_it_at_every_width(derived
     model = dict(_model_dirs(derived))[pc]
     milp = _by_key(results.read(str(model / "results.csv")), "milp")
     sweep = sensitivity.load(str(model))
-    spans = {w: sorted((r["alpha"], r["seed"], r["stops"]) for r in rows) for w, rows in sweep.items()}
+    spans = {
+        w: sorted((r["alpha"], r["seed"], r["stops"]) for r in rows) for w, rows in sweep.items()
+    }
     assert spans[0.1] != spans[1.0], "FOV's plans do not depend on the window width"
     for w, rows in sweep.items():
         for r in rows:
@@ -96,11 +115,17 @@ def test_the_reports_width_table_is_the_csvs(derived):
     for pc, model in _model_dirs(derived):
         milp = _by_key(results.read(str(model / "results.csv")), "milp")
         for w, rows in sensitivity.load(str(model)).items():
-            gains = [milp[(r["alpha"], r["seed"])]["throughput_fruit_per_s"] /
-                     r["throughput_fruit_per_s"] - 1.0 for r in rows]
+            gains = [
+                milp[(r["alpha"], r["seed"])]["throughput_fruit_per_s"]
+                / r["throughput_fruit_per_s"]
+                - 1.0
+                for r in rows
+            ]
             med = 100.0 * statistics.median(gains)
-            row = (rf"^\| plan\.pick_cycle = {pc} \| {re.escape(f'{w:g}')} \| {len(rows)} \| "
-                   rf"[0-9.]+ \| {re.escape(f'{med:+.1f}')} % \|")
+            row = (
+                rf"^\| plan\.pick_cycle = {pc} \| {re.escape(f'{w:g}')} \| {len(rows)} \| "
+                rf"[0-9.]+ \| {re.escape(f'{med:+.1f}')} % \|"
+            )
             assert re.search(row, text, re.M), row
     assert f"The main run's FOV uses {MAIN_WIDTH} m." in text
     assert "With plan.pick_cycle = 0, the median gain is" in text
@@ -113,14 +138,20 @@ def test_the_other_cost_model_plans_the_same_instances_in_the_robots_time(derive
     rows = results.read(str(other / "results.csv"))
     want = {(a, s, m) for a in QUICK_ALPHAS for s in QUICK_SEEDS for m in METHODS}
     assert {(r["alpha"], r["seed"], r["method"]) for r in rows} == want
-    main = {(r["alpha"], r["seed"], r["method"]): r for r in results.read(str(derived / "results.csv"))}
+    main = {
+        (r["alpha"], r["seed"], r["method"]): r for r in results.read(str(derived / "results.csv"))
+    }
     for r in rows:
         assert r["status"] != "error", r
         plan = json.loads((other / r["plan"]).read_text())
         assert plan["params"]["pick_time"] == "cycle"
         assert main[(r["alpha"], r["seed"], r["method"])]["fruits_planned"] == r["fruits_planned"]
-        c = subprocess.run([PLANNER, "check", str(other / r["plan"]), "--quiet"],
-                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        c = subprocess.run(
+            [PLANNER, "check", str(other / r["plan"]), "--quiet"],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+        )
         assert c.returncode == 0, (r["plan"], c.stdout)
 
 
@@ -131,13 +162,20 @@ def test_the_reports_dual_arm_table_has_both_cost_models_from_the_csvs(derived):
         rows = results.read(str(d / "results.csv"))
         milp, serial = _by_key(rows, "milp"), _by_key(rows, "serial")
         for a in QUICK_ALPHAS:
-            ratios = [milp[(a, s)]["throughput_fruit_per_s"] / serial[(a, s)]["throughput_fruit_per_s"]
-                      for s in QUICK_SEEDS]
-            row = (rf"^\| plan\.pick_cycle = {pc} \| {re.escape(f'{a:g}')} \| {len(ratios)} \| "
-                   rf"{re.escape(f'{statistics.median(ratios):.2f}')}x \|")
+            ratios = [
+                milp[(a, s)]["throughput_fruit_per_s"] / serial[(a, s)]["throughput_fruit_per_s"]
+                for s in QUICK_SEEDS
+            ]
+            row = (
+                rf"^\| plan\.pick_cycle = {pc} \| {re.escape(f'{a:g}')} \| {len(ratios)} \| "
+                rf"{re.escape(f'{statistics.median(ratios):.2f}')}x \|"
+            )
             assert re.search(row, text, re.M), row
-    assert re.search(r"At alpha = 1 \(paper: nearly 2x\): [0-9.]+x with the paper's.*; "
-                     r"[0-9.]+x with the robot's time", text)
+    assert re.search(
+        r"At alpha = 1 \(paper: nearly 2x\): [0-9.]+x with the paper's.*; "
+        r"[0-9.]+x with the robot's time",
+        text,
+    )
 
 
 def test_the_report_names_the_cost_model_of_each_table_and_figure(derived):
@@ -158,30 +196,52 @@ def test_derived_runs_need_the_main_run_with_the_same_options(tmp_path):
     out = tmp_path / "main"
     r = _exp("run", out, "--alphas", "0.25", "--seeds", "1", "--methods", "fov")
     assert r.returncode == 0, r.stderr
-    r = _exp("cost-models", out, "--alphas", "0.25", "--seeds", "1", "--methods", "fov",
-             "--pick-cycle")
+    r = _exp(
+        "cost-models", out, "--alphas", "0.25", "--seeds", "1", "--methods", "fov", "--pick-cycle"
+    )
     assert r.returncode == 1 and "different pick_cycle" in r.stderr, r.stderr
     assert not (out / cost_models.subdir(False)).exists()
 
 
 @pytest.mark.parametrize("text", ["0,0.25", "abc", "", "0.1,inf"])
 def test_bad_widths_are_refused_before_anything_runs(tmp_path, text):
-    r = harvest("experiments", "fov-width", "--out", str(tmp_path / "x"), "--config", CONFIG,
-                "--fov-widths", text, "--planner", "/bin/true", "--costgen", "/bin/true")
+    r = harvest(
+        "experiments",
+        "fov-width",
+        "--out",
+        str(tmp_path / "x"),
+        "--config",
+        CONFIG,
+        "--fov-widths",
+        text,
+        "--planner",
+        "/bin/true",
+        "--costgen",
+        "/bin/true",
+    )
     assert r.returncode == 1 and "--fov-widths" in r.stderr, r.stderr
     assert not (tmp_path / "x").exists()
 
 
 def _row(alpha, seed, method, thr, stops=3):
-    return {"distribution": "uniform", "alpha": alpha, "seed": seed, "method": method,
-            "status": "optimal", "makespan_s": 10.0 / thr, "throughput_fruit_per_s": thr,
-            "stops": stops}
+    return {
+        "distribution": "uniform",
+        "alpha": alpha,
+        "seed": seed,
+        "method": method,
+        "status": "optimal",
+        "makespan_s": 10.0 / thr,
+        "throughput_fruit_per_s": thr,
+        "stops": stops,
+    }
 
 
 def test_gain_by_width_and_its_verdict_on_known_numbers():
     main = [_row(1.0, s, "milp", 1.2) for s in range(3)]
-    sweep = {0.2: [_row(1.0, s, "fov", 0.6) for s in range(3)],            # +100 %
-             0.5: [_row(1.0, s, "fov", t) for s, t in enumerate((1.05, 1.07, 0.96))]}
+    sweep = {
+        0.2: [_row(1.0, s, "fov", 0.6) for s in range(3)],  # +100 %
+        0.5: [_row(1.0, s, "fov", t) for s, t in enumerate((1.05, 1.07, 0.96))],
+    }
     table = sensitivity.gain_by_width(main, sweep)
     assert [t["width_m"] for t in table] == [0.2, 0.5]
     assert table[0]["median_gain"] == pytest.approx(1.0) and table[0]["in_band"] == 0

@@ -1,4 +1,5 @@
 """The results CSV of the runner: append, reopen, and repair of a torn last line."""
+
 import io
 
 import pytest
@@ -8,10 +9,22 @@ from harvest.experiments import results
 
 def _row(seed, method="fov", **kw):
     r = {c: None for c in results.COLUMNS}
-    r.update(distribution="uniform", alpha=1.0, seed=seed, method=method, n_left=50,
-             n_right=50, stops=9, makespan_s=123.5, throughput_fruit_per_s=0.81,
-             runtime_s=0.02, status="heuristic", plan="plans/x.json",
-             finished_utc="2026-01-01T00:00:00Z", error="")
+    r.update(
+        distribution="uniform",
+        alpha=1.0,
+        seed=seed,
+        method=method,
+        n_left=50,
+        n_right=50,
+        stops=9,
+        makespan_s=123.5,
+        throughput_fruit_per_s=0.81,
+        runtime_s=0.02,
+        status="heuristic",
+        plan="plans/x.json",
+        finished_utc="2026-01-01T00:00:00Z",
+        error="",
+    )
     r.update(kw)
     return r
 

@@ -1,4 +1,5 @@
 """The experiment runner on the real planner CLI: the quick set, plots, report, resume."""
+
 import csv
 import json
 import os
@@ -9,11 +10,10 @@ import sys
 import time
 
 import pytest
+from exp_helpers import BUILD_DIR, CONFIG, COSTGEN, PLANNER, harvest, require
 
 from harvest.experiments import results
 from harvest.experiments.runner import METHODS, QUICK_ALPHAS, QUICK_SEEDS
-
-from exp_helpers import BUILD_DIR, CONFIG, COSTGEN, PLANNER, SOURCE_DIR, harvest, require
 
 # The MILP must not run for ever on a test machine; what the limit cuts short is reported
 # by the planner (status and gap) and still has to beat the baselines.
@@ -25,8 +25,18 @@ def quick_run(tmp_path_factory):
     require(PLANNER, "planner/harvest-plan")
     require(COSTGEN, "tools/costgen")
     out = tmp_path_factory.mktemp("quick")
-    r = harvest("experiments", "all", "--quick", "--out", str(out), "--config", CONFIG,
-                "--time-limit", TIME_LIMIT_S, "--no-progress")
+    r = harvest(
+        "experiments",
+        "all",
+        "--quick",
+        "--out",
+        str(out),
+        "--config",
+        CONFIG,
+        "--time-limit",
+        TIME_LIMIT_S,
+        "--no-progress",
+    )
     assert r.returncode == 0, r.stdout + r.stderr
     return out, r
 
@@ -42,15 +52,21 @@ def test_quick_set_gives_a_complete_results_csv(quick_run):
         assert r["stops"] >= 1 and r["makespan_s"] > 0 and r["runtime_s"] >= 0
         assert r["n_right"] == round(r["alpha"] * r["n_left"])
         # throughput is fruits planned over the makespan (paper's eq. 6)
-        assert r["throughput_fruit_per_s"] == pytest.approx(r["fruits_planned"] / r["makespan_s"], rel=1e-6)
+        assert r["throughput_fruit_per_s"] == pytest.approx(
+            r["fruits_planned"] / r["makespan_s"], rel=1e-6
+        )
         assert (out / r["plan"]).is_file()
 
 
 def test_every_plan_passes_the_planners_independent_check(quick_run):
     out, _ = quick_run
     for r in results.read(str(out / "results.csv")):
-        c = subprocess.run([PLANNER, "check", str(out / r["plan"]), "--quiet"],
-                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        c = subprocess.run(
+            [PLANNER, "check", str(out / r["plan"]), "--quiet"],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+        )
         assert c.returncode == 0, (r["plan"], c.stdout)
 
 
@@ -84,13 +100,24 @@ def test_milp_never_worse_than_fov_or_serial(quick_run):
 
 def test_plots_and_report_are_written(quick_run):
     out, _ = quick_run
-    for stem in ("boxplot_stops", "boxplot_throughput", "boxplot_runtime", "plan_top_view",
-                 "cost_G_joint3", "coverage_pick_modes"):
+    for stem in (
+        "boxplot_stops",
+        "boxplot_throughput",
+        "boxplot_runtime",
+        "plan_top_view",
+        "cost_G_joint3",
+        "coverage_pick_modes",
+    ):
         for ext in ("png", "svg"):
             assert (out / "figures" / f"{stem}.{ext}").stat().st_size > 5_000, stem
     text = (out / "report.md").read_text()
-    for heading in ("Fewest stops", "Throughput over FOV", "Dual arm vs single arm",
-                    "Runtime", "Verdict"):
+    for heading in (
+        "Fewest stops",
+        "Throughput over FOV",
+        "Dual arm vs single arm",
+        "Runtime",
+        "Verdict",
+    ):
         assert heading in text
     assert "figures/boxplot_stops.png" in text
     # the report's numbers are the CSV's: the MILP median makespan at alpha 1 appears
@@ -107,8 +134,19 @@ def _data_rows(path):
 def _run_args(out, *options):
     """`python -m harvest experiments run` into out, without a progress bar, and its
     environment (the build of $HV_BUILD_DIR)."""
-    args = [sys.executable, "-m", "harvest", "experiments", "run", "--out", str(out),
-            "--config", CONFIG, "--no-progress", *options]
+    args = [
+        sys.executable,
+        "-m",
+        "harvest",
+        "experiments",
+        "run",
+        "--out",
+        str(out),
+        "--config",
+        CONFIG,
+        "--no-progress",
+        *options,
+    ]
     return args, dict(os.environ, HV_BUILD_DIR=BUILD_DIR)
 
 
@@ -117,11 +155,11 @@ def test_interrupted_run_resumes_without_recomputing(tmp_path):
     require(COSTGEN, "tools/costgen")
     out = tmp_path / "resume"
     csv_path = str(out / "results.csv")
-    args, env = _run_args(out, "--alphas", "0.25,0.4", "--seeds", "3",
-                          "--time-limit", TIME_LIMIT_S)
+    args, env = _run_args(out, "--alphas", "0.25,0.4", "--seeds", "3", "--time-limit", TIME_LIMIT_S)
     total = 2 * 3 * len(METHODS)
-    proc = subprocess.Popen(args, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            start_new_session=True)
+    proc = subprocess.Popen(
+        args, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True
+    )
     try:
         while _data_rows(csv_path) < 2 and proc.poll() is None:
             time.sleep(0.02)
@@ -133,7 +171,7 @@ def test_interrupted_run_resumes_without_recomputing(tmp_path):
     assert proc.returncode == -signal.SIGKILL, "the run ended before it could be interrupted"
     with open(csv_path, "rb") as f:
         before_bytes = f.read()
-    before_bytes = before_bytes[:before_bytes.rfind(b"\n") + 1]  # a torn tail is recomputed
+    before_bytes = before_bytes[: before_bytes.rfind(b"\n") + 1]  # a torn tail is recomputed
     before = list(csv.DictReader(before_bytes.decode().splitlines()))
     kept = len(before)
     assert 2 <= kept < total
@@ -161,8 +199,14 @@ def _terminate_when(args, env, ready, sig=signal.SIGTERM, group=False):
     """Start the runner in a session of its own, send sig once ready() holds (to the whole
     process group, planners included, as a terminal's Ctrl-C does, when group is set), and
     return (process, stderr). Whatever is left of its group is killed if it never ends."""
-    proc = subprocess.Popen(args, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True, start_new_session=True)
+    proc = subprocess.Popen(
+        args,
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
+    )
     try:
         deadline = time.monotonic() + 120
         while not ready() and proc.poll() is None and time.monotonic() < deadline:
@@ -193,8 +237,11 @@ def _assert_group_empty(proc):
             pass
 
 
-@pytest.mark.parametrize("sig,group", [(signal.SIGTERM, False), (signal.SIGINT, True)],
-                         ids=["sigterm-runner", "ctrl-c-group"])
+@pytest.mark.parametrize(
+    "sig,group",
+    [(signal.SIGTERM, False), (signal.SIGINT, True)],
+    ids=["sigterm-runner", "ctrl-c-group"],
+)
 def test_sigterm_stops_the_planners_and_keeps_finished_rows(tmp_path, sig, group):
     """SIGTERM to the runner, or Ctrl-C to the whole group (a planner that sees it first
     stops with exit 5): the run stops, every finished row is kept, none is made of an
@@ -220,11 +267,24 @@ def test_sigterm_reaps_what_a_killed_planner_left_behind(tmp_path):
     out = tmp_path / "orphan"
     marker = tmp_path / "grandchild.pid"
     planner = tmp_path / "planner-with-a-child"
-    planner.write_text(f"#!/bin/sh\nsleep 300 &\necho $! > {marker}.tmp\n"
-                       f"mv {marker}.tmp {marker}\nexec sleep 300\n")
+    planner.write_text(
+        f"#!/bin/sh\nsleep 300 &\necho $! > {marker}.tmp\n"
+        f"mv {marker}.tmp {marker}\nexec sleep 300\n"
+    )
     planner.chmod(0o755)
-    args, env = _run_args(out, "--alphas", "0.25", "--seeds", "1", "--methods", "fov",
-                          "--planner", str(planner), "--costgen", COSTGEN)
+    args, env = _run_args(
+        out,
+        "--alphas",
+        "0.25",
+        "--seeds",
+        "1",
+        "--methods",
+        "fov",
+        "--planner",
+        str(planner),
+        "--costgen",
+        COSTGEN,
+    )
     proc, err = _terminate_when(args, env, marker.exists)
     try:
         assert proc.returncode == 130, err

@@ -1,14 +1,14 @@
 """The scenario generator: bounds of the fruit-planted area, seeds, counts, distributions."""
+
 import math
 import os
 
 import numpy as np
 import pytest
+from exp_helpers import CONFIG, harvest
 
 from harvest.scenario import fruit_map, generate
 from harvest.scenario.config import Config, ConfigError, Row
-
-from exp_helpers import CONFIG, harvest
 
 ROW = Row(Config.load(CONFIG))
 EPS = 1e-4  # the CSV keeps 0.1 mm
@@ -93,7 +93,9 @@ def test_gradient_puts_more_fruit_towards_the_end():
 def test_cli_same_seed_same_file_and_seeds_differ(tmp_path):
     a, b, c = (str(tmp_path / n) for n in ("a.csv", "b.csv", "c.csv"))
     for out, seed in ((a, 7), (b, 7), (c, 8)):
-        r = harvest("scenario", "--config", CONFIG, "--alpha", "0.4", "--seed", str(seed), "--out", out)
+        r = harvest(
+            "scenario", "--config", CONFIG, "--alpha", "0.4", "--seed", str(seed), "--out", out
+        )
         assert r.returncode == 0, r.stderr
     assert open(a, "rb").read() == open(b, "rb").read()
     assert open(a, "rb").read() != open(c, "rb").read()
@@ -107,8 +109,19 @@ def test_cli_long_row_needs_and_writes_a_matching_config(tmp_path):
     out, cfg = str(tmp_path / "long.csv"), str(tmp_path / "long.cfg")
     r = harvest("scenario", "--config", CONFIG, "--distribution", "long", "--out", out)
     assert r.returncode == 2 and "--config-out" in r.stderr and not os.path.exists(out)
-    r = harvest("scenario", "--config", CONFIG, "--distribution", "long", "--length", "24",
-                "--out", out, "--config-out", cfg)
+    r = harvest(
+        "scenario",
+        "--config",
+        CONFIG,
+        "--distribution",
+        "long",
+        "--length",
+        "24",
+        "--out",
+        out,
+        "--config-out",
+        cfg,
+    )
     assert r.returncode == 0, r.stderr
     fruits = fruit_map.read(out)
     assert sum(f.side == "L" for f in fruits) == 600  # the paper's 25 fruits/m over 24 m
@@ -141,14 +154,17 @@ def test_fruit_id_set_is_the_documented_one():
     assert fruit_map.check_id("") == "empty"
 
 
-@pytest.mark.parametrize("field,why", [
-    ('"a\nb"', r"m\.csv:3: field 'id' 'a\\nb': character '\\n' at position 2"),
-    ("fruit 7", r"m\.csv:3: field 'id' 'fruit 7': character ' ' at position 6"),
-    ('"a,b"', r"m\.csv:3: field 'id' 'a,b': character ','"),
-    ("x" * 32, r"m\.csv:3: field 'id' 'x+': 32 characters"),
-    ("", r"m\.csv:3: field 'id' '': empty"),
-    ("1", r"m\.csv:3: field 'id' is repeated"),
-])
+@pytest.mark.parametrize(
+    "field,why",
+    [
+        ('"a\nb"', r"m\.csv:3: field 'id' 'a\\nb': character '\\n' at position 2"),
+        ("fruit 7", r"m\.csv:3: field 'id' 'fruit 7': character ' ' at position 6"),
+        ('"a,b"', r"m\.csv:3: field 'id' 'a,b': character ','"),
+        ("x" * 32, r"m\.csv:3: field 'id' 'x+': 32 characters"),
+        ("", r"m\.csv:3: field 'id' '': empty"),
+        ("1", r"m\.csv:3: field 'id' is repeated"),
+    ],
+)
 def test_fruit_map_reader_refuses_bad_ids(tmp_path, field, why):
     p = tmp_path / "m.csv"
     p.write_text(f"id,side,x,y,z,yaw\n1,L,-0.4,0.5,0.6,0\n{field},R,0.4,0.5,0.6,0\n")

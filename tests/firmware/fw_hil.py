@@ -3,16 +3,19 @@ python-can's udp_multicast bus by python-can's own pieces (the slcan interface o
 pyserial socket:// URL, bridged with `python -m can.bridge`), the simulator (exec_hil.Sim)
 on the same bus, the plan uploaded over the bus (harvest.canbus.plan_upload). Callers are
 inside a private network namespace (fw_qemu.enter_netns)."""
+
 import os
 import subprocess
 import sys
 import time
 
 import fw_qemu
+
 from harvest.firmware import rig
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
-                                "executor"))
+sys.path.insert(
+    0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "executor")
+)
 import exec_hil as H  # noqa: E402
 
 PLAN_TOOL = os.path.join(H.BUILD, "firmware", "harvest-fw-plan")
@@ -32,10 +35,24 @@ def missing():
 
 def plan_image(workdir, plan_path, time_scale):
     out = os.path.join(workdir, "plan.img")
-    subprocess.run([PLAN_TOOL, "--plan", str(plan_path), "--config", H.CONFIG, "--out", out,
-                    "--time-scale", str(time_scale),
-                    "--heartbeat-timeout", str(H.HEARTBEAT_TIMEOUT_S)],
-                   check=True, capture_output=True, text=True)
+    subprocess.run(
+        [
+            PLAN_TOOL,
+            "--plan",
+            str(plan_path),
+            "--config",
+            H.CONFIG,
+            "--out",
+            out,
+            "--time-scale",
+            str(time_scale),
+            "--heartbeat-timeout",
+            str(H.HEARTBEAT_TIMEOUT_S),
+        ],
+        check=True,
+        capture_output=True,
+        text=True,
+    )
     with open(out, "rb") as f:
         return f.read()
 

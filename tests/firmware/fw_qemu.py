@@ -1,10 +1,11 @@
 """pytest's side of harvest.firmware.rig: skips with the reason when QEMU or a private
 network namespace is missing, QEMU on the image the cross build test made."""
+
 import shutil
 
+import fw_build
 import pytest
 
-import fw_build
 from harvest.firmware import rig
 from harvest.firmware.rig import last_status, status_fields, uart_lines  # noqa: F401
 
@@ -16,6 +17,7 @@ def require_qemu():
 
 def enter_netns():
     from harvest.canbus import netns
+
     try:
         netns.enter_private_netns()
     except netns.NetnsUnavailable as e:

@@ -1,14 +1,43 @@
 """The firmware's cross build (Cortex-M4F, -Werror -Wdouble-promotion) and what its image
 must not contain: no heap anywhere in harvest-fw.elf, no stdio in the state machine."""
+
 import os
 
 import fw_build
 
-HEAP = {"malloc", "free", "calloc", "realloc", "_malloc_r", "_free_r", "_calloc_r",
-        "_realloc_r", "_sbrk", "_sbrk_r"}
-STDIO = {"printf", "fprintf", "sprintf", "snprintf", "vsnprintf", "puts", "fputs", "putchar",
-         "fopen", "fwrite", "fread", "fflush", "perror", "_printf_r", "_vfprintf_r",
-         "_svfprintf_r", "iprintf", "siprintf", "sniprintf"}
+HEAP = {
+    "malloc",
+    "free",
+    "calloc",
+    "realloc",
+    "_malloc_r",
+    "_free_r",
+    "_calloc_r",
+    "_realloc_r",
+    "_sbrk",
+    "_sbrk_r",
+}
+STDIO = {
+    "printf",
+    "fprintf",
+    "sprintf",
+    "snprintf",
+    "vsnprintf",
+    "puts",
+    "fputs",
+    "putchar",
+    "fopen",
+    "fwrite",
+    "fread",
+    "fflush",
+    "perror",
+    "_printf_r",
+    "_vfprintf_r",
+    "_svfprintf_r",
+    "iprintf",
+    "siprintf",
+    "sniprintf",
+}
 
 
 def test_cross_build_makes_the_image():

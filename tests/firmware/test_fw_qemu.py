@@ -1,9 +1,9 @@
 """harvest-fw.elf boots in QEMU (mps2-an386): banner and a status line every second on
 UART0, SLCAN commands answered as Lawicel's, and each kind of bad line named on the UART
 without stopping the firmware."""
-import pytest
 
 import fw_qemu
+import pytest
 
 
 @pytest.fixture
@@ -49,9 +49,13 @@ def test_slcan_commands_and_bad_lines(fw):
     assert fw.wait_for(is_reply)[0] == ""  # O done
     fw.send("t0211AA\r")
     assert fw.wait_for(is_reply)[0] == "z"
-    for bad, name in (("t02G1AA", "HV_ERR_SLCAN_HEX"), ("t0219", "HV_ERR_SLCAN_LENGTH"),
-                      ("t0212AA", "HV_ERR_SLCAN_LENGTH"), ("Q", "HV_ERR_SLCAN_COMMAND"),
-                      ("t" + "0" * 40, "HV_ERR_SLCAN_LINE_LONG")):
+    for bad, name in (
+        ("t02G1AA", "HV_ERR_SLCAN_HEX"),
+        ("t0219", "HV_ERR_SLCAN_LENGTH"),
+        ("t0212AA", "HV_ERR_SLCAN_LENGTH"),
+        ("Q", "HV_ERR_SLCAN_COMMAND"),
+        ("t" + "0" * 40, "HV_ERR_SLCAN_LINE_LONG"),
+    ):
         fw.send(bad + "\r")
         ln, _ = fw.wait_for(is_reply)
         assert ln == "\aharvest-fw: error " + name, (bad, ln)

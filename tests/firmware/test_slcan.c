@@ -19,9 +19,15 @@ static hv_status_t parse(const char *line, hv_slcan_cmd_t *cmd, hv_can_frame_t *
 static void test_round_trip(void **state)
 {
     (void)state;
-    const struct { uint32_t id; uint8_t dlc, flags; } cases[] = {
-        {0x021, 5, 0}, {0x7FF, 8, 0}, {0x000, 0, 0}, {0x1ABCDEF0, 3, HV_CAN_FLAG_EXT},
-        {0x064, 2, HV_CAN_FLAG_RTR}, {0x1FFFFFFF, 0, HV_CAN_FLAG_EXT | HV_CAN_FLAG_RTR}};
+    const struct {
+        uint32_t id;
+        uint8_t dlc, flags;
+    } cases[] = {{0x021, 5, 0},
+                 {0x7FF, 8, 0},
+                 {0x000, 0, 0},
+                 {0x1ABCDEF0, 3, HV_CAN_FLAG_EXT},
+                 {0x064, 2, HV_CAN_FLAG_RTR},
+                 {0x1FFFFFFF, 0, HV_CAN_FLAG_EXT | HV_CAN_FLAG_RTR}};
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         hv_can_frame_t f, g;
         memset(&f, 0, sizeof f);
@@ -62,13 +68,13 @@ static void test_bad_lines_are_named(void **state)
     (void)state;
     hv_slcan_cmd_t cmd;
     hv_can_frame_t f;
-    assert_int_equal(parse("t02G1AA", &cmd, &f), HV_ERR_SLCAN_HEX);     /* id */
-    assert_int_equal(parse("t021XAA", &cmd, &f), HV_ERR_SLCAN_HEX);     /* DLC */
-    assert_int_equal(parse("t0211AZ", &cmd, &f), HV_ERR_SLCAN_HEX);     /* data */
-    assert_int_equal(parse("t0219", &cmd, &f), HV_ERR_SLCAN_LENGTH);    /* DLC > 8 */
-    assert_int_equal(parse("t0212AA", &cmd, &f), HV_ERR_SLCAN_LENGTH);  /* short data */
-    assert_int_equal(parse("t0211AABB", &cmd, &f), HV_ERR_SLCAN_LENGTH); /* long data */
-    assert_int_equal(parse("t02", &cmd, &f), HV_ERR_SLCAN_LENGTH);      /* no DLC */
+    assert_int_equal(parse("t02G1AA", &cmd, &f), HV_ERR_SLCAN_HEX);        /* id */
+    assert_int_equal(parse("t021XAA", &cmd, &f), HV_ERR_SLCAN_HEX);        /* DLC */
+    assert_int_equal(parse("t0211AZ", &cmd, &f), HV_ERR_SLCAN_HEX);        /* data */
+    assert_int_equal(parse("t0219", &cmd, &f), HV_ERR_SLCAN_LENGTH);       /* DLC > 8 */
+    assert_int_equal(parse("t0212AA", &cmd, &f), HV_ERR_SLCAN_LENGTH);     /* short data */
+    assert_int_equal(parse("t0211AABB", &cmd, &f), HV_ERR_SLCAN_LENGTH);   /* long data */
+    assert_int_equal(parse("t02", &cmd, &f), HV_ERR_SLCAN_LENGTH);         /* no DLC */
     assert_int_equal(parse("T2000000000", &cmd, &f), HV_ERR_SLCAN_LENGTH); /* id > 29 bits */
     assert_int_equal(parse("Q", &cmd, &f), HV_ERR_SLCAN_COMMAND);
     assert_int_equal(parse("S9", &cmd, &f), HV_ERR_SLCAN_HEX);
@@ -122,7 +128,7 @@ static void test_feed_lines(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_round_trip),     cmocka_unit_test(test_known_line),
+        cmocka_unit_test(test_round_trip),          cmocka_unit_test(test_known_line),
         cmocka_unit_test(test_bad_lines_are_named), cmocka_unit_test(test_commands),
         cmocka_unit_test(test_feed_lines),
     };

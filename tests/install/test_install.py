@@ -2,6 +2,7 @@
 twice: with CMake's find_package(harvest) and with pkg-config. The installed tree is then
 moved, and the pkg-config build repeated, so the .pc files must not keep the prefix.
 """
+
 import os
 import shutil
 import subprocess
@@ -11,8 +12,14 @@ import pytest
 SOURCE_DIR = os.environ.get("HV_SOURCE_DIR", "")
 BUILD_DIR = os.environ.get("HV_BUILD_DIR", "")
 CONSUMER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "consumer")
-PROGRAMS = ["harvest-plan", "harvest-plan-online", "harvest-exec", "hv-can-tool", "costgen",
-            "mountopt"]
+PROGRAMS = [
+    "harvest-plan",
+    "harvest-plan-online",
+    "harvest-exec",
+    "hv-can-tool",
+    "costgen",
+    "mountopt",
+]
 
 
 def _cache(key):
@@ -50,7 +57,8 @@ def _check_output(out):
     import cantools
 
     estop = cantools.database.load_file(
-        os.path.join(SOURCE_DIR, "executor", "can", "harvest.dbc")).get_message_by_name("Estop")
+        os.path.join(SOURCE_DIR, "executor", "can", "harvest.dbc")
+    ).get_message_by_name("Estop")
     fields = out.split()
     assert fields[0] == "stop_margin_m" and float(fields[1]) > 0.0
     assert fields[3] in ("cycle", "one_way")
@@ -63,7 +71,8 @@ def test_install_tree_holds_what_a_vehicle_needs(prefix):
     share = prefix / "share" / "harvest"
     assert (share / "harvest.dbc").is_file() and (share / "harvest.cfg").is_file()
     assert sorted(p.name for p in (share / "lcm").iterdir()) == sorted(
-        p for p in os.listdir(os.path.join(SOURCE_DIR, "lcm_types")) if p.endswith(".lcm"))
+        p for p in os.listdir(os.path.join(SOURCE_DIR, "lcm_types")) if p.endswith(".lcm")
+    )
     cmake_dir = next(prefix.glob("lib*/cmake/harvest"))
     targets = "".join(p.read_text() for p in cmake_dir.glob("harvestTargets*.cmake"))
     assert "harvest::hv_exec_can" in targets and "harvest::hv_planner" in targets
@@ -73,17 +82,29 @@ def test_install_tree_holds_what_a_vehicle_needs(prefix):
 
 def test_cmake_consumer(prefix, tmp_path):
     flags = " ".join(_sanitize_flags())
-    _run(["cmake", "-S", CONSUMER, "-B", str(tmp_path / "b"), f"-DCMAKE_PREFIX_PATH={prefix}",
-          f"-DCMAKE_C_FLAGS={flags}", f"-DCMAKE_EXE_LINKER_FLAGS={flags}"])
+    _run(
+        [
+            "cmake",
+            "-S",
+            CONSUMER,
+            "-B",
+            str(tmp_path / "b"),
+            f"-DCMAKE_PREFIX_PATH={prefix}",
+            f"-DCMAKE_C_FLAGS={flags}",
+            f"-DCMAKE_EXE_LINKER_FLAGS={flags}",
+        ]
+    )
     _run(["cmake", "--build", str(tmp_path / "b")])
-    _check_output(_run([str(tmp_path / "b" / "consumer"),
-                        str(prefix / "share" / "harvest" / "harvest.cfg")]))
+    _check_output(
+        _run([str(tmp_path / "b" / "consumer"), str(prefix / "share" / "harvest" / "harvest.cfg")])
+    )
 
 
 def _pkgconfig_build(prefix, out):
     env = dict(os.environ, PKG_CONFIG_PATH=str(next(prefix.glob("lib*/pkgconfig"))))
-    pc = _run(["pkg-config", "--cflags", "--libs", "harvest-planner", "harvest-executor"],
-              env=env).split()
+    pc = _run(
+        ["pkg-config", "--cflags", "--libs", "harvest-planner", "harvest-executor"], env=env
+    ).split()
     _run(["cc", *_sanitize_flags(), "-o", str(out), os.path.join(CONSUMER, "consumer.c"), *pc])
     _check_output(_run([str(out), str(prefix / "share" / "harvest" / "harvest.cfg")]))
 

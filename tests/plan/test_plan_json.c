@@ -104,20 +104,23 @@ static void assert_same_plan(const hv_plan_t *a, const hv_plan_t *b)
     assert_string_equal(a->config, b->config);
     assert_true(a->stop_step_m == b->stop_step_m && a->row_start_m == b->row_start_m);
     assert_true(a->row_length_m == b->row_length_m && a->stop_penalty_s == b->stop_penalty_s);
-    assert_true(a->vehicle_speed_mps == b->vehicle_speed_mps && a->travel_time_s == b->travel_time_s);
+    assert_true(a->vehicle_speed_mps == b->vehicle_speed_mps &&
+                a->travel_time_s == b->travel_time_s);
     assert_true(a->stop_margin_m == b->stop_margin_m);
     assert_string_equal(a->pick_time, b->pick_time);
     assert_string_equal(a->solver_status, b->solver_status);
     assert_true(a->gap == b->gap && a->nodes == b->nodes && a->runtime_s == b->runtime_s);
     assert_true(a->time_limit_s == b->time_limit_s);
     assert_true(a->makespan_s == b->makespan_s && a->pick_time_s == b->pick_time_s);
-    assert_true(a->stop_time_s == b->stop_time_s && a->total_travel_time_s == b->total_travel_time_s);
+    assert_true(a->stop_time_s == b->stop_time_s &&
+                a->total_travel_time_s == b->total_travel_time_s);
     assert_int_equal(a->n_stops_total, b->n_stops_total);
     assert_int_equal(a->fruits_planned, b->fruits_planned);
     assert_int_equal(a->fruits_unreachable, b->fruits_unreachable);
     assert_true(a->throughput_fruit_per_s == b->throughput_fruit_per_s);
     assert_int_equal(a->horizon.used, b->horizon.used);
-    assert_true(a->horizon.window_m == b->horizon.window_m && a->horizon.commit_m == b->horizon.commit_m);
+    assert_true(a->horizon.window_m == b->horizon.window_m &&
+                a->horizon.commit_m == b->horizon.commit_m);
     assert_int_equal(a->horizon.windows, b->horizon.windows);
     assert_int_equal(a->horizon.windows_optimal, b->horizon.windows_optimal);
     assert_int_equal(a->n_stops, b->n_stops);
@@ -130,8 +133,10 @@ static void assert_same_plan(const hv_plan_t *a, const hv_plan_t *b)
                     x->idle_right_s == y->idle_right_s);
         assert_int_equal(x->n_left, y->n_left);
         assert_int_equal(x->n_right, y->n_right);
-        for (size_t k = 0; k < x->n_left; ++k) assert_same_pick(&x->left[k], &y->left[k]);
-        for (size_t k = 0; k < x->n_right; ++k) assert_same_pick(&x->right[k], &y->right[k]);
+        for (size_t k = 0; k < x->n_left; ++k)
+            assert_same_pick(&x->left[k], &y->left[k]);
+        for (size_t k = 0; k < x->n_right; ++k)
+            assert_same_pick(&x->right[k], &y->right[k]);
     }
     assert_int_equal(a->n_unreachable, b->n_unreachable);
     for (size_t u = 0; u < a->n_unreachable; ++u) {
@@ -179,7 +184,7 @@ static void test_round_trip(void **state)
 }
 
 typedef struct edit {
-    const char *from, *to;  /* replace the first `from` in the sample's JSON by `to` */
+    const char *from, *to; /* replace the first `from` in the sample's JSON by `to` */
     hv_status_t code;
     const char *in_msg;
 } edit_t;
@@ -195,10 +200,13 @@ static void test_rejects(void **state)
         {", \"stop_margin_m\": 0.5", "", HV_ERR_PLAN_FORMAT, "params.stop_margin_m: missing"},
         {"\"pick_time\": \"cycle\"", "\"pick_time\": \"two_way\"", HV_ERR_PLAN_FORMAT,
          "params.pick_time: expected cycle or one_way"},
-        {"\"nodes\": 123456", "\"nodes\": 1.5", HV_ERR_PLAN_FORMAT, "solver.nodes: expected an integer"},
-        {"\"nodes\": 123456", "\"nodes\": \"many\"", HV_ERR_PLAN_FORMAT, "solver.nodes: expected a number"},
+        {"\"nodes\": 123456", "\"nodes\": 1.5", HV_ERR_PLAN_FORMAT,
+         "solver.nodes: expected an integer"},
+        {"\"nodes\": 123456", "\"nodes\": \"many\"", HV_ERR_PLAN_FORMAT,
+         "solver.nodes: expected a number"},
         {"\"cost_s\": 2.1, ", "", HV_ERR_PLAN_FORMAT, "stops[0].left[0].cost_s: missing"},
-        {"\"pass\": 0", "\"pass\": 0, \"speed\": 3", HV_ERR_PLAN_FORMAT, "stops[0].speed: unknown field"},
+        {"\"pass\": 0", "\"pass\": 0, \"speed\": 3", HV_ERR_PLAN_FORMAT,
+         "stops[0].speed: unknown field"},
         {"\"side\": \"R\"", "\"side\": \"X\"", HV_ERR_PLAN_FORMAT, "unreachable[0].side"},
         {"\"format\": \"harvest-plan\"", "\"format\": \"other\"", HV_ERR_PLAN_FORMAT, "format"},
         {"\"status\": \"feasible\"", "\"status\": \"great\"", HV_ERR_PLAN_FORMAT, "solver.status"},
@@ -216,8 +224,10 @@ static void test_rejects(void **state)
         /* fruit ids outside the id set (hv/fruit_id.h), in picks and in the unreachable list */
         {"\"id\": \"a1\"", "\"id\": \"a\\n1\"", HV_ERR_PLAN_ID,
          "mem: stops[0].left[0].id: character 0x0a at position 2"},
-        {"\"id\": \"b_8\"", "\"id\": \"b 8\"", HV_ERR_PLAN_ID, "stops[1].right[1].id: character 0x20"},
-        {"\"id\": \"u9\"", "\"id\": \"u\\u00e9\"", HV_ERR_PLAN_ID, "unreachable[0].id: character 0xc3"},
+        {"\"id\": \"b_8\"", "\"id\": \"b 8\"", HV_ERR_PLAN_ID,
+         "stops[1].right[1].id: character 0x20"},
+        {"\"id\": \"u9\"", "\"id\": \"u\\u00e9\"", HV_ERR_PLAN_ID,
+         "unreachable[0].id: character 0xc3"},
         {"\"id\": \"a1\"", "\"id\": \"\"", HV_ERR_PLAN_ID, "stops[0].left[0].id: empty"},
         {"\"id\": \"a1\"", "\"id\": \"a123456789012345678901234567890\"", HV_OK, ""},
         {"\"id\": \"a1\"", "\"id\": \"a1234567890123456789012345678901\"", HV_ERR_PLAN_ID,

@@ -17,7 +17,11 @@
 static uint16_t behind_only(hv_side_t side, double y_rel, uint32_t ix, uint32_t iz, uint32_t iw,
                             void *ctx)
 {
-    (void)side; (void)ix; (void)iz; (void)iw; (void)ctx;
+    (void)side;
+    (void)ix;
+    (void)iz;
+    (void)iw;
+    (void)ctx;
     if (y_rel > 1e-9 || y_rel < -0.15 - 1e-9) {
         return HV_COST_UNREACHABLE;
     }
@@ -41,10 +45,11 @@ static void test_fov_windows(void **state)
     assert_int_equal(tt_fixture_init(&fx, tt_band_cost, &band), 0);
     /* width 0.2 from the first fruit (0.12): windows [0.12,0.32) [0.32,0.52) [0.52,0.72),
      * stops at their centres 0.22, 0.42, 0.62 */
-    hv_fruit_t fr[7] = {tt_fruit("r1", HV_SIDE_RIGHT, 0.12, 0.5), tt_fruit("r2", HV_SIDE_RIGHT, 0.25, 0.5),
-                        tt_fruit("r3", HV_SIDE_RIGHT, 0.33, 0.5), tt_fruit("r4", HV_SIDE_RIGHT, 0.62, 0.5),
-                        tt_fruit("l1", HV_SIDE_LEFT, 0.18, 0.5), tt_fruit("l2", HV_SIDE_LEFT, 0.45, 0.5),
-                        tt_fruit("l3", HV_SIDE_LEFT, 0.51, 0.5)};
+    hv_fruit_t fr[7] = {
+        tt_fruit("r1", HV_SIDE_RIGHT, 0.12, 0.5), tt_fruit("r2", HV_SIDE_RIGHT, 0.25, 0.5),
+        tt_fruit("r3", HV_SIDE_RIGHT, 0.33, 0.5), tt_fruit("r4", HV_SIDE_RIGHT, 0.62, 0.5),
+        tt_fruit("l1", HV_SIDE_LEFT, 0.18, 0.5),  tt_fruit("l2", HV_SIDE_LEFT, 0.45, 0.5),
+        tt_fruit("l3", HV_SIDE_LEFT, 0.51, 0.5)};
     hv_instance_t inst = build(&fx, fr, 7);
     hv_assignment_t a;
     assert_int_equal(hv_assignment_alloc(&a, 7), HV_OK);
@@ -89,8 +94,9 @@ static void test_fov_moved_and_extra(void **state)
      * r1 0.12 -> 0.22 (behind by 0.10); r2 0.50 is in window 1 but ahead of 0.42: the
      * nearest window stop reaching it is 0.62 (moved); r3 0.70 is ahead of 0.62 and no
      * window stop reaches it: extra stop at 0.70, the nearest stop that does. */
-    hv_fruit_t fr[4] = {tt_fruit("r1", HV_SIDE_RIGHT, 0.12, 0.5), tt_fruit("r2", HV_SIDE_RIGHT, 0.50, 0.5),
-                        tt_fruit("r3", HV_SIDE_RIGHT, 0.70, 0.5), tt_fruit("l1", HV_SIDE_LEFT, 0.40, 0.5)};
+    hv_fruit_t fr[4] = {
+        tt_fruit("r1", HV_SIDE_RIGHT, 0.12, 0.5), tt_fruit("r2", HV_SIDE_RIGHT, 0.50, 0.5),
+        tt_fruit("r3", HV_SIDE_RIGHT, 0.70, 0.5), tt_fruit("l1", HV_SIDE_LEFT, 0.40, 0.5)};
     hv_instance_t inst = build(&fx, fr, 4);
     hv_assignment_t a;
     assert_int_equal(hv_assignment_alloc(&a, 4), HV_OK);
@@ -114,7 +120,8 @@ static void test_fov_unreachable_kept_out(void **state)
     tt_fixture_t fx;
     tt_band_t band = {0.15, 2000, 15, 10};
     assert_int_equal(tt_fixture_init(&fx, tt_band_cost, &band), 0);
-    hv_fruit_t fr[2] = {tt_fruit("r1", HV_SIDE_RIGHT, 0.5, 0.5), tt_fruit("r2", HV_SIDE_RIGHT, 0.5, 0.5)};
+    hv_fruit_t fr[2] = {tt_fruit("r1", HV_SIDE_RIGHT, 0.5, 0.5),
+                        tt_fruit("r2", HV_SIDE_RIGHT, 0.5, 0.5)};
     fr[1].x_m = 0.9; /* outside the table's x grid: no stop reaches it */
     hv_instance_t inst = build(&fx, fr, 2);
     hv_assignment_t a;

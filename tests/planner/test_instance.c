@@ -38,8 +38,8 @@ static int setup(void **state)
     }
     for (int s = 0; s < 2; ++s) {
         size_t len;
-        if (tt_make_table(&fx.cfg, (hv_side_t)s, low_band, &band, &fx.buf[s], &len,
-                          &fx.tab[s]) != 0) {
+        if (tt_make_table(&fx.cfg, (hv_side_t)s, low_band, &band, &fx.buf[s], &len, &fx.tab[s]) !=
+            0) {
             return -1;
         }
     }
@@ -79,7 +79,8 @@ static void test_pairs(void **state)
 {
     fx_t *fx = *state;
     hv_fruit_t fr[4] = {fruit("A", HV_SIDE_LEFT, 0.50, 0.60), fruit("B", HV_SIDE_RIGHT, 0.02, 0.40),
-                        fruit("C", HV_SIDE_RIGHT, 0.50, 0.75), fruit("D", HV_SIDE_RIGHT, 0.97, 0.50)};
+                        fruit("C", HV_SIDE_RIGHT, 0.50, 0.75),
+                        fruit("D", HV_SIDE_RIGHT, 0.97, 0.50)};
     hv_instance_params_t pr = params_1m();
     hv_instance_t inst;
     hv_diag_t d;
@@ -108,8 +109,10 @@ static void test_pairs(void **state)
         }
         const hv_fruit_t *f = &fr[p->fruit];
         uint16_t ms;
-        assert_int_equal(hv_costtab_lookup(&fx->tab[f->side], f->x_m, f->y_m - inst.stop_y_m[p->stop],
-                                           f->z_m, f->yaw_rad, &ms), HV_OK);
+        assert_int_equal(hv_costtab_lookup(&fx->tab[f->side], f->x_m,
+                                           f->y_m - inst.stop_y_m[p->stop], f->z_m, f->yaw_rad,
+                                           &ms),
+                         HV_OK);
         assert_true(fabs(p->cost_s - ms / 1000.0) < 1e-12);
     }
     hv_instance_free(&inst);
@@ -204,9 +207,10 @@ static void test_ik_model_is_the_executors(void **state)
     assert_true(pr.stop_margin_m > 0.5 * cfg.base_spacing_m);
     assert_float_equal(pr.travel_time_s,
                        (cfg.row_length_m + 2 * pr.stop_margin_m) / cfg.vehicle_speed_mps, 1e-9);
-    hv_fruit_t fr[6] = {fruit("first", HV_SIDE_LEFT, 0.0, 0.6), fruit("last", HV_SIDE_RIGHT, 2.0, 0.6),
-                        fruit("a", HV_SIDE_LEFT, 1.0, 0.45), fruit("b", HV_SIDE_RIGHT, 0.7, 0.75),
-                        fruit("c", HV_SIDE_LEFT, 1.3, 0.6), fruit("d", HV_SIDE_RIGHT, 1.6, 0.5)};
+    hv_fruit_t fr[6] = {
+        fruit("first", HV_SIDE_LEFT, 0.0, 0.6), fruit("last", HV_SIDE_RIGHT, 2.0, 0.6),
+        fruit("a", HV_SIDE_LEFT, 1.0, 0.45),    fruit("b", HV_SIDE_RIGHT, 0.7, 0.75),
+        fruit("c", HV_SIDE_LEFT, 1.3, 0.6),     fruit("d", HV_SIDE_RIGHT, 1.6, 0.5)};
     fr[4].yaw_rad = 0.7;
     fr[5].yaw_rad = -0.7;
     fr[5].x_m = 0.49;
@@ -220,8 +224,8 @@ static void test_ik_model_is_the_executors(void **state)
         const hv_arm_t *arm = &arms.arm[fr[f].side];
         for (size_t p = 0; p < inst.n_stops; ++p) {
             double t = 0.0;
-            hv_status_t st = hv_pick_solve(arm, fr[f].x_m, fr[f].y_m - inst.stop_y_m[p],
-                                           fr[f].z_m, fr[f].yaw_rad, NULL, &t, NULL);
+            hv_status_t st = hv_pick_solve(arm, fr[f].x_m, fr[f].y_m - inst.stop_y_m[p], fr[f].z_m,
+                                           fr[f].yaw_rad, NULL, &t, NULL);
             int pair = k < inst.fruit_begin[f + 1] && inst.pairs[k].stop == p;
             assert_int_equal(pair, st == HV_OK);
             if (pair) {
@@ -256,21 +260,17 @@ static void test_bad_params(void **state)
     hv_instance_t inst;
     hv_diag_t d;
     pr.stop_step_m = 0.0;
-    assert_int_equal(hv_instance_build(&pr, fr, 1, &fx->model, &inst, &d),
-                     HV_ERR_PLAN_PARAMS);
+    assert_int_equal(hv_instance_build(&pr, fr, 1, &fx->model, &inst, &d), HV_ERR_PLAN_PARAMS);
     pr = params_1m();
     pr.stop_penalty_s = NAN;
-    assert_int_equal(hv_instance_build(&pr, fr, 1, &fx->model, &inst, &d),
-                     HV_ERR_PLAN_PARAMS);
+    assert_int_equal(hv_instance_build(&pr, fr, 1, &fx->model, &inst, &d), HV_ERR_PLAN_PARAMS);
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_pairs),
-        cmocka_unit_test(test_eval),
-        cmocka_unit_test(test_subset),
-        cmocka_unit_test(test_ik_model_is_the_executors),
+        cmocka_unit_test(test_pairs),      cmocka_unit_test(test_eval),
+        cmocka_unit_test(test_subset),     cmocka_unit_test(test_ik_model_is_the_executors),
         cmocka_unit_test(test_bad_params),
     };
     return cmocka_run_group_tests(tests, setup, teardown);

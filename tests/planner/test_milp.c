@@ -191,8 +191,8 @@ static void one_thread_options(hv_milp_options_t *o)
     o->helper_thread = 0;
 }
 
-static void solve_optimal(const hv_instance_t *in, const hv_milp_options_t *o,
-                          hv_assignment_t *out, hv_milp_result_t *r)
+static void solve_optimal(const hv_instance_t *in, const hv_milp_options_t *o, hv_assignment_t *out,
+                          hv_milp_result_t *r)
 {
     assert_int_equal(hv_milp_solve(in, o, NULL, out, r), HV_OK);
     assert_int_equal(r->status, HV_SOLVE_OPTIMAL);
@@ -275,8 +275,7 @@ static void test_two_tree_workers(void **state)
         solve_to_optimum(&in, &o, &out, r1.objective_s, seed, "two workers, unbalanced", &r3);
         o.balance_workers = 1;
         o.warm_transfer = 0;
-        solve_to_optimum(&in, &o, &out, r1.objective_s, seed, "two workers, no warm start",
-                         &r3);
+        solve_to_optimum(&in, &o, &out, r1.objective_s, seed, "two workers, no warm start", &r3);
         assert_int_equal(r3.passed_warm, 0);
         worker_nodes += r2.worker_nodes;
         with_worker += r2.worker_nodes > 0;
@@ -333,8 +332,7 @@ static void test_auto_smoothing(void **state)
         hv_milp_options_t o;
         one_thread_options(&o);
         hv_milp_result_t r0, r1;
-        solve_option_both_ways(&in, &o, &o.auto_smoothing, seed, "adaptive smoothing", &r0,
-                               &r1);
+        solve_option_both_ways(&in, &o, &o.auto_smoothing, seed, "adaptive smoothing", &r0, &r1);
         differ += r0.nodes != r1.nodes;
         branched += r1.nodes > 1;
         hv_instance_free(&in);
@@ -385,8 +383,7 @@ static void test_interval_pseudocosts(void **state)
         hv_milp_options_t o;
         one_thread_options(&o);
         hv_milp_result_t r0, r1;
-        solve_option_both_ways(&in, &o, &o.iv_pseudocost, seed, "interval pseudocosts", &r0,
-                               &r1);
+        solve_option_both_ways(&in, &o, &o.iv_pseudocost, seed, "interval pseudocosts", &r0, &r1);
         iv += r1.interval_branches;
         hv_instance_free(&in);
     }
@@ -467,8 +464,8 @@ static void record_window(void *ctx, const hv_assignment_t *plan, double t_s)
 {
     window_reports_t *w = ctx;
     double check;
-    w->bad += hv_assignment_makespan(w->inst, plan, &check) != HV_OK ||
-              fabs(check - t_s) > 1e-9 || !(t_s < w->last_t);
+    w->bad += hv_assignment_makespan(w->inst, plan, &check) != HV_OK || fabs(check - t_s) > 1e-9 ||
+              !(t_s < w->last_t);
     w->last_t = t_s;
     w->n++;
 }
@@ -505,9 +502,9 @@ static void test_window_improve(void **state)
         hv_window_stats_t ws;
         t = t0;
         window_reports_t rep = {&in, t0, 0, 0};
-        assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 2, 5.0, 1e12,
-                                           &a, &t, &ws, NULL,
-                                           record_window, &rep), HV_OK);
+        assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 2, 5.0, 1e12, &a,
+                                           &t, &ws, NULL, record_window, &rep),
+                         HV_OK);
         assert_int_equal(hv_assignment_makespan(&in, &a, &check), HV_OK);
         assert_true(fabs(check - t) < 1e-9);
         assert_true(t <= t0 + 1e-9);
@@ -523,8 +520,7 @@ static void test_window_improve(void **state)
         assert_true(t >= res.objective_s - 1e-6);
         /* a window as wide as the plan is the whole problem: nothing to do */
         assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 1000, 5.0, 1e12,
-                                           &a, &t, &ws, NULL, NULL,
-                                           NULL),
+                                           &a, &t, &ws, NULL, NULL, NULL),
                          HV_OK);
         assert_int_equal(ws.windows, 0);
         hv_assignment_free(&a);
@@ -553,16 +549,14 @@ static void test_window_memo(void **state)
         double t1, t2, t3;
         plan_at_end_stops(&in, &a, 1);
         assert_int_equal(hv_assignment_makespan(&in, &a, &t1), HV_OK);
-        assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 3, 5.0, 1e12,
-                                           &a, &t1, &ws, &memo, NULL,
-                                           NULL),
+        assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 3, 5.0, 1e12, &a,
+                                           &t1, &ws, &memo, NULL, NULL),
                          HV_OK);
         assert_true(ws.windows > ws.improved);
         assert_int_equal(ws.proven, ws.windows); /* tiny windows: all proven */
         t2 = t1;
-        assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 3, 5.0, 1e12,
-                                           &a, &t2, &ws2, &memo, NULL,
-                                           NULL),
+        assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 3, 5.0, 1e12, &a,
+                                           &t2, &ws2, &memo, NULL, NULL),
                          HV_OK);
         assert_int_equal(ws2.windows, 0);
         long pass = ws2.repeats; /* the windows of one pass over the final plan */
@@ -570,9 +564,8 @@ static void test_window_memo(void **state)
         assert_true(t2 == t1);
         plan_at_end_stops(&in, &a, 1);
         assert_int_equal(hv_assignment_makespan(&in, &a, &t3), HV_OK);
-        assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 3, 5.0, 1e12,
-                                           &a, &t3, &ws2, &memo, NULL,
-                                           NULL),
+        assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 3, 5.0, 1e12, &a,
+                                           &t3, &ws2, &memo, NULL, NULL),
                          HV_OK);
         assert_true(fabs(t3 - t1) < 1e-9);
         assert_int_equal(ws2.windows, ws.improved); /* only the windows that gained */
@@ -582,9 +575,8 @@ static void test_window_memo(void **state)
         assert_int_equal(hv_window_memo_init(&memo, 1), HV_OK);
         for (int call = 0; call < 2; ++call) {
             t2 = t1;
-            assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 3, 5.0,
-                                               1e12, &a, &t2, &ws2, &memo,
-                                               NULL, NULL),
+            assert_int_equal(hv_window_improve(&in, &o, hv_milp_default_subsolver(), 3, 5.0, 1e12,
+                                               &a, &t2, &ws2, &memo, NULL, NULL),
                              HV_OK);
             assert_int_equal(ws2.repeats, call == 1 && pass == 1);
             assert_int_equal(ws2.windows, pass - ws2.repeats);
@@ -663,8 +655,8 @@ static void test_rins_improve(void **state)
         assert_memory_equal(a.fruit_stop, poor.fruit_stop, nf * sizeof *a.fruit_stop);
 
         /* no time, or a kept fruit at a stop that cannot reach it: refused, plan untouched */
-        assert_int_equal(hv_rins_improve(&in, &o, hv_milp_default_subsolver(), freed, NULL, 0.0,
-                                         &a, &t, &better, &res),
+        assert_int_equal(hv_rins_improve(&in, &o, hv_milp_default_subsolver(), freed, NULL, 0.0, &a,
+                                         &t, &better, &res),
                          HV_ERR_ARG);
         for (uint32_t p = 0; p < in.n_stops; ++p) {
             if (hv_instance_pair_index(&in, 0, p) == SIZE_MAX) {
@@ -711,8 +703,8 @@ static void test_rins_improve(void **state)
                          HV_OK);
         assert_int_equal(res.status, HV_SOLVE_OPTIMAL);
         if (fabs(t - want) > 1e-6) {
-            fail_msg("seed %llu: neighbourhood %.3f s, enumerated %.3f s",
-                     (unsigned long long)seed, t, want);
+            fail_msg("seed %llu: neighbourhood %.3f s, enumerated %.3f s", (unsigned long long)seed,
+                     t, want);
         }
         assert_int_equal(better, t0 > want + 1e-4);
         improved += better;
@@ -764,8 +756,9 @@ static void test_helper_thread(void **state)
     for (unsigned polish = 0; polish <= 300; polish += 300) {
         hv_helper_t *h;
         double t = INFINITY, check;
-        assert_int_equal(hv_helper_start(&in, &o, hv_milp_default_subsolver(), &a, t0, mono_s() +
-                                         60.0, polish, &h), HV_OK);
+        assert_int_equal(hv_helper_start(&in, &o, hv_milp_default_subsolver(), &a, t0,
+                                         mono_s() + 60.0, polish, &h),
+                         HV_OK);
         int taken = 0;
         for (double until = mono_s() + 20.0; !taken && mono_s() < until;) {
             taken = hv_helper_take(h, t0, &got, &t);

@@ -22,10 +22,10 @@
 #include "hv/milp_pricing.h"
 #include "hv/milp_status.h"
 
-#define MAXN 40      /* items per side */
+#define MAXN       40 /* items per side */
 #define BRUTE_SIDE 16 /* brute force subset tables per side */
-#define SENT 0xdeadbeefu
-#define TOL 1e-6
+#define SENT       0xdeadbeefu
+#define TOL        1e-6
 
 typedef struct inst {
     hv_price_item_t l[MAXN], r[MAXN];
@@ -162,14 +162,14 @@ static void run(hv_pricer_t *pr, const inst_t *in, double vb, res_t *r)
     }
     r->n_sel = 12345;
     r->v = r->time = NAN;
-    r->st = hv_pricer_best(pr, in->l, in->nl, in->r, in->nr, in->offset, in->pen, vb, &r->v,
-                           r->sel, &r->n_sel, &r->time);
+    r->st = hv_pricer_best(pr, in->l, in->nl, in->r, in->nr, in->offset, in->pen, vb, &r->v, r->sel,
+                           &r->n_sel, &r->time);
 }
 
 static void dump(const inst_t *in, double vb, double bmin, const res_t *r, const char *why)
 {
-    print_message("FAIL: %s\n  offset=%.17g v_bound=%.17g expected_min=%.17g\n", why,
-                  in->offset, vb, bmin);
+    print_message("FAIL: %s\n  offset=%.17g v_bound=%.17g expected_min=%.17g\n", why, in->offset,
+                  vb, bmin);
     for (size_t k = 0; k < in->nl + in->nr; ++k) {
         const hv_price_item_t *it = item(in, k);
         print_message("  %s fruit=%u w=%.17g p=%.17g\n", k < in->nl ? "L" : "R",
@@ -183,7 +183,12 @@ static void dump(const inst_t *in, double vb, double bmin, const res_t *r, const
     print_message("\n");
 }
 
-#define REQUIRE(cond, why) do { if (!(cond)) { return (why); } } while (0)
+#define REQUIRE(cond, why)                                                                         \
+    do {                                                                                           \
+        if (!(cond)) {                                                                             \
+            return (why);                                                                          \
+        }                                                                                          \
+    } while (0)
 
 /* The contract check. bmin: the true minimum, or NAN when unknown; exact: sums are exact,
  * so the found-or-not decision must hold even at bmin == v_bound. Returns the failure
@@ -267,8 +272,8 @@ static void test_random_vs_brute_force(void **state)
             *(r.time >= 0.0 ? &found : &not_found) += 1;
         }
     }
-    print_message("random: 4000 instances, %ld calls, %ld found, %ld not found\n", calls,
-                  found, not_found);
+    print_message("random: 4000 instances, %ld calls, %ld found, %ld not found\n", calls, found,
+                  not_found);
     assert_int_equal(failures, 0);
     assert_true(found > 4000 && not_found > 4000); /* both outcomes well exercised */
     assert_true(pr->calls == (unsigned long long)calls);
@@ -325,7 +330,8 @@ static void test_cuts_vs_brute_force(void **state)
         }
     }
     print_message("cuts: 4000 instances, %ld calls, %ld found, minimum raised by cuts on %ld "
-                  "(%ld with cross-arm cuts)\n", calls, found, cut_bites, cross_bites);
+                  "(%ld with cross-arm cuts)\n",
+                  calls, found, cut_bites, cross_bites);
     assert_int_equal(failures, 0);
     assert_true(found > 2000 && cut_bites > 500 && cross_bites > 250); /* penalties matter */
 }
@@ -342,8 +348,7 @@ static inst_t hand(double wl, double pl, double wr, double pr_, double offset)
 }
 
 /* Prices `in` at vb and wants exactly v, time and n fruits (n == 2: fruits 11 and 22). */
-static void expect(hv_pricer_t *pr, const inst_t *in, double vb, double v, double time,
-                   size_t n)
+static void expect(hv_pricer_t *pr, const inst_t *in, double vb, double v, double time, size_t n)
 {
     res_t r;
     run(pr, in, vb, &r);
@@ -402,8 +407,8 @@ static void sort_sel(res_t *r) /* insertion sort of sel[0 .. n_sel) */
 static void test_workspace_reuse(void **state)
 {
     hv_pricer_t *pr = *state;
-    static const size_t fixed[][2] = {{40, 0}, {2, 1}, {0, 40}, {40, 5}, {0, 0}, {5, 40},
-                                      {8, 8},  {40, 40}, {1, 0}, {40, 2}, {3, 3}};
+    static const size_t fixed[][2] = {{40, 0}, {2, 1},   {0, 40}, {40, 5}, {0, 0}, {5, 40},
+                                      {8, 8},  {40, 40}, {1, 0},  {40, 2}, {3, 3}};
     size_t n_fixed = sizeof fixed / sizeof fixed[0];
     uint64_t s = 0x13198a2e03707344ull;
     failures = 0;

@@ -34,8 +34,7 @@ static void test_bound_with_optional_fruits(void **state)
         uint32_t plan[7];
         hv_price_bound_result_t res;
         assert_int_equal(hv_price_bound(&in, &o, hv_milp_default_subsolver(), skip, INFINITY,
-                                        hv_milp_now_s() + 30.0, plan,
-                                        &res),
+                                        hv_milp_now_s() + 30.0, plan, &res),
                          HV_OK);
         assert_true(res.finished);
         assert_true(res.has_plan);
@@ -50,15 +49,13 @@ static void test_bound_with_optional_fruits(void **state)
         /* under a cutoff above the optimum the optimum is found (a bound that forgot the
          * fruits left out would prune it) */
         assert_int_equal(hv_price_bound(&in, &o, hv_milp_default_subsolver(), skip, best + 300.0,
-                                        hv_milp_now_s() + 30.0,
-                                        plan, &res),
+                                        hv_milp_now_s() + 30.0, plan, &res),
                          HV_OK);
         assert_true(res.has_plan);
         assert_true(fabs(res.lb_ms - best) < 1e-6);
         /* a cutoff below the optimum is proved, and no solution is below it */
         assert_int_equal(hv_price_bound(&in, &o, hv_milp_default_subsolver(), skip, best - 500.0,
-                                        hv_milp_now_s() + 30.0,
-                                        plan, &res),
+                                        hv_milp_now_s() + 30.0, plan, &res),
                          HV_OK);
         assert_true(res.finished);
         assert_false(res.has_plan);
@@ -128,8 +125,7 @@ static void test_region_rise_is_a_valid_bound(void **state)
             hv_region_result_t rr;
             assert_int_equal(hv_region_rise(&in, stretch[s][0], stretch[s][1], pi, v, 1e9, &o,
                                             hv_milp_default_subsolver(), hv_milp_now_s() + 30.0,
-                                            NULL,
-                                            &rr),
+                                            NULL, &rr),
                              HV_OK);
             assert_true(rr.finished);
             assert_true(rr.rise_ms >= 0.0);
@@ -146,16 +142,14 @@ static void test_region_rise_is_a_valid_bound(void **state)
             uint32_t plan[9];
             assert_int_equal(hv_region_rise(&in, 0, (uint32_t)ns - 1, pi, v, 0.5 * rise[3], &o,
                                             hv_milp_default_subsolver(), hv_milp_now_s() + 30.0,
-                                            plan,
-                                            &rr),
+                                            plan, &rr),
                              HV_OK);
             assert_true(fabs(rr.rise_ms - 0.5 * rise[3]) < 1e-6);
             assert_false(rr.has_plan);
         }
         hv_region_result_t rr;
         assert_int_equal(hv_region_rise(&in, 5, 2, pi, v, 1e9, &o, hv_milp_default_subsolver(),
-                                        hv_milp_now_s() + 30.0, NULL,
-                                        &rr),
+                                        hv_milp_now_s() + 30.0, NULL, &rr),
                          HV_ERR_ARG);
         hv_instance_free(&in);
     }

@@ -144,7 +144,7 @@ static void test_balance_asks_when_behind(void **state)
     hv_share_step_t step = {2, 0, 3, 9, 1};
     hv_share_node_t node = one_step(&step, 100.0);
     assert_int_equal(hv_share_give(s, &node), HV_OK);
-    assert_false(hv_share_hungry(s, 0)); /* the queue holds what was asked for */
+    assert_false(hv_share_hungry(s, 0));            /* the queue holds what was asked for */
     assert_int_equal(hv_share_poll(s, 0, &got), 0); /* worker 0 did not ask */
     assert_int_equal(hv_share_poll(s, 1, &got), 1);
     assert_int_equal(got.n, 1);

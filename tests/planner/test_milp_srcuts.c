@@ -112,8 +112,7 @@ typedef struct cycles {
     hv_src_col_t col[6];
 } cycles_t;
 
-static void two_cycles(cycles_t *c, const uint32_t *t1, double x1, const uint32_t *t2,
-                       double x2)
+static void two_cycles(cycles_t *c, const uint32_t *t1, double x1, const uint32_t *t2, double x2)
 {
     for (int k = 0; k < 6; ++k) {
         const uint32_t *t = k < 3 ? t1 : t2;
@@ -131,8 +130,7 @@ static size_t separate_cycles(fixture_t *x, const uint32_t *t1, double x1, const
     cycles_t cy;
     two_cycles(&cy, t1, x1, t2, x2);
     size_t added;
-    assert_int_equal(hv_src_separate(&x->s, &x->in, cy.col, 6, 10, per_fruit, 0.05, &added),
-                     HV_OK);
+    assert_int_equal(hv_src_separate(&x->s, &x->in, cy.col, 6, 10, per_fruit, 0.05, &added), HV_OK);
     return added;
 }
 

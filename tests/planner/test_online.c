@@ -66,8 +66,8 @@ static hv_fruit_t *row_fruits(size_t n, double length, unsigned seed)
 
 /* The camera sees [v + lead, v + lead + window]: reveal what came into view, plan what can
  * be planned, move the vehicle to the commit line; until the row is planned. */
-static void camera_run(hv_online_t *o, const hv_fruit_t *fr, size_t n, double lead,
-                       double window, size_t *next)
+static void camera_run(hv_online_t *o, const hv_fruit_t *fr, size_t n, double lead, double window,
+                       size_t *next)
 {
     double v = hv_online_commit_y(o);
     for (int guard = 0; !o->done; ++guard) {
@@ -96,8 +96,7 @@ static void check_plan(const hv_online_t *o, const hv_instance_params_t *pr)
 {
     hv_instance_t inst;
     hv_diag_t d;
-    assert_int_equal(hv_instance_build(pr, o->fruits, o->n_fruits, &g_fx.model, &inst, &d),
-                     HV_OK);
+    assert_int_equal(hv_instance_build(pr, o->fruits, o->n_fruits, &g_fx.model, &inst, &d), HV_OK);
     hv_assignment_t a;
     assert_int_equal(hv_assignment_alloc(&a, o->n_fruits), HV_OK);
     assert_int_equal(hv_online_assignment(o, &a), HV_OK);
@@ -113,8 +112,8 @@ static void check_plan(const hv_online_t *o, const hv_instance_params_t *pr)
     hv_plan_t plan;
     assert_int_equal(hv_plan_build(&inst, &a, NULL, &m, &plan), HV_OK);
     char err[256] = "";
-    hv_status_t st = hv_plan_check(&plan, &g_fx.cfg, o->fruits, o->n_fruits, &g_fx.model, err,
-                                   sizeof err);
+    hv_status_t st =
+        hv_plan_check(&plan, &g_fx.cfg, o->fruits, o->n_fruits, &g_fx.model, err, sizeof err);
     if (st != HV_OK) {
         print_error("%s\n", err);
     }

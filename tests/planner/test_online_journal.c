@@ -197,8 +197,7 @@ static void test_torn_and_refused(void **state)
     /* a corrupt record: refused, the line named */
     append(path, "V 3.5 *00000000\n");
     init(&back);
-    assert_int_equal(hv_online_journal_open(&j, path, &back, err, sizeof err),
-                     HV_ERR_PLAN_FORMAT);
+    assert_int_equal(hv_online_journal_open(&j, path, &back, err, sizeof err), HV_ERR_PLAN_FORMAT);
     assert_non_null(strstr(err, "checksum mismatch"));
     hv_online_free(&back);
     /* another course */
@@ -208,8 +207,7 @@ static void test_torn_and_refused(void **state)
     hv_instance_params_t longer = k_row;
     longer.row_length_m = 6.0;
     assert_int_equal(hv_online_init(&back, &longer, &g_fx.model, &opt), HV_OK);
-    assert_int_equal(hv_online_journal_open(&j, path, &back, err, sizeof err),
-                     HV_ERR_PLAN_FORMAT);
+    assert_int_equal(hv_online_journal_open(&j, path, &back, err, sizeof err), HV_ERR_PLAN_FORMAT);
     assert_non_null(strstr(err, "line 1: the journal of another course"));
     hv_online_free(&back);
     hv_online_free(&o);

@@ -60,12 +60,15 @@ static int teardown(void **state)
 /* A valid FOV plan over a 1 m row. */
 static void make_plan(ctx_t *c, hv_plan_t *plan, const char *method)
 {
-    hv_instance_params_t pr = {0.0, 1.0, c->fx.cfg.grid_step_m, c->fx.cfg.stop_penalty_s,
-                               1.0 / c->fx.cfg.vehicle_speed_mps, 0.0};
+    hv_instance_params_t pr = {0.0,
+                               1.0,
+                               c->fx.cfg.grid_step_m,
+                               c->fx.cfg.stop_penalty_s,
+                               1.0 / c->fx.cfg.vehicle_speed_mps,
+                               0.0};
     hv_instance_t inst;
     hv_diag_t d;
-    assert_int_equal(hv_instance_build(&pr, c->fruits, c->n, &c->fx.model, &inst, &d),
-                     HV_OK);
+    assert_int_equal(hv_instance_build(&pr, c->fruits, c->n, &c->fx.model, &inst, &d), HV_OK);
     hv_assignment_t a;
     assert_int_equal(hv_assignment_alloc(&a, c->n), HV_OK);
     assert_int_equal(hv_fov_solve(&inst, 0.2, &a, NULL), HV_OK);
@@ -89,8 +92,7 @@ static void make_plan(ctx_t *c, hv_plan_t *plan, const char *method)
 
 static hv_status_t check(ctx_t *c, const hv_plan_t *plan, char *err, size_t errlen)
 {
-    return hv_plan_check(plan, &c->fx.cfg, c->fruits, c->n, &c->fx.model, err,
-                         errlen);
+    return hv_plan_check(plan, &c->fx.cfg, c->fruits, c->n, &c->fx.model, err, errlen);
 }
 
 static void test_valid_plan_passes(void **state)
@@ -263,12 +265,9 @@ static void test_missing_and_unknown(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_valid_plan_passes),
-        cmocka_unit_test(test_fruit_twice),
-        cmocka_unit_test(test_unreachable_pair),
-        cmocka_unit_test(test_fruit_at_unused_stop),
-        cmocka_unit_test(test_wrong_numbers),
-        cmocka_unit_test(test_missing_and_unknown),
+        cmocka_unit_test(test_valid_plan_passes), cmocka_unit_test(test_fruit_twice),
+        cmocka_unit_test(test_unreachable_pair),  cmocka_unit_test(test_fruit_at_unused_stop),
+        cmocka_unit_test(test_wrong_numbers),     cmocka_unit_test(test_missing_and_unknown),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

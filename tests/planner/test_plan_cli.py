@@ -2,6 +2,7 @@
 tampered plans caught by `harvest-plan check`. Every pick is the real arm's exact IK; the
 cost tables given are synthetic (band model, tests/planner/support) on the configuration's
 arm and grid, so they pass the planner's table check without being used for costs."""
+
 import json
 import os
 import random
@@ -10,17 +11,20 @@ import subprocess
 
 import pytest
 
-SRC = os.environ.get("HV_SOURCE_DIR", os.path.dirname(os.path.dirname(os.path.dirname(
-    os.path.abspath(__file__)))))
+from harvest.scenario.config import derived_config_text
+
+SRC = os.environ.get(
+    "HV_SOURCE_DIR", os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+)
 BUILD = os.environ.get("HV_BUILD_DIR", os.path.join(SRC, "build"))
 PLAN = os.path.join(BUILD, "planner", "harvest-plan")
 SYNTH = os.path.join(BUILD, "tests", "planner", "planner_synth_tables")
 CONFIG = os.path.join(SRC, "config", "harvest.cfg")
-from harvest.scenario.config import derived_config_text
 
 pytestmark = pytest.mark.skipif(
     not (os.access(PLAN, os.X_OK) and os.access(SYNTH, os.X_OK)),
-    reason="SKIPPED: harvest-plan or planner_synth_tables not built in HV_BUILD_DIR")
+    reason="SKIPPED: harvest-plan or planner_synth_tables not built in HV_BUILD_DIR",
+)
 
 
 def run(*args, check=None):
@@ -51,21 +55,56 @@ def random_fruits(n_left, n_right, length=2.0, seed=1):
     for side, n in (("L", n_left), ("R", n_right)):
         for i in range(n):
             x = rnd.uniform(0.36, 0.49) * (-1 if side == "L" else 1)
-            out.append((f"{side}{i}", side, round(x, 4), round(rnd.uniform(0, length), 4),
-                        round(rnd.uniform(0.41, 0.74), 4), round(rnd.uniform(-0.7, 0.7), 4)))
+            out.append(
+                (
+                    f"{side}{i}",
+                    side,
+                    round(x, 4),
+                    round(rnd.uniform(0, length), 4),
+                    round(rnd.uniform(0.41, 0.74), 4),
+                    round(rnd.uniform(-0.7, 0.7), 4),
+                )
+            )
     return out
 
 
 def plan_args(tables, fruits, out, method, *extra):
-    return ["--config", CONFIG, "--left", tables[0], "--right", tables[1], "--fruits", fruits,
-            "--method", method, "--out", out, *extra]
+    return [
+        "--config",
+        CONFIG,
+        "--left",
+        tables[0],
+        "--right",
+        tables[1],
+        "--fruits",
+        fruits,
+        "--method",
+        method,
+        "--out",
+        out,
+        *extra,
+    ]
 
 
 def test_help():
     p = run("--help", check=0)
-    for flag in ("--config", "--left", "--right", "--fruits", "--method", "--out",
-                 "--time-limit", "--gap", "--fov-width", "--horizon", "--export-lp", "--quiet",
-                 "--algorithm", "--threads", "check"):
+    for flag in (
+        "--config",
+        "--left",
+        "--right",
+        "--fruits",
+        "--method",
+        "--out",
+        "--time-limit",
+        "--gap",
+        "--fov-width",
+        "--horizon",
+        "--export-lp",
+        "--quiet",
+        "--algorithm",
+        "--threads",
+        "check",
+    ):
         assert flag in p.stdout
     assert run("check", "--help", check=0).stdout.startswith("usage")
 
@@ -96,12 +135,23 @@ def test_options_in_both_gnu_forms(tables, tmp_path):
     fruits = write_map(tmp_path / "m.csv", random_fruits(4, 4, seed=7))
     a, b = str(tmp_path / "a.json"), str(tmp_path / "b.json")
     run(*plan_args(tables, fruits, a, "fov", "--fov-width", "0.3", "--quiet"), check=0)
-    run("--quiet", f"--out={b}", "--fov-width=0.3", "--method=fov", f"--fruits={fruits}",
-        f"--config={CONFIG}", f"--left={tables[0]}", f"--right={tables[1]}", check=0)
+    run(
+        "--quiet",
+        f"--out={b}",
+        "--fov-width=0.3",
+        "--method=fov",
+        f"--fruits={fruits}",
+        f"--config={CONFIG}",
+        f"--left={tables[0]}",
+        f"--right={tables[1]}",
+        check=0,
+    )
     pa, pb = (json.load(open(p)) for p in (a, b))
     assert pa["stops"] == pb["stops"] and pa["totals"] == pb["totals"]
-    assert "--time-limit: expected a positive number" in run(
-        *plan_args(tables, fruits, a, "milp", "--time-limit=0"), check=2).stderr
+    assert (
+        "--time-limit: expected a positive number"
+        in run(*plan_args(tables, fruits, a, "milp", "--time-limit=0"), check=2).stderr
+    )
     assert "OK" in run("check", f"--config={CONFIG}", f"--fruits={fruits}", a, check=0).stdout
 
 
@@ -130,8 +180,10 @@ def test_methods_write_checked_plans(tables, tmp_path, method):
     assert pa["travel_time_s"] == pytest.approx(course / pa["vehicle_speed_mps"])
     # the robot's time (plan.pick_cycle = 1): a stop costs v / a, a pick its whole cycle
     assert pa["pick_time"] == "cycle" and pa["stop_penalty_s"] == pytest.approx(0.1 / 0.1)
-    assert min(pk["cost_s"] for s in plan["stops"] for arm in ("left", "right")
-               for pk in s[arm]) > 1.0 + 0.5
+    assert (
+        min(pk["cost_s"] for s in plan["stops"] for arm in ("left", "right") for pk in s[arm])
+        > 1.0 + 0.5
+    )
     if method == "serial":
         assert t["travel_time_s"] == pytest.approx(2 * pa["travel_time_s"])
         assert {s["pass"] for s in plan["stops"]} == {0, 1}
@@ -156,8 +208,22 @@ def test_algorithms_agree(tables, tmp_path):
     res = {}
     for alg, threads in (("price", "2"), ("price", "1"), ("compact", "1")):
         out = str(tmp_path / f"{alg}{threads}.json")
-        run(*plan_args(tables, fruits, out, "milp", "--quiet", "--algorithm", alg,
-                       "--threads", threads, "--time-limit", "120"), check=0)
+        run(
+            *plan_args(
+                tables,
+                fruits,
+                out,
+                "milp",
+                "--quiet",
+                "--algorithm",
+                alg,
+                "--threads",
+                threads,
+                "--time-limit",
+                "120",
+            ),
+            check=0,
+        )
         plan = json.load(open(out))
         assert plan["solver"]["status"] == "optimal", plan["solver"]
         res[alg + threads] = plan["totals"]["makespan_s"]
@@ -167,23 +233,27 @@ def test_algorithms_agree(tables, tmp_path):
 
 def derived_config(tmp_path, name, **overrides):
     path = tmp_path / name
-    path.write_text(derived_config_text(CONFIG, {k.replace("__", "."): v
-                                                 for k, v in overrides.items()}))
+    path.write_text(
+        derived_config_text(CONFIG, {k.replace("__", "."): v for k, v in overrides.items()})
+    )
     return str(path)
 
 
-@pytest.mark.parametrize("overrides,fruit,why", [
-    # the paper's stops over the row only: a fruit at the row's start is behind both bases
-    ({"row__stops_beyond_ends": 0}, ("end", "L", -0.42, 0.0, 0.6, 0.0), "row_end"),
-    # joint 1's stroke ends at z = 0.84 m: a canopy reaching higher holds a fruit no
-    # vehicle position helps with
-    ({"row__canopy_height": 0.5}, ("high", "L", -0.42, 1.0, 0.88, 0.0), "height"),
-    # a canopy 0.6 m deep: its far part is beyond the arm from every vehicle position
-    ({"row__canopy_depth": 0.6}, ("deep", "R", 0.93, 1.0, 0.6, 0.0), "depth"),
-    # joint 4 held near its home: the far fruit's -45 deg stem is in reach, but the wrist
-    # cannot turn to it from any vehicle position
-    ({"joint4__min": -0.1, "joint4__max": 0.1}, ("askew", "R", 0.5, 1.0, 0.6, -0.785), "yaw"),
-])
+@pytest.mark.parametrize(
+    "overrides,fruit,why",
+    [
+        # the paper's stops over the row only: a fruit at the row's start is behind both bases
+        ({"row__stops_beyond_ends": 0}, ("end", "L", -0.42, 0.0, 0.6, 0.0), "row_end"),
+        # joint 1's stroke ends at z = 0.84 m: a canopy reaching higher holds a fruit no
+        # vehicle position helps with
+        ({"row__canopy_height": 0.5}, ("high", "L", -0.42, 1.0, 0.88, 0.0), "height"),
+        # a canopy 0.6 m deep: its far part is beyond the arm from every vehicle position
+        ({"row__canopy_depth": 0.6}, ("deep", "R", 0.93, 1.0, 0.6, 0.0), "depth"),
+        # joint 4 held near its home: the far fruit's -45 deg stem is in reach, but the wrist
+        # cannot turn to it from any vehicle position
+        ({"joint4__min": -0.1, "joint4__max": 0.1}, ("askew", "R", 0.5, 1.0, 0.6, -0.785), "yaw"),
+    ],
+)
 def test_unreachable_listed_with_reason(tmp_path, overrides, fruit, why):
     cfg = derived_config(tmp_path, "h.cfg", **overrides)
     fr = random_fruits(3, 3, seed=7)
@@ -203,8 +273,11 @@ def test_unreachable_listed_with_reason(tmp_path, overrides, fruit, why):
 def test_stops_beyond_the_row_ends(tmp_path):
     """The fruit at both ends are planned from vehicle positions beyond the row, and the
     same map on the paper's stops leaves them unreachable."""
-    fr = [("first", "L", -0.42, 0.0, 0.6, 0.0), ("last", "R", 0.42, 2.0, 0.6, 0.0),
-          ("mid", "R", 0.42, 1.0, 0.6, 0.0)]
+    fr = [
+        ("first", "L", -0.42, 0.0, 0.6, 0.0),
+        ("last", "R", 0.42, 2.0, 0.6, 0.0),
+        ("mid", "R", 0.42, 1.0, 0.6, 0.0),
+    ]
     fruits = write_map(tmp_path / "m.csv", fr)
     out = str(tmp_path / "p.json")
     run("--config", CONFIG, "--fruits", fruits, "--method", "milp", "--out", out, check=0)
@@ -263,33 +336,59 @@ def test_bad_tables(tables, tmp_path):
 EXEC = os.path.join(BUILD, "executor", "harvest-exec")
 
 
-@pytest.mark.parametrize("overrides,field", [
-    ({"mount__offset": 0.20}, "mount.base"),
-    ({"arm__elbow_free": 1}, "elbow_free"),
-    ({"joint2__vmax": 0.3}, "joint_limits"),
-    ({"arm__home": "0.2 0.0 1.4 0.0"}, "home"),
-    ({"grid__y_half_span": 0.7}, "grid.y"),
-])
+@pytest.mark.parametrize(
+    "overrides,field",
+    [
+        ({"mount__offset": 0.20}, "mount.base"),
+        ({"arm__elbow_free": 1}, "elbow_free"),
+        ({"joint2__vmax": 0.3}, "joint_limits"),
+        ({"arm__home": "0.2 0.0 1.4 0.0"}, "home"),
+        ({"grid__y_half_span": 0.7}, "grid.y"),
+    ],
+)
 def test_table_for_another_arm_refused(tmp_path, overrides, field):
     """A table built for another mount, elbow mode, joint limits, home pose or grid: the
     planner refuses it with the same one line as the executor."""
     other = tmp_path / "other"
     other.mkdir()
-    subprocess.run([SYNTH, derived_config(tmp_path, "o.cfg", **overrides), str(other)],
-                   check=True)
+    subprocess.run([SYNTH, derived_config(tmp_path, "o.cfg", **overrides), str(other)], check=True)
     left = str(other / "left.bin")
     fruits = write_map(tmp_path / "m.csv", random_fruits(2, 2))
     out = str(tmp_path / "p.json")
-    p = run("--config", CONFIG, "--fruits", fruits, "--method", "fov", "--out", out,
-            "--left", left, check=1)
+    p = run(
+        "--config",
+        CONFIG,
+        "--fruits",
+        fruits,
+        "--method",
+        "fov",
+        "--out",
+        out,
+        "--left",
+        left,
+        check=1,
+    )
     line = p.stderr.strip()
     assert f"{left}: {field}:" in line and "HV_ERR_TAB_MISMATCH" in line, line
     assert not os.path.exists(out)
     if os.access(EXEC, os.X_OK):  # the executor's check is the same function
         run("--config", CONFIG, "--fruits", fruits, "--method", "fov", "--out", out, check=0)
-        e = subprocess.run([EXEC, "--plan", out, "--config", CONFIG, "--journal",
-                            str(tmp_path / "j"), "--cost-table-left", left],
-                           capture_output=True, text=True, timeout=60)
+        e = subprocess.run(
+            [
+                EXEC,
+                "--plan",
+                out,
+                "--config",
+                CONFIG,
+                "--journal",
+                str(tmp_path / "j"),
+                "--cost-table-left",
+                left,
+            ],
+            capture_output=True,
+            text=True,
+            timeout=60,
+        )
         assert e.returncode == 2
         assert line.replace("harvest-plan:", "harvest-exec:") == e.stderr.strip()
 
@@ -349,23 +448,44 @@ def test_check_finds_inputs_from_any_directory(tables, tmp_path):
     (work / "out").mkdir()
     write_map(work / "in" / "m.csv", random_fruits(4, 4, seed=17))
     rel = [os.path.relpath(p, work) for p in (CONFIG, tables[0], tables[1])]
-    args = ["--config", rel[0], "--left", rel[1], "--right", rel[2], "--fruits", "in/m.csv",
-            "--method", "fov", "--out", "out/p.json", "--quiet"]
+    args = [
+        "--config",
+        rel[0],
+        "--left",
+        rel[1],
+        "--right",
+        rel[2],
+        "--fruits",
+        "in/m.csv",
+        "--method",
+        "fov",
+        "--out",
+        "out/p.json",
+        "--quiet",
+    ]
     p = subprocess.run([PLAN, *args], cwd=work, capture_output=True, text=True, timeout=600)
     assert p.returncode == 0, p.stderr
     plan = json.loads((work / "out" / "p.json").read_text())
     out_dir = os.path.realpath(work / "out")
-    for key, given in (("config", CONFIG), ("cost_table_left", tables[0]),
-                       ("cost_table_right", tables[1]), ("fruit_map", work / "in" / "m.csv")):
+    for key, given in (
+        ("config", CONFIG),
+        ("cost_table_left", tables[0]),
+        ("cost_table_right", tables[1]),
+        ("fruit_map", work / "in" / "m.csv"),
+    ):
         written = plan["inputs"][key]
         assert not os.path.isabs(written), (key, written)
         assert os.path.samefile(os.path.join(out_dir, written), given), (key, written)
     # from the plan's folder, from its parent, from elsewhere: the same inputs found
     for cwd in (work / "out", work, tmp_path, "/"):
-        target = os.path.relpath(work / "out" / "p.json", cwd) if cwd != "/" else \
-            str(work / "out" / "p.json")
-        q = subprocess.run([PLAN, "check", target], cwd=cwd, capture_output=True, text=True,
-                           timeout=600)
+        target = (
+            os.path.relpath(work / "out" / "p.json", cwd)
+            if cwd != "/"
+            else str(work / "out" / "p.json")
+        )
+        q = subprocess.run(
+            [PLAN, "check", target], cwd=cwd, capture_output=True, text=True, timeout=600
+        )
         assert q.returncode == 0 and "OK" in q.stdout, (cwd, q.stderr)
     # the folder moved as a whole still finds the map beside its relative path
     moved = tmp_path / "moved"
@@ -394,8 +514,23 @@ def test_horizon_long_row(tables, tmp_path):
     fr = random_fruits(40, 40, length=length, seed=21)
     fruits = write_map(tmp_path / "m.csv", fr)
     out = str(tmp_path / "p.json")
-    p = run(*plan_args(tables, fruits, out, "milp", "--row-length", length, "--horizon", "2",
-                       "--time-limit", "5", "--gap", "0.01"), check=0)
+    p = run(
+        *plan_args(
+            tables,
+            fruits,
+            out,
+            "milp",
+            "--row-length",
+            length,
+            "--horizon",
+            "2",
+            "--time-limit",
+            "5",
+            "--gap",
+            "0.01",
+        ),
+        check=0,
+    )
     assert p.stderr.count("horizon: window") >= 7  # progress, one line per window
     plan = json.load(open(out))
     assert plan["horizon"]["windows"] >= 7 and plan["solver"]["status"] == "heuristic"
@@ -412,8 +547,12 @@ def real_tables(tmp_path_factory):
     if not os.access(COSTGEN, os.X_OK):
         pytest.skip("SKIPPED: tools/costgen not built (HV_WITH_TOOLS=OFF)")
     d = tmp_path_factory.mktemp("real")
-    subprocess.run([COSTGEN, "--config", CONFIG, "--side", "both", "--out-dir", str(d)],
-                   check=True, capture_output=True, timeout=600)
+    subprocess.run(
+        [COSTGEN, "--config", CONFIG, "--side", "both", "--out-dir", str(d)],
+        check=True,
+        capture_output=True,
+        timeout=600,
+    )
     return str(d / "costtab_left.bin"), str(d / "costtab_right.bin")
 
 
@@ -425,14 +564,21 @@ def test_real_tables_all_methods(real_tables, tmp_path):
     for side, n in (("L", 12), ("R", 4)):
         for i in range(n):
             x = rnd.uniform(0.35, 0.50) * (-1 if side == "L" else 1)
-            fr.append((f"{side}{i}", side, round(x, 4), round(rnd.uniform(0, 2), 4),
-                       round(rnd.uniform(0.40, 0.80), 4), round(rnd.uniform(-0.78, 0.78), 4)))
+            fr.append(
+                (
+                    f"{side}{i}",
+                    side,
+                    round(x, 4),
+                    round(rnd.uniform(0, 2), 4),
+                    round(rnd.uniform(0.40, 0.80), 4),
+                    round(rnd.uniform(-0.78, 0.78), 4),
+                )
+            )
     fruits = write_map(tmp_path / "m.csv", fr)
     makespan = {}
     for method in ("fov", "serial", "milp"):
         out = str(tmp_path / f"{method}.json")
-        run(*plan_args(real_tables, fruits, out, method, "--quiet", "--time-limit", "120"),
-            check=0)
+        run(*plan_args(real_tables, fruits, out, method, "--quiet", "--time-limit", "120"), check=0)
         plan = json.load(open(out))
         t = plan["totals"]
         assert t["fruits_planned"] + t["fruits_unreachable"] == len(fr)
@@ -445,8 +591,21 @@ def test_real_tables_all_methods(real_tables, tmp_path):
 def test_horizon_compare_single(tables, tmp_path):
     fruits = write_map(tmp_path / "m.csv", random_fruits(12, 12, seed=31))
     out = str(tmp_path / "p.json")
-    p = run(*plan_args(tables, fruits, out, "milp", "--horizon", "1", "--compare-single",
-                       "--time-limit", "60", "--quiet"), check=0)
+    p = run(
+        *plan_args(
+            tables,
+            fruits,
+            out,
+            "milp",
+            "--horizon",
+            "1",
+            "--compare-single",
+            "--time-limit",
+            "60",
+            "--quiet",
+        ),
+        check=0,
+    )
     line = [ln for ln in p.stdout.splitlines() if ln.startswith("compare:")]
     assert len(line) == 1, p.stdout
     horizon = float(line[0].split("horizon makespan ")[1].split(" s")[0])
@@ -464,9 +623,12 @@ def test_interrupt_writes_the_best_plan_so_far(tables, tmp_path, sig):
     fr = random_fruits(60, 240, seed=41)
     fruits = write_map(tmp_path / "m.csv", fr)
     out = tmp_path / "p.json"
-    p = subprocess.Popen([PLAN, *plan_args(tables, fruits, str(out), "milp",
-                                           "--time-limit", "600")],
-                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    p = subprocess.Popen(
+        [PLAN, *plan_args(tables, fruits, str(out), "milp", "--time-limit", "600")],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     try:
         seen = []
         for line in p.stderr:  # the solve is under way once it has a first plan

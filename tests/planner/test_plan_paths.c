@@ -57,8 +57,7 @@ static void test_resolve(void **state)
     char out[64];
     assert_int_equal(hv_plan_input_resolve("d/e/plan.json", "m.csv", out, sizeof out), HV_OK);
     assert_string_equal(out, "d/e/m.csv");
-    assert_int_equal(hv_plan_input_resolve("d/e/plan.json", "../t/l.tab", out, sizeof out),
-                     HV_OK);
+    assert_int_equal(hv_plan_input_resolve("d/e/plan.json", "../t/l.tab", out, sizeof out), HV_OK);
     assert_string_equal(out, "d/e/../t/l.tab");
     assert_int_equal(hv_plan_input_resolve("plan.json", "m.csv", out, sizeof out), HV_OK);
     assert_string_equal(out, "m.csv");
@@ -105,21 +104,23 @@ static void test_relative(void **state)
     round_trip("link/plan.json", "c/map.csv");
     round_trip("plan.json", "./a/up.cfg");
     /* beside the plan: the name alone; an absolute path stays as it is */
-    assert_int_equal(hv_plan_input_relative("a/b/p.json", "a/b/here.csv", rel, sizeof rel, err,
-                                            sizeof err), HV_OK);
+    assert_int_equal(
+        hv_plan_input_relative("a/b/p.json", "a/b/here.csv", rel, sizeof rel, err, sizeof err),
+        HV_OK);
     assert_string_equal(rel, "here.csv");
-    assert_int_equal(hv_plan_input_relative("a/b/p.json", "/x/y.tab", rel, sizeof rel, err,
-                                            sizeof err), HV_OK);
+    assert_int_equal(
+        hv_plan_input_relative("a/b/p.json", "/x/y.tab", rel, sizeof rel, err, sizeof err), HV_OK);
     assert_string_equal(rel, "/x/y.tab");
     /* the plan's folder must exist, and the result fit */
-    assert_int_equal(hv_plan_input_relative("nowhere/p.json", "c/map.csv", rel, sizeof rel, err,
-                                            sizeof err), HV_ERR_IO);
+    assert_int_equal(
+        hv_plan_input_relative("nowhere/p.json", "c/map.csv", rel, sizeof rel, err, sizeof err),
+        HV_ERR_IO);
     assert_non_null(strstr(err, "nowhere/p.json: cannot resolve its folder"));
     assert_int_equal(hv_plan_input_relative("a/b/p.json", "c/map.csv", rel, 8, err, sizeof err),
                      HV_ERR_NOMEM);
     assert_non_null(strstr(err, "c/map.csv: longer than 7 bytes"));
-    assert_int_equal(hv_plan_input_relative("a/b/p.json", "c/..", rel, sizeof rel, err,
-                                            sizeof err), HV_ERR_ARG);
+    assert_int_equal(hv_plan_input_relative("a/b/p.json", "c/..", rel, sizeof rel, err, sizeof err),
+                     HV_ERR_ARG);
 }
 
 int main(void)

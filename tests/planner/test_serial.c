@@ -16,9 +16,12 @@
 #include "tiny_tables.h"
 
 /* Steep costs so that tau (5 s) trades against distance: 1 s + 0.8 s per cm, +-3 cm. */
-static uint16_t steep(hv_side_t side, double y_rel, uint32_t ix, uint32_t iz, uint32_t iw, void *ctx)
+static uint16_t steep(hv_side_t side, double y_rel, uint32_t ix, uint32_t iz, uint32_t iw,
+                      void *ctx)
 {
-    (void)ix; (void)iw; (void)ctx;
+    (void)ix;
+    (void)iw;
+    (void)ctx;
     double cm = fabs(y_rel) * 100.0;
     if (cm > 3.0 + 1e-6) {
         return HV_COST_UNREACHABLE;

@@ -24,6 +24,7 @@ Usage: python tests/reliability/fault_campaign.py --plan PLAN.json [--kills N] [
        [--time-scale K] [--flood N] [--work DIR] [--json FILE] [--doc FILE]
 (HV_BUILD_DIR: the build with harvest-exec, make-test-plan and hv-can-tool.)
 """
+
 import argparse
 import collections
 import json
@@ -88,8 +89,9 @@ class Row:
         life = os.path.join(self.dir, f"sim{len(self.sims)}")
         os.makedirs(life, exist_ok=True)
         start = self.vehicle_start if vehicle_start is None else vehicle_start
-        self.sims.append(H.Sim(life, self.scale, faults,
-                               ["--vehicle-start", f"{start:.4f}", "--seed", "1"]))
+        self.sims.append(
+            H.Sim(life, self.scale, faults, ["--vehicle-start", f"{start:.4f}", "--seed", "1"])
+        )
         return self.sims[-1]
 
     def sim(self):
@@ -153,9 +155,12 @@ class Row:
                     held[e["node"]] = k
                 elif e["event"] == "release" and e.get("fruit") and e["node"] in held:
                     picked.add(held.pop(e["node"]))
-        return {"picked": len(picked & fruits), "lost": len(fruits - picked),
-                "twice": sum(1 for k, n in cuts.items() if n > 1),
-                "stray": sum(1 for k in cuts if k not in fruits)}
+        return {
+            "picked": len(picked & fruits),
+            "lost": len(fruits - picked),
+            "twice": sum(1 for k, n in cuts.items() if n > 1),
+            "stray": sum(1 for k in cuts if k not in fruits),
+        }
 
     def safe_latencies(self):
         """Wall s from each injected fault to the first e-stop frame after it (the executor
@@ -207,9 +212,11 @@ def baseline(work, plan_path, scale):
             plan = json.load(f)
         n_planned = sum(len(s["left"]) + len(s["right"]) for s in plan["stops"])
         if row.runs[-1][1] != "row_done" or len(fruits) != n_planned:
-            raise RuntimeError(f"the fault-free row did not pick each of the {n_planned} planned "
-                               f"fruits once ({len(fruits)} distinct cuts, end {row.runs[-1][1]}): "
-                               f"see {row.dir}")
+            raise RuntimeError(
+                f"the fault-free row did not pick each of the {n_planned} planned "
+                f"fruits once ({len(fruits)} distinct cuts, end {row.runs[-1][1]}): "
+                f"see {row.dir}"
+            )
         return row, fruits
     finally:
         row.stop_sims()
@@ -265,6 +272,7 @@ def sim_restart(work, plan_path, scale, rng):
                 elif e["event"] == "release":
                     held[e["node"]] = False
             return not any(held.values())
+
         wait_record(row, between_picks, 60, proc)
         sim = row.sim()
         sim.proc.send_signal(signal.SIGKILL)
@@ -306,11 +314,24 @@ def flood(work, plan_path, scale, count):
         proc, summary = row.start_exec()
         wait_record(row, lambda ev: count_events(ev, "pick", None) >= 2, 120, proc)
         t0 = time.monotonic()
-        tool = subprocess.run([CAN_TOOL, "--bus", f"udp:{H.GROUP}", "flood", "--id",
-                               UNKNOWN_NODE_ID, "--count", str(count)],
-                              capture_output=True, text=True, timeout=600)
-        row.notes.append(f"flood sent in {time.monotonic() - t0:.1f} s (hv-can-tool exit "
-                         f"{tool.returncode})")
+        tool = subprocess.run(
+            [
+                CAN_TOOL,
+                "--bus",
+                f"udp:{H.GROUP}",
+                "flood",
+                "--id",
+                UNKNOWN_NODE_ID,
+                "--count",
+                str(count),
+            ],
+            capture_output=True,
+            text=True,
+            timeout=600,
+        )
+        row.notes.append(
+            f"flood sent in {time.monotonic() - t0:.1f} s (hv-can-tool exit {tool.returncode})"
+        )
         row.finish(proc, summary)
         if row.runs[-1][1] != "row_done":
             row.resume_until_done()
@@ -335,35 +356,69 @@ def campaign(plan_path, work, n_kills, seed, scale, flood_count):
     silent_s = 2 * H.HEARTBEAT_TIMEOUT_S * scale
     for node in ("vehicle", "left_arm", "right_arm"):
         at = rng.uniform(0.2, 0.7) * span
-        rows.append(with_sim_fault(work, f"bus silence of {node}", plan_path, scale,
-                                   [f"silent:node={node},after_s={at:.1f},for_s={silent_s:g}"]))
+        rows.append(
+            with_sim_fault(
+                work,
+                f"bus silence of {node}",
+                plan_path,
+                scale,
+                [f"silent:node={node},after_s={at:.1f},for_s={silent_s:g}"],
+            )
+        )
     rows.append(flood(work, plan_path, scale, flood_count))
     node = rng.choice(["vehicle", "left_arm", "right_arm"])
     at = rng.uniform(0.2, 0.7) * span
-    rows.append(with_sim_fault(work, f"e-stop of {node}", plan_path, scale,
-                               [f"estop:node={node},after_s={at:.1f}"]))
+    rows.append(
+        with_sim_fault(
+            work, f"e-stop of {node}", plan_path, scale, [f"estop:node={node},after_s={at:.1f}"]
+        )
+    )
     for arm in ("left_arm", "right_arm"):
         k = rng.randint(1, 4)
-        rows.append(with_sim_fault(work, f"joint fault of {arm}", plan_path, scale,
-                                   [f"joint_fault:node={arm},joint={rng.randint(1, 4)},pick={k}"]))
+        rows.append(
+            with_sim_fault(
+                work,
+                f"joint fault of {arm}",
+                plan_path,
+                scale,
+                [f"joint_fault:node={arm},joint={rng.randint(1, 4)},pick={k}"],
+            )
+        )
     return rows, fruits
 
 
 def table(rows, fruits):
-    lines = ["| fault | harvest-exec runs, how each ended | picked | lost | twice | stray | "
-             "fault to e-stop frame, max (ms) | nodes' longest wait for a lost executor (s) |",
-             "|---|---|---|---|---|---|---|---|"]
+    lines = [
+        "| fault | harvest-exec runs, how each ended | picked | lost | twice | stray | "
+        "fault to e-stop frame, max (ms) | nodes' longest wait for a lost executor (s) |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
     results = []
     for row in rows:
         c = row.count(fruits)
         lat, sil = row.safe_latencies()
         ends = " -> ".join(end for _, end in row.runs)
-        cells = [row.name, f"{len(row.runs)}: {ends}", f"{c['picked']}/{len(fruits)}",
-                 str(c["lost"]), str(c["twice"]), str(c["stray"]),
-                 f"{1000 * max(lat):.1f}" if lat else "-", f"{max(sil):.3f}" if sil else "-"]
+        cells = [
+            row.name,
+            f"{len(row.runs)}: {ends}",
+            f"{c['picked']}/{len(fruits)}",
+            str(c["lost"]),
+            str(c["twice"]),
+            str(c["stray"]),
+            f"{1000 * max(lat):.1f}" if lat else "-",
+            f"{max(sil):.3f}" if sil else "-",
+        ]
         lines.append("| " + " | ".join(cells) + " |")
-        results.append({"fault": row.name, "runs": row.runs, "notes": row.notes,
-                        "safe_latency_s": lat, "comm_silence_s": sil, **c})
+        results.append(
+            {
+                "fault": row.name,
+                "runs": row.runs,
+                "notes": row.notes,
+                "safe_latency_s": lat,
+                "comm_silence_s": sil,
+                **c,
+            }
+        )
     return "\n".join(lines), results
 
 
@@ -376,8 +431,9 @@ def update_doc(doc, text):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(
+        description=__doc__.split("\n\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     ap.add_argument("--plan", required=True, help="the plan of the row (harvest-plan)")
     ap.add_argument("--kills", type=int, default=20, help="kill -9 moments (20)")
     ap.add_argument("--seed", type=int, default=43, help="seed of the moments (43)")
@@ -395,8 +451,7 @@ def main(argv=None):
         return 77
     work = a.work or os.path.join(H.BUILD, "faults")
     os.makedirs(work, exist_ok=True)
-    rows, fruits = campaign(os.path.abspath(a.plan), work, a.kills, a.seed, a.time_scale,
-                            a.flood)
+    rows, fruits = campaign(os.path.abspath(a.plan), work, a.kills, a.seed, a.time_scale, a.flood)
     text, results = table(rows, fruits)
     print(text)
     for r in results:
@@ -404,18 +459,33 @@ def main(argv=None):
             print(f"  {r['fault']}: {n}")
     if a.json:
         with open(a.json, "w") as f:
-            json.dump({"plan": a.plan, "seed": a.seed, "kills": a.kills, "time_scale": a.time_scale,
-                       "fruits": len(fruits), "rows": results}, f, indent=1)
+            json.dump(
+                {
+                    "plan": a.plan,
+                    "seed": a.seed,
+                    "kills": a.kills,
+                    "time_scale": a.time_scale,
+                    "fruits": len(fruits),
+                    "rows": results,
+                },
+                f,
+                indent=1,
+            )
     if a.doc:
         with open(a.plan) as f:
             t = json.load(f)["totals"]
-        about = (f"The paper-default row ({len(fruits)} fruits, planned makespan "
-                 f"{t['makespan_s']:.0f} s), time scale {a.time_scale:g}, seed {a.seed}, "
-                 f"{a.kills} kill moments, a flood of {a.flood} frames; heartbeat timeouts "
-                 f"{H.HEARTBEAT_TIMEOUT_S:g} s both ways.")
+        about = (
+            f"The paper-default row ({len(fruits)} fruits, planned makespan "
+            f"{t['makespan_s']:.0f} s), time scale {a.time_scale:g}, seed {a.seed}, "
+            f"{a.kills} kill moments, a flood of {a.flood} frames; heartbeat timeouts "
+            f"{H.HEARTBEAT_TIMEOUT_S:g} s both ways."
+        )
         update_doc(a.doc, about + "\n\n" + text)
-    bad = [r for r in results if r["lost"] or r["twice"] or r["stray"]
-           or r["runs"][-1][1] != "row_done"]
+    bad = [
+        r
+        for r in results
+        if r["lost"] or r["twice"] or r["stray"] or r["runs"][-1][1] != "row_done"
+    ]
     return 1 if bad else 0
 
 

@@ -2,6 +2,7 @@
 row; docs/RELIABILITY.md): a small row under every kind of fault, judged from the
 simulator's record: no fruit lost, none cut twice, no cut beside a fruit, every row done
 in the end, each stop in the safe state within its timeout and resumed as documented."""
+
 import os
 import sys
 
@@ -26,8 +27,9 @@ def campaign(tmp_path_factory):
     work = tmp_path_factory.mktemp("faults")
     plan = work / "plan.json"
     H.make_plan(plan, stops=3, per_arm=2, seed=21)
-    rows, fruits = C.campaign(str(plan), str(work), n_kills=3, seed=7, scale=SCALE,
-                              flood_count=20000)
+    rows, fruits = C.campaign(
+        str(plan), str(work), n_kills=3, seed=7, scale=SCALE, flood_count=20000
+    )
     _, results = C.table(rows, fruits)
     return {r["fault"]: r for r in results}, len(fruits)
 

@@ -184,9 +184,9 @@ static void torn_header_starts_a_new_journal(void **state)
 static char damaged(char c, int kind)
 {
     switch (kind) {
-    case 0: return (char)(c ^ 0x01);  /* one bit */
-    case 1: return (char)(c ^ 0x20);  /* letter case */
-    case 2: return (char)(c ^ 0x80);  /* high bit */
+    case 0: return (char)(c ^ 0x01); /* one bit */
+    case 1: return (char)(c ^ 0x20); /* letter case */
+    case 2: return (char)(c ^ 0x80); /* high bit */
     case 3: return c == ' ' ? '0' : ' ';
     case 4: return c == '0' ? '1' : '0';
     case 5: return c == 'x' ? 'y' : 'x';

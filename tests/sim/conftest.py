@@ -8,6 +8,7 @@ or in a thread with HV_SIM_INPROC=1).
 The udp_multicast and socketcan runs only happen inside a private network namespace or the
 QEMU guest (test_sim_netns.py, test_sim_guest.py); they set HV_SIM_BUS themselves.
 """
+
 import itertools
 import os
 import signal
@@ -43,7 +44,7 @@ class Client:
 
     def __init__(self, bus, proto):
         self.bus, self.proto = bus, proto
-        self.frames = []          # (wall s, name, signals), in arrival order
+        self.frames = []  # (wall s, name, signals), in arrival order
         self._cond = threading.Condition()
         self._stop = threading.Event()
         self._hb = None
@@ -90,8 +91,10 @@ class Client:
                 left = deadline - time.monotonic()
                 if left <= 0:
                     last = [s for _, n, s in self.frames if n == name][-1:]
-                    raise AssertionError(f"no {name} frame matched within {timeout or WAIT_S} s "
-                                         f"wall; last {name}: {last}")
+                    raise AssertionError(
+                        f"no {name} frame matched within {timeout or WAIT_S} s "
+                        f"wall; last {name}: {last}"
+                    )
                 self._cond.wait(left)
 
     def all(self, name, since=0, until=None):
@@ -106,10 +109,16 @@ class Client:
             counter = 0
             while True:
                 counter = (counter + 1) % 256
-                self.send("ExecutorHeartbeat", Counter=counter, Health=0, TimeScale=scale,
-                          ProtocolVersion=protocol.PROTOCOL_VERSION)
+                self.send(
+                    "ExecutorHeartbeat",
+                    Counter=counter,
+                    Health=0,
+                    TimeScale=scale,
+                    ProtocolVersion=protocol.PROTOCOL_VERSION,
+                )
                 if stop.wait(period_s):
                     break
+
         self._hb = (stop, threading.Thread(target=loop, daemon=True))
         self._hb[1].start()
 
@@ -151,8 +160,11 @@ class SimHandle:
     def events(self, event=None, node=None):
         """Record lines written so far (the record is flushed line by line)."""
         out = sim_record.read(self.record_path)
-        return [e for e in out if (event is None or e["event"] == event)
-                and (node is None or e["node"] == node)]
+        return [
+            e
+            for e in out
+            if (event is None or e["event"] == event) and (node is None or e["node"] == node)
+        ]
 
 
 def _bus_args():
@@ -163,8 +175,10 @@ def _bus_args():
         # (socket.if_nameindex asks the kernel about this namespace; /sys/class/net, which
         # netns.in_private_netns reads, still shows the host's sysfs after unshare)
         if [name for _, name in socket.if_nameindex()] != ["lo"]:
-            pytest.skip("SKIPPED: udp_multicast runs only inside a private network namespace "
-                        "(test_sim_netns.py starts one)")
+            pytest.skip(
+                "SKIPPED: udp_multicast runs only inside a private network namespace "
+                "(test_sim_netns.py starts one)"
+            )
         return ["--bus", f"udp:239.74.163.2:{next(_ports)}"]
     if BUS == "socketcan":
         return ["--bus", f"socketcan:{os.environ.get('HV_SIM_CHANNEL', 'vcan0')}"]
@@ -191,14 +205,24 @@ def sim(tmp_path, proto):
     def start(*flags, scale=SCALE, rate=RATE):
         bus_args = _bus_args()
         record = str(tmp_path / f"record{len(started)}.jsonl")
-        argv = bus_args + ["--time-scale", f"{scale:g}", "--rate", f"{rate:g}",
-                           "--record", record, "--exec-timeout", "0", *flags]
+        argv = bus_args + [
+            "--time-scale",
+            f"{scale:g}",
+            "--rate",
+            f"{rate:g}",
+            "--record",
+            record,
+            "--exec-timeout",
+            "0",
+            *flags,
+        ]
         client_bus = _open_client_bus(bus_args)
         if INPROC:
             ev = threading.Event()
             result = {}
-            th = threading.Thread(target=lambda: result.setdefault("rc", sim_cli.main(argv, ev)),
-                                  daemon=True)
+            th = threading.Thread(
+                target=lambda: result.setdefault("rc", sim_cli.main(argv, ev)), daemon=True
+            )
             th.start()
 
             def stop():
@@ -208,14 +232,19 @@ def sim(tmp_path, proto):
                 assert result.get("rc") == 0, f"simulator exited with {result.get('rc')}"
         else:
             env = dict(os.environ, PYTHONDONTWRITEBYTECODE="1")
-            proc = subprocess.Popen([sys.executable, "-m", "harvest", "sim", *argv], env=env,
-                                    stderr=subprocess.PIPE, text=True)
+            proc = subprocess.Popen(
+                [sys.executable, "-m", "harvest", "sim", *argv],
+                env=env,
+                stderr=subprocess.PIPE,
+                text=True,
+            )
 
             def stop():
                 if proc.poll() is None:
                     proc.send_signal(signal.SIGTERM)
                 _, err = proc.communicate(timeout=60)
                 assert proc.returncode == 0, f"simulator exited with {proc.returncode}: {err}"
+
         client = Client(client_bus, proto)
         handle = SimHandle(record, stop, scale)
         started.append((handle, client, client_bus))

@@ -2,6 +2,7 @@
 (python-can's bus raises "could not unpack received message" for each): every one is
 counted and dropped with a record line, the simulator keeps running, and a session after
 them completes. Inside a private network namespace of its own (multicast on lo only)."""
+
 import os
 import signal
 import socket
@@ -33,24 +34,23 @@ def private_netns():
 def _frame(**fields):
     """A datagram as python-can packs it, of a message it would not let through on receive
     (can.Message checks nothing here, the receiving bus checks everything)."""
-    fields = dict({"arbitration_id": 0x62, "data": b"\x01\x05", "is_extended_id": False},
-                  **fields)
+    fields = dict({"arbitration_id": 0x62, "data": b"\x01\x05", "is_extended_id": False}, **fields)
     return pack_message(can.Message(**fields))
 
 
 GARBAGE = [
-    b"",                                    # empty
-    b"\xc1",                                # a byte msgpack never uses
+    b"",  # empty
+    b"\xc1",  # a byte msgpack never uses
     b"not msgpack at all",
-    _frame()[:-4],                          # truncated
-    _frame() + b"\x00",                     # trailing byte
-    msgpack.packb([1, 2, 3]),               # not a map
+    _frame()[:-4],  # truncated
+    _frame() + b"\x00",  # trailing byte
+    msgpack.packb([1, 2, 3]),  # not a map
     msgpack.packb({"arbitration_id": 0x62, "colour": "red"}),  # a key can.Message lacks
-    msgpack.packb({"arbitration_id": 0x62, "data": "text"}),   # data as a string
-    _frame(dlc=3),                          # dlc disagrees with the data
-    _frame(arbitration_id=0x800),           # standard id too wide
+    msgpack.packb({"arbitration_id": 0x62, "data": "text"}),  # data as a string
+    _frame(dlc=3),  # dlc disagrees with the data
+    _frame(arbitration_id=0x800),  # standard id too wide
     _frame(is_remote_frame=True, is_error_frame=True, data=b""),
-    b"\xdf\xff\xff\xff\xff",                # a map claiming 2^32 entries
+    b"\xdf\xff\xff\xff\xff",  # a map claiming 2^32 entries
 ]
 
 
@@ -63,8 +63,9 @@ class Client:
 
     def send(self, name, **signals):
         m = self.proto.message(name)
-        self.bus.send(can.Message(arbitration_id=m.frame_id, data=m.encode(signals),
-                                  is_extended_id=False))
+        self.bus.send(
+            can.Message(arbitration_id=m.frame_id, data=m.encode(signals), is_extended_id=False)
+        )
 
     def wait_for(self, name, pred):
         want = self.proto.message(name).frame_id
@@ -87,10 +88,27 @@ def test_garbage_datagrams_counted_dropped_and_the_session_completes(tmp_path):
     proto = protocol.load()
     rec = tmp_path / "sim.jsonl"
     env = dict(os.environ, PYTHONDONTWRITEBYTECODE="1")
-    sim = subprocess.Popen([sys.executable, "-m", "harvest", "sim", "--bus",
-                            f"udp:{GROUP}:{PORT}", "--time-scale", "20", "--rate", "20",
-                            "--exec-timeout", "0", "--record", str(rec)],
-                           env=env, stderr=subprocess.PIPE, text=True)
+    sim = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "harvest",
+            "sim",
+            "--bus",
+            f"udp:{GROUP}:{PORT}",
+            "--time-scale",
+            "20",
+            "--rate",
+            "20",
+            "--exec-timeout",
+            "0",
+            "--record",
+            str(rec),
+        ],
+        env=env,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     client = Client(proto)
     try:
         client.wait_for("LeftArmHeartbeat", lambda s: True)
@@ -105,8 +123,10 @@ def test_garbage_datagrams_counted_dropped_and_the_session_completes(tmp_path):
         client.send("LeftArmCommand", Command=cmd("ENABLE"), CommandSeq=1)
         client.wait_for("LeftArmStatus", lambda s: s["CommandSeq"] == 1 and s["State"] == idle)
         client.send("LeftArmCommand", Command=cmd("HOME"), CommandSeq=2)
-        client.wait_for("LeftArmStatus", lambda s: s["CommandSeq"] == 2 and s["Homed"] == 1
-                        and s["State"] == idle)
+        client.wait_for(
+            "LeftArmStatus",
+            lambda s: s["CommandSeq"] == 2 and s["Homed"] == 1 and s["State"] == idle,
+        )
         assert sim.poll() is None, "the simulator stopped"
     finally:
         client.bus.shutdown()

@@ -5,6 +5,7 @@ network namespace (test_sim_netns.py) and vcan0 in the QEMU guest (test_sim_gues
 Motion times are checked in simulated time (the record's stamps), against the trapezoid
 formula computed here independently of the simulator; nothing asserts wall-clock speed.
 """
+
 import json
 import math
 import os
@@ -13,7 +14,7 @@ import pytest
 
 from harvest.sim.model import Model
 
-SCALE = float(os.environ.get("HV_SIM_SCALE", "20"))   # as in conftest.py
+SCALE = float(os.environ.get("HV_SIM_SCALE", "20"))  # as in conftest.py
 
 MODEL = Model.load()
 LIMITS = [(j.min, j.max, j.vmax, j.amax) for j in MODEL.joints]
@@ -22,9 +23,9 @@ ARMS = ("LeftArm", "RightArm")
 NODE_OF = {"Vehicle": "vehicle", "LeftArm": "left_arm", "RightArm": "right_arm"}
 ESTOP_BIT = {"Vehicle": 4, "LeftArm": 10, "RightArm": 10}
 REJECT_BIT = 11
-POS_TOL = 1.5e-4      # DBC position resolution 1e-4, plus rounding
-TIME_TOL = 1e-3       # s simulated; the record keeps microseconds
-START = [0.05, 0.6, 0.3, -1.0]   # an arm pose away from home, inside every joint range
+POS_TOL = 1.5e-4  # DBC position resolution 1e-4, plus rounding
+TIME_TOL = 1e-3  # s simulated; the record keeps microseconds
+START = [0.05, 0.6, 0.3, -1.0]  # an arm pose away from home, inside every joint range
 
 
 def trap(d, v, a):
@@ -55,8 +56,11 @@ class Exec:
     def command(self, prefix, label):
         seq = self.next_seq(prefix + "cmd")
         mark = self.c.mark()
-        self.c.send(f"{prefix}Command", Command=val(self.p, f"{prefix}Command", "Command", label),
-                    CommandSeq=seq)
+        self.c.send(
+            f"{prefix}Command",
+            Command=val(self.p, f"{prefix}Command", "Command", label),
+            CommandSeq=seq,
+        )
         return seq, mark
 
     def state(self, prefix, label):
@@ -66,8 +70,11 @@ class Exec:
         """Send a command, wait for its echo (and the state), return the status."""
         seq, mark = self.command(prefix, label)
         want = None if state is None else self.state(prefix, state)
-        return self.c.wait_for(f"{prefix}Status", lambda s: s["CommandSeq"] == seq and
-                               (want is None or s["State"] == want), since=mark)[1]
+        return self.c.wait_for(
+            f"{prefix}Status",
+            lambda s: s["CommandSeq"] == seq and (want is None or s["State"] == want),
+            since=mark,
+        )[1]
 
     def sync(self, prefix):
         """Everything sent to `prefix` before has been handled once a NONE is echoed."""
@@ -85,19 +92,29 @@ class Exec:
     def setpoint(self, prefix, q, strict=True):
         seq = self.next_seq(prefix + "sp", 32)
         mark = self.c.mark()
-        self.c.send(f"{prefix}Setpoint", strict=strict, SetpointSeq=seq,
-                    **{f"Joint{j + 1}Position": q[j] for j in range(4)})
+        self.c.send(
+            f"{prefix}Setpoint",
+            strict=strict,
+            SetpointSeq=seq,
+            **{f"Joint{j + 1}Position": q[j] for j in range(4)},
+        )
         return seq, mark
 
     def reached(self, prefix, seq, since):
-        return self.c.wait_for(f"{prefix}Status", lambda s: s["SetpointSeq"] == seq and
-                               s["TargetReached"] == 1, since=since)
+        return self.c.wait_for(
+            f"{prefix}Status",
+            lambda s: s["SetpointSeq"] == seq and s["TargetReached"] == 1,
+            since=since,
+        )
 
     def ee(self, prefix, label):
         seq = self.next_seq(prefix + "ee")
         mark = self.c.mark()
-        self.c.send(f"{prefix}EeCommand", Action=val(self.p, f"{prefix}EeCommand", "Action", label),
-                    EeSeq=seq)
+        self.c.send(
+            f"{prefix}EeCommand",
+            Action=val(self.p, f"{prefix}EeCommand", "Action", label),
+            EeSeq=seq,
+        )
         return seq, mark
 
     def ee_state(self, prefix, label):
@@ -117,6 +134,7 @@ def one(events, **match):
 
 # -- heartbeats and commands ---------------------------------------------------------------
 
+
 def test_every_node_sends_heartbeats_with_the_time_scale(sim, proto):
     h, c = sim()
     for prefix in ("Vehicle", "LeftArm", "RightArm"):
@@ -134,26 +152,35 @@ def test_command_state_machine(sim, ex, prefix):
     e = ex(c)
     st = e.sync(prefix)
     assert st["State"] == e.state(prefix, "DISABLED")
-    e.refused(prefix, "HOME")                        # not enabled
+    e.refused(prefix, "HOME")  # not enabled
     e.accepted(prefix, "ENABLE", "IDLE")
     e.accepted(prefix, "DISABLE", "DISABLED")
     e.accepted(prefix, "ENABLE", "IDLE")
     st = e.accepted(prefix, "ESTOP", "ESTOP")
     assert st["FaultBits"] & (1 << ESTOP_BIT[prefix])
-    e.refused(prefix, "ENABLE")                      # latched until CLEAR_ESTOP
-    e.refused(prefix, "CLEAR_FAULT")                 # which a fault clear never is
+    e.refused(prefix, "ENABLE")  # latched until CLEAR_ESTOP
+    e.refused(prefix, "CLEAR_FAULT")  # which a fault clear never is
     st = e.accepted(prefix, "CLEAR_ESTOP", "DISABLED")
     assert st["FaultBits"] == 0
     e.accepted(prefix, "ENABLE", "IDLE")
     events = h.stop()
     cmds = [x for x in events if x["event"] == "command" and x["node"] == NODE_OF[prefix]]
     labels = [(x["command"], x["accepted"]) for x in cmds if x["command"] != "NONE"]
-    assert labels == [("HOME", False), ("ENABLE", True), ("DISABLE", True), ("ENABLE", True),
-                      ("ESTOP", True), ("ENABLE", False), ("CLEAR_FAULT", False),
-                      ("CLEAR_ESTOP", True), ("ENABLE", True)]
+    assert labels == [
+        ("HOME", False),
+        ("ENABLE", True),
+        ("DISABLE", True),
+        ("ENABLE", True),
+        ("ESTOP", True),
+        ("ENABLE", False),
+        ("CLEAR_FAULT", False),
+        ("CLEAR_ESTOP", True),
+        ("ENABLE", True),
+    ]
 
 
 # -- arm motion ---------------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("prefix", ARMS)
 def test_home_moves_every_joint_on_its_trapezoid(sim, ex, prefix):
@@ -162,9 +189,13 @@ def test_home_moves_every_joint_on_its_trapezoid(sim, ex, prefix):
     e.accepted(prefix, "ENABLE", "IDLE")
     st = e.accepted(prefix, "HOME")
     assert st["State"] == e.state(prefix, "HOMING") and st["Homed"] == 0
-    c.wait_for(f"{prefix}Status", lambda s: s["Homed"] == 1 and s["State"] == e.state(prefix, "IDLE"))
-    _, js = c.wait_for(f"{prefix}JointState",
-                       lambda s: all(abs(s[f"Joint{j + 1}Position"] - HOME[j]) < POS_TOL for j in range(4)))
+    c.wait_for(
+        f"{prefix}Status", lambda s: s["Homed"] == 1 and s["State"] == e.state(prefix, "IDLE")
+    )
+    _, js = c.wait_for(
+        f"{prefix}JointState",
+        lambda s: all(abs(s[f"Joint{j + 1}Position"] - HOME[j]) < POS_TOL for j in range(4)),
+    )
     homed = one(h.events("homed", NODE_OF[prefix]))
     assert homed["elapsed"] == pytest.approx(move_time(START, HOME), abs=TIME_TOL)
 
@@ -189,14 +220,18 @@ def test_setpoint_reaches_target_on_the_trapezoid(sim, ex, prefix):
         assert all(sign * (b - a) >= -POS_TOL for a, b in zip(qs, qs[1:]))
     # joints 3 and 4 travel 0.8 and 1.0 rad > v^2/a = 0.2 rad: they cruise at vmax for 3-4 s
     for j in (3, 4):
-        assert max(abs(v[f"Joint{j}Velocity"]) for v in vel) == pytest.approx(LIMITS[j - 1][2], abs=2e-3)
+        assert max(abs(v[f"Joint{j}Velocity"]) for v in vel) == pytest.approx(
+            LIMITS[j - 1][2], abs=2e-3
+        )
     _, last = c.wait_for(f"{prefix}JointState", since=end)
     for j in range(4):
         assert last[f"Joint{j + 1}Position"] == pytest.approx(target[j], abs=POS_TOL)
     node = NODE_OF[prefix]
     sp = one(h.events("setpoint", node), seq=seq)
     for j in range(4):
-        assert sp["durations"][j] == pytest.approx(trap(target[j] - HOME[j], *LIMITS[j][2:]), abs=TIME_TOL)
+        assert sp["durations"][j] == pytest.approx(
+            trap(target[j] - HOME[j], *LIMITS[j][2:]), abs=TIME_TOL
+        )
     done = one(h.events("target_reached", node), seq=seq)
     assert done["elapsed"] == pytest.approx(move_time(HOME, target), abs=TIME_TOL)
     assert done["t"] - sp["t"] == pytest.approx(move_time(HOME, target), abs=TIME_TOL)
@@ -207,12 +242,17 @@ def test_new_setpoint_replaces_the_running_one(sim, ex):
     e = ex(c)
     e.accepted("LeftArm", "ENABLE", "IDLE")
     seq1, mark = e.setpoint("LeftArm", [0.45, 1.0, 0.5, 2.0])
-    c.wait_for("LeftArmStatus", lambda s: s["SetpointSeq"] == seq1 and
-               s["State"] == e.state("LeftArm", "MOVING"), since=mark)
+    c.wait_for(
+        "LeftArmStatus",
+        lambda s: s["SetpointSeq"] == seq1 and s["State"] == e.state("LeftArm", "MOVING"),
+        since=mark,
+    )
     c.wait_for("LeftArmJointState", lambda s: s["Joint2Position"] > 0.05, since=mark)
     seq2, mark2 = e.setpoint("LeftArm", HOME)
     end, _ = e.reached("LeftArm", seq2, mark2)
-    assert not any(s["TargetReached"] and s["SetpointSeq"] == seq1 for s in c.all("LeftArmStatus", mark))
+    assert not any(
+        s["TargetReached"] and s["SetpointSeq"] == seq1 for s in c.all("LeftArmStatus", mark)
+    )
     _, last = c.wait_for("LeftArmJointState", since=end)
     assert last["Joint2Position"] == pytest.approx(HOME[1], abs=POS_TOL)
     vel = c.all("LeftArmJointVelocity", mark, end)
@@ -251,20 +291,30 @@ def test_setpoint_refused_while_disabled(sim, ex):
 
 # -- end effector ------------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("prefix", ARMS)
 def test_cut_and_release_take_their_configured_time(sim, ex, prefix):
     h, c = sim("--cut-time", "2.0", "--release-time", "0.8")
     e = ex(c)
     e.accepted(prefix, "ENABLE", "IDLE")
     seq, mark = e.ee(prefix, "CUT")
-    c.wait_for(f"{prefix}EeStatus", lambda s: s["EeSeq"] == seq and
-               s["State"] == e.ee_state(prefix, "BUSY"), since=mark)
-    _, st = c.wait_for(f"{prefix}EeStatus", lambda s: s["EeSeq"] == seq and
-                       s["State"] == e.ee_state(prefix, "DONE"), since=mark)
+    c.wait_for(
+        f"{prefix}EeStatus",
+        lambda s: s["EeSeq"] == seq and s["State"] == e.ee_state(prefix, "BUSY"),
+        since=mark,
+    )
+    _, st = c.wait_for(
+        f"{prefix}EeStatus",
+        lambda s: s["EeSeq"] == seq and s["State"] == e.ee_state(prefix, "DONE"),
+        since=mark,
+    )
     assert st["FruitHeld"] == 1
     seq2, mark = e.ee(prefix, "RELEASE")
-    _, st = c.wait_for(f"{prefix}EeStatus", lambda s: s["EeSeq"] == seq2 and
-                       s["State"] == e.ee_state(prefix, "DONE"), since=mark)
+    _, st = c.wait_for(
+        f"{prefix}EeStatus",
+        lambda s: s["EeSeq"] == seq2 and s["State"] == e.ee_state(prefix, "DONE"),
+        since=mark,
+    )
     assert st["FruitHeld"] == 0
     node = NODE_OF[prefix]
     cut = one(h.events("ee", node), seq=seq)
@@ -285,12 +335,16 @@ def test_cut_fails_while_the_arm_moves(sim, ex):
     sp, mark = e.setpoint("LeftArm", [0.45, 1.0, 0.5, 2.0])
     c.wait_for("LeftArmStatus", lambda s: s["State"] == e.state("LeftArm", "MOVING"), since=mark)
     seq, mark = e.ee("LeftArm", "CUT")
-    c.wait_for("LeftArmEeStatus", lambda s: s["EeSeq"] == seq and
-               s["State"] == e.ee_state("LeftArm", "FAILED"), since=mark)
+    c.wait_for(
+        "LeftArmEeStatus",
+        lambda s: s["EeSeq"] == seq and s["State"] == e.ee_state("LeftArm", "FAILED"),
+        since=mark,
+    )
     assert not h.events("pick")
 
 
 # -- vehicle -------------------------------------------------------------------------------------
+
 
 def test_vehicle_moves_at_its_speed_and_arrives(sim, ex):
     h, c = sim()
@@ -300,8 +354,9 @@ def test_vehicle_moves_at_its_speed_and_arrives(sim, ex):
         seq = e.next_seq("move")
         mark = c.mark()
         c.send("VehicleMove", TargetPosition=target, MaxSpeed=max_speed, MoveSeq=seq)
-        end, st = c.wait_for("VehicleStatus", lambda s: s["MoveSeq"] == seq and s["Arrived"] == 1,
-                             since=mark)
+        end, st = c.wait_for(
+            "VehicleStatus", lambda s: s["MoveSeq"] == seq and s["Arrived"] == 1, since=mark
+        )
         assert st["Position"] == pytest.approx(target, abs=POS_TOL)
         assert st["State"] == e.state("Vehicle", "IDLE")
         speed = max_speed or MODEL.vehicle_speed
@@ -310,7 +365,8 @@ def test_vehicle_moves_at_its_speed_and_arrives(sim, ex):
         arrived = one(h.events("arrived", "vehicle"), seq=seq)
         start = one(h.events("move", "vehicle"), seq=seq)["start"]
         assert arrived["elapsed"] == pytest.approx(
-            trap(target - start, speed, MODEL.vehicle_accel), abs=TIME_TOL)
+            trap(target - start, speed, MODEL.vehicle_accel), abs=TIME_TOL
+        )
     # homing drives back to the row start
     e.accepted("Vehicle", "HOME")
     _, st = c.wait_for("VehicleStatus", lambda s: s["Homed"] == 1)
@@ -329,6 +385,7 @@ def test_vehicle_move_outside_travel_is_refused(sim, ex):
 
 # -- e-stop -------------------------------------------------------------------------------------
 
+
 def test_estop_frame_stops_every_node_until_clear_estop(sim, ex):
     h, c = sim()
     e = ex(c)
@@ -338,39 +395,44 @@ def test_estop_frame_stops_every_node_until_clear_estop(sim, ex):
     sp, mark = e.setpoint("LeftArm", [0.45, 1.0, 0.5, 2.0])
     c.wait_for("VehicleStatus", lambda s: s["Velocity"] > 0.05)
     c.wait_for("LeftArmJointVelocity", lambda s: abs(s["Joint2Velocity"]) > 0.05, since=mark)
-    c.send("Estop", EstopActive=0, Counter=1)        # carries no meaning
+    c.send("Estop", EstopActive=0, Counter=1)  # carries no meaning
     mark = c.mark()
     c.send("Estop", EstopActive=1, Counter=2)
     for prefix in ("Vehicle", "LeftArm", "RightArm"):
-        _, st = c.wait_for(f"{prefix}Status", lambda s: s["State"] == e.state(prefix, "ESTOP"),
-                           since=mark)
+        _, st = c.wait_for(
+            f"{prefix}Status", lambda s: s["State"] == e.state(prefix, "ESTOP"), since=mark
+        )
         assert st["FaultBits"] & (1 << ESTOP_BIT[prefix])
         _, hb = c.wait_for(f"{prefix}Heartbeat", since=c.mark())
         assert hb["Health"] == val(e.p, f"{prefix}Heartbeat", "Health", "ESTOP")
     # the drives brake to a standstill short of their targets
     _, v = c.wait_for("VehicleStatus", lambda s: s["Velocity"] == 0, since=mark)
     assert 0.0 < v["Position"] < 1.0 - POS_TOL
-    _, jv = c.wait_for("LeftArmJointVelocity",
-                       lambda s: all(s[f"Joint{j}Velocity"] == 0 for j in range(1, 5)), since=mark)
+    _, jv = c.wait_for(
+        "LeftArmJointVelocity",
+        lambda s: all(s[f"Joint{j}Velocity"] == 0 for j in range(1, 5)),
+        since=mark,
+    )
     assert not any(s["TargetReached"] and s["SetpointSeq"] == sp for s in c.all("LeftArmStatus"))
     for prefix in ("Vehicle", "LeftArm", "RightArm"):
         e.refused(prefix, "ENABLE")
         e.refused(prefix, "CLEAR_FAULT")
         st = e.accepted(prefix, "CLEAR_ESTOP", "DISABLED")
         assert st["FaultBits"] == 0
-    assert len(h.events("estop_frame")) == 6   # two frames, each delivered to three nodes
+    assert len(h.events("estop_frame")) == 6  # two frames, each delivered to three nodes
 
 
 def test_fault_estop_latches_one_node_until_clear_estop(sim, ex):
     h, c = sim("--fault", "estop:node=left_arm,after_s=1")
     e = ex(c)
     mark = c.mark()
-    _, st = c.wait_for("LeftArmStatus", lambda s: s["State"] == e.state("LeftArm", "ESTOP"),
-                       since=mark)
+    _, st = c.wait_for(
+        "LeftArmStatus", lambda s: s["State"] == e.state("LeftArm", "ESTOP"), since=mark
+    )
     assert st["FaultBits"] == 1 << ESTOP_BIT["LeftArm"]
     _, hb = c.wait_for("LeftArmHeartbeat", since=c.mark())
     assert hb["Health"] == val(e.p, "LeftArmHeartbeat", "Health", "ESTOP")
-    for prefix in ("Vehicle", "RightArm"):     # the others' own e-stops did not trip
+    for prefix in ("Vehicle", "RightArm"):  # the others' own e-stops did not trip
         assert e.sync(prefix)["State"] == e.state(prefix, "DISABLED")
     e.refused("LeftArm", "CLEAR_FAULT")
     e.accepted("LeftArm", "CLEAR_ESTOP", "DISABLED")
@@ -380,6 +442,7 @@ def test_fault_estop_latches_one_node_until_clear_estop(sim, ex):
 
 
 # -- fault injection: each one visible on the bus -------------------------------------------------
+
 
 def test_fault_drop_tx_leaves_gaps_in_one_node_only(sim):
     h, c = sim("--fault", "drop:fraction=0.5,node=left_arm", "--seed", "3")
@@ -440,7 +503,7 @@ def test_fault_stall_never_reaches_the_target(sim, ex):
     h, c = sim("--fault", "stall:node=left_arm,joint=2,fraction=0.5")
     e = ex(c)
     e.accepted("LeftArm", "ENABLE", "IDLE")
-    target = [0.3, 1.0, 1.4, 0.0]    # joint 2 travels 1 rad: 6 s planned
+    target = [0.3, 1.0, 1.4, 0.0]  # joint 2 travels 1 rad: 6 s planned
     seq, mark = e.setpoint("LeftArm", target)
     planned = move_time(HOME, target)
     # wait twice the planned time, counted in 0.1 s heartbeats of the other arm
@@ -458,20 +521,33 @@ def test_fault_stall_never_reaches_the_target(sim, ex):
 
 
 def test_fault_joint_fault_at_the_kth_pick(sim, ex):
-    h, c = sim("--fault", "joint_fault:node=right_arm,joint=3,pick=2", "--cut-time", "0.5",
-               "--release-time", "0.5")
+    h, c = sim(
+        "--fault",
+        "joint_fault:node=right_arm,joint=3,pick=2",
+        "--cut-time",
+        "0.5",
+        "--release-time",
+        "0.5",
+    )
     e = ex(c)
     e.accepted("RightArm", "ENABLE", "IDLE")
     for label in ("CUT", "RELEASE"):
         seq, mark = e.ee("RightArm", label)
-        c.wait_for("RightArmEeStatus", lambda s: s["EeSeq"] == seq and
-                   s["State"] == e.ee_state("RightArm", "DONE"), since=mark)
+        c.wait_for(
+            "RightArmEeStatus",
+            lambda s: s["EeSeq"] == seq and s["State"] == e.ee_state("RightArm", "DONE"),
+            since=mark,
+        )
     seq, mark = e.ee("RightArm", "CUT")
-    fi, st = c.wait_for("RightArmStatus", lambda s: s["State"] == e.state("RightArm", "FAULT"),
-                        since=mark)
-    assert st["FaultBits"] == 1 << (4 + 2)   # following error of joint 3
-    c.wait_for("RightArmEeStatus", lambda s: s["EeSeq"] == seq and
-               s["State"] == e.ee_state("RightArm", "FAILED"), since=mark)
+    fi, st = c.wait_for(
+        "RightArmStatus", lambda s: s["State"] == e.state("RightArm", "FAULT"), since=mark
+    )
+    assert st["FaultBits"] == 1 << (4 + 2)  # following error of joint 3
+    c.wait_for(
+        "RightArmEeStatus",
+        lambda s: s["EeSeq"] == seq and s["State"] == e.ee_state("RightArm", "FAILED"),
+        since=mark,
+    )
     _, hb = c.wait_for("RightArmHeartbeat", since=fi)
     assert hb["Health"] == val(e.p, "RightArmHeartbeat", "Health", "FAULT")
     assert [p["pick"] for p in h.events("pick", "right_arm")] == [1]
@@ -485,8 +561,9 @@ def test_fault_joint_fault_during_a_setpoint(sim, ex):
     e.accepted("LeftArm", "ENABLE", "IDLE")
     target = [0.45, 0.0, 1.4, 0.0]
     seq, mark = e.setpoint("LeftArm", target)
-    fi, st = c.wait_for("LeftArmStatus", lambda s: s["State"] == e.state("LeftArm", "FAULT"),
-                        since=mark)
+    fi, st = c.wait_for(
+        "LeftArmStatus", lambda s: s["State"] == e.state("LeftArm", "FAULT"), since=mark
+    )
     assert st["FaultBits"] == 1 << 0 and st["TargetReached"] == 0
     i, _ = c.wait_for("LeftArmJointVelocity", lambda s: s["Joint1Velocity"] == 0, since=fi)
     _, js = c.wait_for("LeftArmJointState", since=i)
@@ -497,8 +574,12 @@ def test_fault_joint_fault_during_a_setpoint(sim, ex):
 
 
 def test_fault_silent_node_stops_sending(sim):
-    h, c = sim("--fault", "silent:after_s=1,node=vehicle",
-               "--fault", "silent:after_s=1,node=left_arm,frames=heartbeat")
+    h, c = sim(
+        "--fault",
+        "silent:after_s=1,node=vehicle",
+        "--fault",
+        "silent:after_s=1,node=left_arm,frames=heartbeat",
+    )
     # 3 s simulated later (30 right-arm heartbeats) nothing more came from the vehicle
     i = 0
     for _ in range(40):
@@ -506,12 +587,14 @@ def test_fault_silent_node_stops_sending(sim):
     names = [n for _, n, _ in c.frames]
     last_vehicle = max(k for k, n in enumerate(names) if n.startswith("Vehicle"))
     last_left_hb = max(k for k, n in enumerate(names) if n == "LeftArmHeartbeat")
-    after = names[last_vehicle + 1:]
+    after = names[last_vehicle + 1 :]
     assert after.count("RightArmHeartbeat") >= 20
     # the left arm lost only its heartbeat: its status keeps coming
-    assert names[last_left_hb + 1:].count("LeftArmStatus") >= 20
+    assert names[last_left_hb + 1 :].count("LeftArmStatus") >= 20
     assert {(x["node"], x["frames"]) for x in h.events("fault_injected")} == {
-        ("vehicle", "all"), ("left_arm", "heartbeat")}
+        ("vehicle", "all"),
+        ("left_arm", "heartbeat"),
+    }
 
 
 def test_fault_silent_for_a_while_then_back(sim):
@@ -536,11 +619,16 @@ def test_fault_silent_just_after_a_pick(sim, ex):
     e = ex(c)
     e.accepted("LeftArm", "ENABLE", "IDLE")
     seq, mark = e.ee("LeftArm", "CUT")
-    c.wait_for("LeftArmEeStatus", lambda s: s["EeSeq"] == seq and
-               s["State"] == e.ee_state("LeftArm", "DONE"), since=mark)
+    c.wait_for(
+        "LeftArmEeStatus",
+        lambda s: s["EeSeq"] == seq and s["State"] == e.ee_state("LeftArm", "DONE"),
+        since=mark,
+    )
     # the cut's DONE was held back by the silence: its end is in the record before it
     pick = one(h.events("pick", "left_arm"))
-    assert one(h.events("fault_injected", "left_arm"))["t"] == pytest.approx(pick["t"], abs=TIME_TOL)
+    assert one(h.events("fault_injected", "left_arm"))["t"] == pytest.approx(
+        pick["t"], abs=TIME_TOL
+    )
     ended = one(h.events("fault_ended", "left_arm"))
     assert ended["t"] == pytest.approx(pick["t"] + 2, abs=TIME_TOL)
 
@@ -570,16 +658,18 @@ def test_lost_executor_heartbeat_faults_every_node(sim, ex):
     mark = c.mark()
     c.stop_heartbeat()
     for prefix, bit in (("Vehicle", 3), ("LeftArm", 9), ("RightArm", 9)):
-        _, st = c.wait_for(f"{prefix}Status", lambda s: s["State"] == e.state(prefix, "FAULT"),
-                           since=mark)
+        _, st = c.wait_for(
+            f"{prefix}Status", lambda s: s["State"] == e.state(prefix, "FAULT"), since=mark
+        )
         assert st["FaultBits"] & (1 << bit)
     assert {x["node"] for x in h.events("comm_timeout")} == {"vehicle", "left_arm", "right_arm"}
 
 
 def test_scenario_file_and_record_of_a_pick_cycle(sim, ex, tmp_path):
     scen = tmp_path / "faults.json"
-    scen.write_text(json.dumps({"seed": 5, "faults": [
-        {"type": "reject", "node": "right_arm", "setpoint": 1}]}))
+    scen.write_text(
+        json.dumps({"seed": 5, "faults": [{"type": "reject", "node": "right_arm", "setpoint": 1}]})
+    )
     h, c = sim("--scenario", str(scen), "--cut-time", "0.4", "--release-time", "0.2")
     e = ex(c)
     for prefix in ("Vehicle", "LeftArm", "RightArm"):
@@ -605,19 +695,25 @@ def test_scenario_file_and_record_of_a_pick_cycle(sim, ex, tmp_path):
     assert pick["node"] == "left_arm" and pick["vehicle_position"] == pytest.approx(0.2, abs=1e-9)
     assert pick["positions"] == pytest.approx(approach, abs=1e-9)
     kinds = [x["event"] for x in events if x["node"] == "left_arm"]
-    for a, b in (("setpoint", "target_reached"), ("target_reached", "ee"), ("ee", "pick"),
-                 ("pick", "release")):
+    for a, b in (
+        ("setpoint", "target_reached"),
+        ("target_reached", "ee"),
+        ("ee", "pick"),
+        ("pick", "release"),
+    ):
         assert kinds.index(a) < kinds.index(b)
     assert one(events, event="setpoint", node="right_arm")["accepted"] is False
 
 
 # -- input the simulator cannot take ---------------------------------------------------------
 
+
 def test_bad_frames_counted_and_dropped_then_a_session_completes(sim, ex, proto):
     """Frames with an id the DBC does not have, a wrong length, a value the DBC does not
     list, or no data (remote): each is counted and dropped with its reason in the record;
     the simulator keeps running and a session after them completes."""
     import can
+
     h, c = sim()
     e = ex(c)
     cmd = proto.message("LeftArmCommand")
@@ -625,17 +721,26 @@ def test_bad_frames_counted_and_dropped_then_a_session_completes(sim, ex, proto)
     unlisted = max(proto.choices("LeftArmCommand", "Command")) + 1
     good = cmd.encode({"Command": enable, "CommandSeq": 200})
     bad = {
-        "unknown_id": [can.Message(arbitration_id=0x7F0, data=b"\x01", is_extended_id=False),
-                       can.Message(arbitration_id=cmd.frame_id, data=good, is_extended_id=True)],
-        "wrong_length": [can.Message(arbitration_id=cmd.frame_id, data=good[:1],
-                                     is_extended_id=False),
-                         can.Message(arbitration_id=cmd.frame_id, data=good + b"\x00",
-                                     is_extended_id=False)],
-        "bad_value": [can.Message(arbitration_id=cmd.frame_id, is_extended_id=False,
-                                  data=cmd.encode({"Command": unlisted, "CommandSeq": 201},
-                                                  strict=False))],
-        "not_data_frame": [can.Message(arbitration_id=cmd.frame_id, is_remote_frame=True,
-                                       dlc=2, is_extended_id=False)],
+        "unknown_id": [
+            can.Message(arbitration_id=0x7F0, data=b"\x01", is_extended_id=False),
+            can.Message(arbitration_id=cmd.frame_id, data=good, is_extended_id=True),
+        ],
+        "wrong_length": [
+            can.Message(arbitration_id=cmd.frame_id, data=good[:1], is_extended_id=False),
+            can.Message(arbitration_id=cmd.frame_id, data=good + b"\x00", is_extended_id=False),
+        ],
+        "bad_value": [
+            can.Message(
+                arbitration_id=cmd.frame_id,
+                is_extended_id=False,
+                data=cmd.encode({"Command": unlisted, "CommandSeq": 201}, strict=False),
+            )
+        ],
+        "not_data_frame": [
+            can.Message(
+                arbitration_id=cmd.frame_id, is_remote_frame=True, dlc=2, is_extended_id=False
+            )
+        ],
     }
     for msgs in bad.values():
         for m in msgs:

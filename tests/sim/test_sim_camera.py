@@ -1,5 +1,6 @@
 """The simulated camera of online mode (harvest.sim.camera) without a network: what it would
 publish is captured and decoded with the generated LCM types."""
+
 import pytest
 
 from harvest.scenario.fruit_map import Fruit
@@ -9,6 +10,7 @@ MODEL = Model.load()
 
 try:
     from harvest.telemetry import lcm_types
+
     TYPES = lcm_types.load()
     from harvest.sim.camera import Camera
 except Exception as e:  # the generated types live in the build tree
@@ -26,15 +28,25 @@ class Capture:
 
 def camera(fruits, bad=0):
     log = []
-    cam = Camera(fruits, MODEL.camera_lead, MODEL.camera_window, 5.0, "memq://",
-                 lambda t, event, **f: log.append((event, f)), period_s=0.5, bad=bad)
+    cam = Camera(
+        fruits,
+        MODEL.camera_lead,
+        MODEL.camera_window,
+        5.0,
+        "memq://",
+        lambda t, event, **f: log.append((event, f)),
+        period_s=0.5,
+        bad=bad,
+    )
     cam._lcm = Capture()
     return cam, log
 
 
 def row(n=20, length=5.0):
-    return [Fruit(f"F{i}", "LR"[i % 2], (-1) ** (i + 1) * 0.45, length * (n - i) / (n + 1), 0.5, 0.0)
-            for i in range(n)]
+    return [
+        Fruit(f"F{i}", "LR"[i % 2], (-1) ** (i + 1) * 0.45, length * (n - i) / (n + 1), 0.5, 0.0)
+        for i in range(n)
+    ]
 
 
 def drive(cam, until_m, speed=0.1, dt=0.25):

@@ -7,6 +7,7 @@ Python runs ~20x slower in the guest, so the suite runs there at a lower time sc
 feedback rate, with longer waits, and with the simulator in a thread of pytest's process
 (starting a Python process per test costs seconds there); the assertions are the same.
 """
+
 import os
 import re
 import subprocess
@@ -23,8 +24,13 @@ GUEST_TIMEOUT_S = 1500
 
 
 def _suite_env(iface, slow):
-    env = dict(os.environ, HV_SIM_BUS="socketcan", HV_SIM_CHANNEL=iface, HV_SOURCE_DIR=SRC,
-               PYTHONDONTWRITEBYTECODE="1")
+    env = dict(
+        os.environ,
+        HV_SIM_BUS="socketcan",
+        HV_SIM_CHANNEL=iface,
+        HV_SOURCE_DIR=SRC,
+        PYTHONDONTWRITEBYTECODE="1",
+    )
     if slow:
         env.update(HV_SIM_SCALE="4", HV_SIM_RATE="10", HV_SIM_WAIT="240", HV_SIM_INPROC="1")
     return env
@@ -43,16 +49,22 @@ def test_bus_suite_on_vcan():
     iface = local_vcan()
     cmd = [sys.executable, "-m", "pytest", "-q", "-rs", "-p", "no:cacheprovider", SUITE]
     if iface is not None:
-        r = subprocess.run(cmd, env=_suite_env(iface, in_guest()), capture_output=True,
-                           text=True, timeout=GUEST_TIMEOUT_S)
+        r = subprocess.run(
+            cmd,
+            env=_suite_env(iface, in_guest()),
+            capture_output=True,
+            text=True,
+            timeout=GUEST_TIMEOUT_S,
+        )
         print(r.stdout)
         _check(r.stdout + r.stderr, r.returncode)
         return
     if in_guest():
         pytest.fail("inside the test-bed guest but vcan0 is not usable")
     # the runner forwards HV_* and PYTHON* variables; vcan0 is up in the guest
-    r = guest_or_skip(run_in_guest(cmd, timeout=GUEST_TIMEOUT_S, cwd=SRC,
-                                   env=_suite_env("vcan0", True)))
+    r = guest_or_skip(
+        run_in_guest(cmd, timeout=GUEST_TIMEOUT_S, cwd=SRC, env=_suite_env("vcan0", True))
+    )
     print(r.stdout)
     print(r.stderr, file=sys.stderr)
     _check(r.stdout, r.returncode)

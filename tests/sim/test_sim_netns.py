@@ -2,9 +2,9 @@
 private network namespace of its own: the multicast group is routed to `lo` there and the
 namespace has no other interface, so no frame can leave the machine.
 """
+
 import os
 import re
-import subprocess
 import sys
 
 import pytest
@@ -28,8 +28,9 @@ def _in_namespace(cmd, env, timeout):
 
 
 def test_bus_suite_over_udp_multicast_in_a_private_namespace():
-    env = dict(os.environ, HV_SIM_BUS="udp_multicast", HV_SOURCE_DIR=SRC,
-               PYTHONDONTWRITEBYTECODE="1")
+    env = dict(
+        os.environ, HV_SIM_BUS="udp_multicast", HV_SOURCE_DIR=SRC, PYTHONDONTWRITEBYTECODE="1"
+    )
     cmd = [sys.executable, "-m", "pytest", "-q", "-rs", "-p", "no:cacheprovider", SUITE]
     r = _in_namespace(cmd, env, timeout=800)
     out = r.stdout + r.stderr

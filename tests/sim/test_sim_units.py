@@ -1,4 +1,5 @@
 """The simulator's parts without a bus: profiles, fault specs, the node state machines."""
+
 import json
 import math
 
@@ -28,22 +29,26 @@ def sample(p, n=2000):
 
 # -- profiles -------------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("d", [0.0, 0.001, 0.05, 0.1, 0.2, 1.4, -0.7, -3.0])
 def test_rest_to_rest_time_is_the_trapezoid_formula(d):
     p = Profile(2.0, 0.5, 0.0, 0.5 + d, 0.2, 0.2)
     assert p.duration == pytest.approx(formula(d, 0.2, 0.2), abs=1e-12)
     assert trapezoid_time(d, 0.2, 0.2) == pytest.approx(formula(d, 0.2, 0.2), abs=1e-12)
     assert p.state(p.t_end) == (0.5 + d, 0.0)
-    assert p.state(1.0) == (0.5, 0.0)   # before the start
+    assert p.state(1.0) == (0.5, 0.0)  # before the start
 
 
-@pytest.mark.parametrize("p0,v0,target", [
-    (0.0, 0.1, 1.0),     # moving towards, will cruise
-    (0.0, 0.2, 0.05),    # too fast to stop in time: brake, come back
-    (0.0, -0.15, 0.5),   # moving away: brake first
-    (0.3, 0.15, 0.3),    # already on the target but moving
-    (0.0, 0.25, 2.0),    # faster than a lowered vmax
-])
+@pytest.mark.parametrize(
+    "p0,v0,target",
+    [
+        (0.0, 0.1, 1.0),  # moving towards, will cruise
+        (0.0, 0.2, 0.05),  # too fast to stop in time: brake, come back
+        (0.0, -0.15, 0.5),  # moving away: brake first
+        (0.3, 0.15, 0.3),  # already on the target but moving
+        (0.0, 0.25, 2.0),  # faster than a lowered vmax
+    ],
+)
 def test_profile_from_motion_is_continuous_and_within_limits(p0, v0, target):
     vmax, amax = 0.2, 0.2
     p = Profile(0.0, p0, v0, target, vmax, amax)
@@ -52,7 +57,7 @@ def test_profile_from_motion_is_continuous_and_within_limits(p0, v0, target):
     assert states[0] == pytest.approx((p0, v0))
     assert states[-1] == (target, 0.0)
     for (x1, v1), (x2, v2) in zip(states, states[1:]):
-        assert abs(v2 - v1) <= amax * dt + 1e-9              # bounded acceleration
+        assert abs(v2 - v1) <= amax * dt + 1e-9  # bounded acceleration
         assert abs(x2 - x1) <= max(abs(v1), abs(v2)) * dt + 1e-9
     assert all(abs(v) <= max(vmax, abs(v0)) + 1e-9 for _, v in states)
 
@@ -74,6 +79,7 @@ def test_scaled_clock_runs_faster():
 
 # -- model ------------------------------------------------------------------------------------
 
+
 def test_model_reads_the_config(tmp_path):
     assert [j.vmax for j in MODEL.joints] == [0.1, 0.2, 0.2, 0.2]
     assert len(MODEL.home) == 4 and MODEL.vehicle_speed == 0.1
@@ -86,41 +92,75 @@ def test_model_reads_the_config(tmp_path):
 
 # -- fault specs --------------------------------------------------------------------------------
 
+
 def test_fault_flags_parse_with_defaults():
     assert faults.parse_flag("drop:fraction=0.25") == {
-        "type": "drop", "fraction": 0.25, "direction": "tx", "node": "all"}
+        "type": "drop",
+        "fraction": 0.25,
+        "direction": "tx",
+        "node": "all",
+    }
     assert faults.parse_flag("stall:node=left_arm,joint=2") == {
-        "type": "stall", "node": "left_arm", "joint": 2, "setpoint": 1, "fraction": 0.5}
+        "type": "stall",
+        "node": "left_arm",
+        "joint": 2,
+        "setpoint": 1,
+        "fraction": 0.5,
+    }
     assert faults.parse_flag("joint_fault:node=right_arm,joint=4,pick=3")["kind"] == "following"
     assert faults.parse_flag("silent:after_s=2.5,node=vehicle,frames=heartbeat")["after_s"] == 2.5
     assert "for_s" not in faults.parse_flag("silent:after_s=1")
     assert faults.parse_flag("silent:after_s=1,for_s=3")["for_s"] == 3.0
     assert faults.parse_flag("silent:node=left_arm,pick=2") == {
-        "type": "silent", "node": "left_arm", "pick": 2, "frames": "all"}
+        "type": "silent",
+        "node": "left_arm",
+        "pick": 2,
+        "frames": "all",
+    }
     assert faults.parse_flag("joint_fault:node=left_arm,joint=2,home=2") == {
-        "type": "joint_fault", "node": "left_arm", "joint": 2, "home": 2, "at": 0.5,
-        "kind": "following"}
+        "type": "joint_fault",
+        "node": "left_arm",
+        "joint": 2,
+        "home": 2,
+        "at": 0.5,
+        "kind": "following",
+    }
     assert faults.parse_flag("estop:after_s=4") == {"type": "estop", "node": "all", "after_s": 4.0}
     assert faults.parse_flag("estop:node=right_arm,pick=3") == {
-        "type": "estop", "node": "right_arm", "pick": 3}
+        "type": "estop",
+        "node": "right_arm",
+        "pick": 3,
+    }
 
 
-@pytest.mark.parametrize("flag,field", [
-    ("drop:fraction=0", "fraction"), ("drop:fraction=x", "fraction"),
-    ("drop:fraction=0.1,node=arm", "node"), ("delay:delay_s=-1", "delay_s"),
-    ("stall:node=vehicle,joint=1", "node"), ("stall:node=left_arm,joint=5", "joint"),
-    ("stall:node=left_arm,joint=1.5", "joint"), ("joint_fault:node=left_arm,joint=1", "pick"),
-    ("joint_fault:node=left_arm,joint=1,pick=1,setpoint=2", "pick"),
-    ("silent:node=vehicle", "after_s"), ("reject:node=left_arm,setpoint=0", "setpoint"),
-    ("reject:node=left_arm,setpoint=1,colour=red", "colour"), ("explode:x=1", "type"),
-    ("drop:fraction", "fraction"),
-    ("joint_fault:node=left_arm,joint=1,pick=1,home=2", "home"),
-    ("joint_fault:node=left_arm,joint=1,pick=1,at=0.3", "at"),
-    ("silent:after_s=1,for_s=0", "for_s"), ("estop:node=vehicle", "after_s"),
-    ("silent:node=vehicle,pick=1", "node"), ("silent:after_s=1,pick=1", "pick"),
-    ("estop:after_s=1,pick=2", "pick"), ("estop:node=vehicle,pick=2", "node"),
-    ("estop:node=left_arm,pick=0", "pick"),
-])
+@pytest.mark.parametrize(
+    "flag,field",
+    [
+        ("drop:fraction=0", "fraction"),
+        ("drop:fraction=x", "fraction"),
+        ("drop:fraction=0.1,node=arm", "node"),
+        ("delay:delay_s=-1", "delay_s"),
+        ("stall:node=vehicle,joint=1", "node"),
+        ("stall:node=left_arm,joint=5", "joint"),
+        ("stall:node=left_arm,joint=1.5", "joint"),
+        ("joint_fault:node=left_arm,joint=1", "pick"),
+        ("joint_fault:node=left_arm,joint=1,pick=1,setpoint=2", "pick"),
+        ("silent:node=vehicle", "after_s"),
+        ("reject:node=left_arm,setpoint=0", "setpoint"),
+        ("reject:node=left_arm,setpoint=1,colour=red", "colour"),
+        ("explode:x=1", "type"),
+        ("drop:fraction", "fraction"),
+        ("joint_fault:node=left_arm,joint=1,pick=1,home=2", "home"),
+        ("joint_fault:node=left_arm,joint=1,pick=1,at=0.3", "at"),
+        ("silent:after_s=1,for_s=0", "for_s"),
+        ("estop:node=vehicle", "after_s"),
+        ("silent:node=vehicle,pick=1", "node"),
+        ("silent:after_s=1,pick=1", "pick"),
+        ("estop:after_s=1,pick=2", "pick"),
+        ("estop:node=vehicle,pick=2", "node"),
+        ("estop:node=left_arm,pick=0", "pick"),
+    ],
+)
 def test_bad_fault_flags_name_the_field(flag, field):
     with pytest.raises(faults.FaultError, match=field):
         faults.parse_flag(flag)
@@ -128,12 +168,18 @@ def test_bad_fault_flags_name_the_field(flag, field):
 
 def test_scenario_file(tmp_path):
     path = tmp_path / "s.json"
-    path.write_text(json.dumps({"seed": 4, "faults": [{"type": "reject", "node": "left_arm",
-                                                       "setpoint": 2}]}))
-    assert faults.load_scenario(str(path)) == (4, [{"type": "reject", "node": "left_arm",
-                                                    "setpoint": 2}])
-    path.write_text(json.dumps({"faults": [{"type": "drop", "fraction": 1},
-                                           {"type": "delay", "delay_s": "soon"}]}))
+    path.write_text(
+        json.dumps({"seed": 4, "faults": [{"type": "reject", "node": "left_arm", "setpoint": 2}]})
+    )
+    assert faults.load_scenario(str(path)) == (
+        4,
+        [{"type": "reject", "node": "left_arm", "setpoint": 2}],
+    )
+    path.write_text(
+        json.dumps(
+            {"faults": [{"type": "drop", "fraction": 1}, {"type": "delay", "delay_s": "soon"}]}
+        )
+    )
     with pytest.raises(faults.FaultError, match=r"s.json: faults\[1\]: field 'delay_s'"):
         faults.load_scenario(str(path))
     path.write_text("{not json")
@@ -142,6 +188,7 @@ def test_scenario_file(tmp_path):
 
 
 # -- node state machines, driven by hand ----------------------------------------------------------
+
 
 class Log(list):
     def __call__(self, t, event, **fields):
@@ -161,7 +208,9 @@ def test_arm_state_machine_and_setpoint():
     q = [0.35, 0.5, 1.0, -0.5]
     a.on_setpoint(1.0, q, 2)
     assert a.state == State.MOVING and a.setpoint_seq == 2 and not a.target_reached
-    t_end = 1.0 + max(formula(b - x, j.vmax, j.amax) for x, b, j in zip(MODEL.home, q, MODEL.joints))
+    t_end = 1.0 + max(
+        formula(b - x, j.vmax, j.amax) for x, b, j in zip(MODEL.home, q, MODEL.joints)
+    )
     assert a.next_event() == pytest.approx(t_end)
     a.update(t_end - 1e-6)
     assert not a.target_reached
@@ -191,7 +240,7 @@ def test_arm_estop_brakes_and_latches():
     assert a.velocities(stop + 1) == [0.0] * 4 and not a.target_reached
     a.on_command(stop + 1, Command.ENABLE, 2)
     assert a.state == State.ESTOP and a.command_seq == 1
-    a.on_command(stop + 1, Command.CLEAR_FAULT, 3)   # never releases an e-stop
+    a.on_command(stop + 1, Command.CLEAR_FAULT, 3)  # never releases an e-stop
     assert a.state == State.ESTOP and a.command_seq == 1
     a.on_command(stop + 1, Command.CLEAR_ESTOP, 4)
     assert a.state == State.DISABLED and a.fault_bits == 0 and a.command_seq == 4
@@ -205,7 +254,7 @@ def test_clear_estop_leaves_an_older_fault_latched():
     v.estop(2.0, "test")
     assert v.state == State.ESTOP and v.health() == Health.ESTOP
     v.on_command(3.0, Command.CLEAR_ESTOP, 2)
-    assert v.state == State.FAULT and v.fault_bits == 1 << 3   # the comm timeout
+    assert v.state == State.FAULT and v.fault_bits == 1 << 3  # the comm timeout
     assert v.health() == Health.FAULT
     v.on_command(3.0, Command.CLEAR_FAULT, 3)
     assert v.state == State.DISABLED and v.fault_bits == 0 and v.command_seq == 3
@@ -213,8 +262,14 @@ def test_clear_estop_leaves_an_older_fault_latched():
 
 def test_injected_estop_after_the_kth_pick_keeps_the_fruit():
     log = Log()
-    a = ArmNode("left_arm", MODEL, log, faults=[faults.parse_flag("estop:node=left_arm,pick=2")],
-                cut_s=1.0, release_s=0.5)
+    a = ArmNode(
+        "left_arm",
+        MODEL,
+        log,
+        faults=[faults.parse_flag("estop:node=left_arm,pick=2")],
+        cut_s=1.0,
+        release_s=0.5,
+    )
     a.on_command(0.0, Command.ENABLE, 1)
     t = 0.0
     for k in range(2):
@@ -233,13 +288,18 @@ def test_injected_estop_after_the_kth_pick_keeps_the_fruit():
 
 def test_injected_joint_fault_during_the_nth_homing():
     log = Log()
-    a = ArmNode("right_arm", MODEL, log, start=[0.05, 0.6, 0.3, -1.0],
-                faults=[faults.parse_flag("joint_fault:node=right_arm,joint=1,home=2,at=0.5")])
+    a = ArmNode(
+        "right_arm",
+        MODEL,
+        log,
+        start=[0.05, 0.6, 0.3, -1.0],
+        faults=[faults.parse_flag("joint_fault:node=right_arm,joint=1,home=2,at=0.5")],
+    )
     a.on_command(0.0, Command.ENABLE, 1)
     a.on_command(0.0, Command.HOME, 2)
     first = a.next_event()
     a.update(first)
-    assert a.homed and a.state == State.IDLE           # the first homing is untouched
+    assert a.homed and a.state == State.IDLE  # the first homing is untouched
     a.on_setpoint(first, [0.05, 0.6, 0.3, -1.0], 1)
     a.update(100.0)
     a.on_command(100.0, Command.HOME, 3)
@@ -252,8 +312,7 @@ def test_injected_joint_fault_during_the_nth_homing():
 
 def test_end_effector_cut_counts_picks():
     log = Log()
-    a = ArmNode("left_arm", MODEL, log, cut_s=1.5, release_s=0.5,
-                vehicle_position=lambda t: 0.7)
+    a = ArmNode("left_arm", MODEL, log, cut_s=1.5, release_s=0.5, vehicle_position=lambda t: 0.7)
     a.on_command(0.0, Command.ENABLE, 1)
     a.on_ee(1.0, EeAction.CUT, 5)
     assert a.ee_state == EeState.BUSY and a.next_event() == pytest.approx(2.5)
@@ -261,7 +320,7 @@ def test_end_effector_cut_counts_picks():
     assert a.ee_state == EeState.DONE and a.fruit_held and a.picks == 1
     pick = log.of("pick")[0]
     assert pick["t"] == pytest.approx(2.5) and pick["vehicle_position"] == 0.7
-    a.on_ee(3.0, EeAction.CUT, 6)      # still holding one
+    a.on_ee(3.0, EeAction.CUT, 6)  # still holding one
     assert a.ee_state == EeState.FAILED and a.picks == 1
 
 
@@ -274,4 +333,6 @@ def test_vehicle_move_and_limits():
     v.update(100.0)
     assert v.arrived and v.positions(100.0) == [2.0]
     v.on_move(100.0, 2.5, 0.0, 2)
-    assert v.move_seq == 1 and v.fault_bits == 0b10 and v.arrived  # the refused move changes nothing
+    assert (
+        v.move_seq == 1 and v.fault_bits == 0b10 and v.arrived
+    )  # the refused move changes nothing

@@ -73,8 +73,8 @@ int main(int argc, char **argv)
         hv_pose_t p = {v[HV_AX_X], v[HV_AX_Y], v[HV_AX_Z], normal + v[HV_AX_YAW]};
         double cost_s = 0.0;
         hv_status_t st = hv_scara_pick_cost(&arm, &p, &cost_s, nullptr);
-        unsigned want = st == HV_OK ? static_cast<unsigned>(std::lround(cost_s * 1000.0))
-                                    : HV_COST_UNREACHABLE;
+        unsigned want =
+            st == HV_OK ? static_cast<unsigned>(std::lround(cost_s * 1000.0)) : HV_COST_UNREACHABLE;
         unsigned got =
             hv_costtab_cell(&f.tab, idx[HV_AX_X], idx[HV_AX_Y], idx[HV_AX_Z], idx[HV_AX_YAW]);
         if (got != want) {

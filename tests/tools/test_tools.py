@@ -3,6 +3,7 @@
 Coarse grids (derived from config/harvest.cfg at test time) keep the suite fast under
 ASan; one table is built from the real configuration at the paper's 0.01 m grid.
 """
+
 import json
 import os
 import re
@@ -34,7 +35,9 @@ def _need(path):
 def run(args, check=False):
     p = subprocess.run(args, capture_output=True, text=True, timeout=600)
     if check and p.returncode != 0:
-        raise AssertionError(f"{args} exited {p.returncode}\nstdout:\n{p.stdout}\nstderr:\n{p.stderr}")
+        raise AssertionError(
+            f"{args} exited {p.returncode}\nstdout:\n{p.stdout}\nstderr:\n{p.stderr}"
+        )
     return p
 
 
@@ -44,7 +47,11 @@ def derived_config(tmp_path, changes=None, drop=(), extra_lines=(), name="harves
     out = []
     with open(REAL_CONFIG) as f:
         for line in f:
-            key = line.split("=", 1)[0].strip() if "=" in line and not line.lstrip().startswith("#") else None
+            key = (
+                line.split("=", 1)[0].strip()
+                if "=" in line and not line.lstrip().startswith("#")
+                else None
+            )
             if key in drop:
                 continue
             if key in changes:
@@ -64,21 +71,25 @@ def _built():
 
 # ---------------------------------------------------------------- help and usage
 
+
 @pytest.mark.parametrize("prog", [COSTGEN, MOUNTOPT])
 def test_help(prog):
     p = run([prog, "--help"], check=True)
     assert "usage:" in p.stdout and "--config" in p.stdout and "Exit status" in p.stdout
 
 
-@pytest.mark.parametrize("args, needle", [
-    ([COSTGEN, "--side", "up"], "--side"),
-    ([COSTGEN, "--threads", "0"], "--threads"),
-    ([COSTGEN, "--offset", "nan"], "--offset"),
-    ([COSTGEN, "--out", "x.bin"], "--out"),
-    ([COSTGEN, "--bogus"], "--bogus"),
-    ([MOUNTOPT, "--objective", "max"], "--objective"),
-    ([MOUNTOPT, "stray"], "stray"),
-])
+@pytest.mark.parametrize(
+    "args, needle",
+    [
+        ([COSTGEN, "--side", "up"], "--side"),
+        ([COSTGEN, "--threads", "0"], "--threads"),
+        ([COSTGEN, "--offset", "nan"], "--offset"),
+        ([COSTGEN, "--out", "x.bin"], "--out"),
+        ([COSTGEN, "--bogus"], "--bogus"),
+        ([MOUNTOPT, "--objective", "max"], "--objective"),
+        ([MOUNTOPT, "stray"], "stray"),
+    ],
+)
 def test_bad_command_line(args, needle):
     p = run(args)
     assert p.returncode == 2, p.stderr
@@ -88,12 +99,17 @@ def test_bad_command_line(args, needle):
 
 # ---------------------------------------------------------------- costgen
 
+
 def parse_costgen(stdout):
     rows = {}
-    for m in re.finditer(r"costgen: (left|right) arm -> (\S+): (\d+) cells .*?reachable (\d+) "
-                         r"\(([\d.]+) %\), (\d+) bytes", stdout):
-        rows[m.group(1)] = dict(path=m.group(2), cells=int(m.group(3)), reachable=int(m.group(4)),
-                                bytes=int(m.group(6)))
+    for m in re.finditer(
+        r"costgen: (left|right) arm -> (\S+): (\d+) cells .*?reachable (\d+) "
+        r"\(([\d.]+) %\), (\d+) bytes",
+        stdout,
+    ):
+        rows[m.group(1)] = dict(
+            path=m.group(2), cells=int(m.group(3)), reachable=int(m.group(4)), bytes=int(m.group(6))
+        )
     return rows
 
 
@@ -107,7 +123,9 @@ def test_costgen_coarse_tables_agree_with_direct_ik(tmp_path):
         assert os.path.getsize(r["path"]) == r["bytes"] == 512 + 2 * r["cells"]
         assert 0 < r["reachable"] < r["cells"]
         s = run([SPOTCHECK, cfg, r["path"], side, "2000", "7"], check=True)
-        m = re.search(r"cells (\d+) reachable (\d+) fraction ([\d.]+) checked 2000 mismatches 0", s.stdout)
+        m = re.search(
+            r"cells (\d+) reachable (\d+) fraction ([\d.]+) checked 2000 mismatches 0", s.stdout
+        )
         assert m, s.stdout
         assert int(m.group(1)) == r["cells"] and int(m.group(2)) == r["reachable"]
         assert float(m.group(3)) > 0.0
@@ -119,8 +137,14 @@ def test_costgen_coarse_tables_agree_with_direct_ik(tmp_path):
 def test_costgen_deterministic_across_threads(tmp_path):
     cfg = derived_config(tmp_path)
     a, b = tmp_path / "a.bin", tmp_path / "b.bin"
-    run([COSTGEN, "--config", cfg, "--side", "right", "--out", str(a), "--threads", "1", "--quiet"], check=True)
-    run([COSTGEN, "--config", cfg, "--side", "right", "--out", str(b), "--threads", "3", "--quiet"], check=True)
+    run(
+        [COSTGEN, "--config", cfg, "--side", "right", "--out", str(a), "--threads", "1", "--quiet"],
+        check=True,
+    )
+    run(
+        [COSTGEN, "--config", cfg, "--side", "right", "--out", str(b), "--threads", "3", "--quiet"],
+        check=True,
+    )
     assert a.read_bytes() == b.read_bytes()
 
 
@@ -129,8 +153,22 @@ def test_costgen_elbow_free_reaches_no_less(tmp_path):
     one = tmp_path / "one.bin"
     free = tmp_path / "free.bin"
     p1 = run([COSTGEN, "--config", cfg, "--side", "left", "--out", str(one), "--quiet"], check=True)
-    p2 = run([COSTGEN, "--config", cfg, "--side", "left", "--out", str(free), "--elbow-free",
-              "--quiet", "--check", "200"], check=True)
+    p2 = run(
+        [
+            COSTGEN,
+            "--config",
+            cfg,
+            "--side",
+            "left",
+            "--out",
+            str(free),
+            "--elbow-free",
+            "--quiet",
+            "--check",
+            "200",
+        ],
+        check=True,
+    )
     r1, r2 = parse_costgen(p1.stdout)["left"], parse_costgen(p2.stdout)["left"]
     # lifting the limit only adds solutions: never fewer reachable cells
     assert r2["reachable"] >= r1["reachable"]
@@ -144,8 +182,25 @@ def test_costgen_offset_override_changes_the_table(tmp_path):
     cfg = derived_config(tmp_path)
     a, b = tmp_path / "a.bin", tmp_path / "b.bin"
     run([COSTGEN, "--config", cfg, "--side", "right", "--out", str(a), "--quiet"], check=True)
-    run([COSTGEN, "--config", cfg, "--side", "right", "--out", str(b), "--offset", "0.15",
-         "--theta-deg", "-40", "--quiet", "--check", "200"], check=True)
+    run(
+        [
+            COSTGEN,
+            "--config",
+            cfg,
+            "--side",
+            "right",
+            "--out",
+            str(b),
+            "--offset",
+            "0.15",
+            "--theta-deg",
+            "-40",
+            "--quiet",
+            "--check",
+            "200",
+        ],
+        check=True,
+    )
     assert a.read_bytes() != b.read_bytes()
     # The checker, given the config without the override, finds the cells that moved.
     p = run([SPOTCHECK, cfg, str(b), "right", "2000", "5"])
@@ -155,8 +210,10 @@ def test_costgen_offset_override_changes_the_table(tmp_path):
 def test_costgen_real_config_table_loads(tmp_path):
     """The paper's 0.01 m grid from the real config: one side, spot-checked."""
     out = tmp_path / "right.bin"
-    p = run([COSTGEN, "--config", REAL_CONFIG, "--side", "right", "--out", str(out), "--check", "200"],
-            check=True)
+    p = run(
+        [COSTGEN, "--config", REAL_CONFIG, "--side", "right", "--out", str(out), "--check", "200"],
+        check=True,
+    )
     r = parse_costgen(p.stdout)["right"]
     # grid of config/harvest.cfg: x 16, y 161, z 41, yaw 19
     assert r["cells"] == 16 * 161 * 41 * 19
@@ -189,13 +246,26 @@ def test_costgen_unwritable_output(tmp_path):
 
 def test_costgen_nothing_reachable_is_an_error(tmp_path):
     cfg = derived_config(tmp_path)
-    p = run([COSTGEN, "--config", cfg, "--side", "right", "--out", str(tmp_path / "x.bin"),
-             "--offset", "2.0", "--quiet"])
+    p = run(
+        [
+            COSTGEN,
+            "--config",
+            cfg,
+            "--side",
+            "right",
+            "--out",
+            str(tmp_path / "x.bin"),
+            "--offset",
+            "2.0",
+            "--quiet",
+        ]
+    )
     assert p.returncode == 1 and "no cell" in p.stderr
     assert not (tmp_path / "x.bin").exists()
 
 
 # ---------------------------------------------------------------- mountopt
+
 
 def mountopt_json(tmp_path, *extra, cfg=None):
     cfg = cfg or derived_config(tmp_path)
@@ -272,13 +342,13 @@ def test_mountopt_full_z_gives_the_same_counts(tmp_path):
 
 BAD_CONFIGS = [
     # (changes, drop, extra lines, key named, line given?)
-    ({}, ("joint2.vmax",), (), "joint2.vmax", False),          # missing
-    ({"grid.step": "0"}, (), (), "grid.step", True),            # out of range
-    ({"mount.offset": "-0.1"}, (), (), "mount.offset", True),   # out of range
+    ({}, ("joint2.vmax",), (), "joint2.vmax", False),  # missing
+    ({"grid.step": "0"}, (), (), "grid.step", True),  # out of range
+    ({"mount.offset": "-0.1"}, (), (), "mount.offset", True),  # out of range
     ({"row.pick_yaw_max_deg": "abc"}, (), (), "row.pick_yaw_max_deg", True),  # not a number
-    ({"arm.home": "0.25 0.0 1.4"}, (), (), "arm.home", True),   # too few values
-    ({}, (), ("grid.colour = 3\n",), "grid.colour", True),      # unknown key
-    ({}, (), ("joint1.max = 0.5\n",), "joint1.max", True),      # duplicate
+    ({"arm.home": "0.25 0.0 1.4"}, (), (), "arm.home", True),  # too few values
+    ({}, (), ("grid.colour = 3\n",), "grid.colour", True),  # unknown key
+    ({}, (), ("joint1.max = 0.5\n",), "joint1.max", True),  # duplicate
     ({"search.offset_max": "0.05"}, (), (), "search.offset_max", False),  # relation
     ({"arm.home": "0.9 0.0 1.4 0.0"}, (), (), "arm.home", False),  # home outside limits
 ]
@@ -300,7 +370,7 @@ def test_bad_config(tmp_path, prog, changes, drop, extra, key, has_line):
     assert re.match(pattern, lines[0]), lines[0]
     if has_line:
         # The line number points at the offending line (or the appended one).
-        n = int(lines[0][len(cfg) + 1:].split(":", 1)[0])
+        n = int(lines[0][len(cfg) + 1 :].split(":", 1)[0])
         text = open(cfg).read().splitlines()[n - 1]
         assert text.split("=")[0].strip() == key
     assert not list(tmp_path.glob("costtab_*.bin"))

@@ -23,7 +23,8 @@ extern "C" {
 
 using namespace hv::tools;
 
-namespace {
+namespace
+{
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
@@ -108,7 +109,8 @@ void table_independent_of_threads(void **)
         hv_diag_t d{};
         assert_int_equal(hv_costtab_open(&tab, img.data(), img.size(), &d), HV_OK);
         assert_int_equal(hv_costtab_expect(&tab, side, &grid, &d), HV_OK);
-        assert_int_equal(hv_costtab_cell(&tab, 1, 3, 2, 0), one.costs_ms[cell_index(grid, 1, 3, 2, 0)]);
+        assert_int_equal(hv_costtab_cell(&tab, 1, 3, 2, 0),
+                         one.costs_ms[cell_index(grid, 1, 3, 2, 0)]);
     }
 }
 
@@ -202,7 +204,7 @@ void sweep_axes_include_endpoints(void **)
 {
     hv_config_t cfg = load_config(HV_TEST_CONFIG);
     SweepAxes a = make_sweep_axes(cfg);
-    assert_int_equal(a.offset_m.size(), 26); // 0.10 .. 0.35 by 0.01
+    assert_int_equal(a.offset_m.size(), 26);  // 0.10 .. 0.35 by 0.01
     assert_int_equal(a.theta_rad.size(), 37); // -90 .. 90 by 5 deg
     assert_true(std::fabs(a.offset_m[25] - 0.35) < 1e-9);
     assert_true(std::fabs(a.theta_rad[36] - 90.0 * kDeg) < 1e-9);
@@ -211,8 +213,16 @@ void sweep_axes_include_endpoints(void **)
 void json_and_args(void **)
 {
     JsonWriter j;
-    j.begin_object().key("a\"b").value(std::int64_t{3}).key("l").begin_array().value(1.5)
-        .value("x\n").value(std::nan("")).end_array().end_object();
+    j.begin_object()
+        .key("a\"b")
+        .value(std::int64_t{3})
+        .key("l")
+        .begin_array()
+        .value(1.5)
+        .value("x\n")
+        .value(std::nan(""))
+        .end_array()
+        .end_object();
     assert_string_equal(j.str().c_str(), "{\"a\\\"b\":3,\"l\":[1.5,\"x\\u000a\",null]}");
 
     char a0[] = "t", a1[] = "--threads=0", a2[] = "--offset", a3[] = "abc";

@@ -5,7 +5,8 @@
 #include <cmath>
 #include <cstdlib>
 
-namespace hv::tools {
+namespace hv::tools
+{
 
 ArgReader::ArgReader(int argc, char **argv)
 {
@@ -73,4 +74,4 @@ long ArgReader::value_long(long min, long max)
     return n;
 }
 
-}  // namespace hv::tools
+} // namespace hv::tools

@@ -8,10 +8,11 @@
 #include <string>
 #include <thread>
 
-namespace hv::tools {
+namespace hv::tools
+{
 
-std::size_t cell_index(const hv_grid_t &grid, std::uint32_t ix, std::uint32_t iy,
-                       std::uint32_t iz, std::uint32_t iyaw)
+std::size_t cell_index(const hv_grid_t &grid, std::uint32_t ix, std::uint32_t iy, std::uint32_t iz,
+                       std::uint32_t iyaw)
 {
     const hv_axis_t *a = grid.axis;
     return ((static_cast<std::size_t>(ix) * a[HV_AX_Z].count + iz) * a[HV_AX_YAW].count + iyaw) *
@@ -65,8 +66,8 @@ CostTable build_cost_table(const hv_arm_t &arm, const hv_grid_t &grid, unsigned 
     const std::uint32_t ny = a[HV_AX_Y].count;
     // A "row" is the ny cells of one (x, z, yaw): workers take rows from a shared counter,
     // each writes only its own rows, so the result is the same for any thread count.
-    const std::size_t rows = static_cast<std::size_t>(a[HV_AX_X].count) * a[HV_AX_Z].count *
-                             a[HV_AX_YAW].count;
+    const std::size_t rows =
+        static_cast<std::size_t>(a[HV_AX_X].count) * a[HV_AX_Z].count * a[HV_AX_YAW].count;
     std::atomic<std::size_t> next_row{0}, rows_done{0}, reachable{0}, clamped{0};
     std::atomic<bool> failed{false};
     std::string failure;
@@ -143,4 +144,4 @@ std::vector<std::uint8_t> serialise_cost_table(const CostTable &table)
     return out;
 }
 
-}  // namespace hv::tools
+} // namespace hv::tools

@@ -11,7 +11,8 @@
 #include "hv/scara.h"
 #include "progress.hpp"
 
-namespace hv::tools {
+namespace hv::tools
+{
 
 // Written into every table header; bump when the meaning of a cell changes.
 constexpr std::uint32_t kGeneratorVersion = 1;
@@ -23,8 +24,8 @@ inline double axis_value(const hv_axis_t &axis, std::uint32_t i)
 }
 
 // Payload index of a cell (y innermost, cost_table.h).
-std::size_t cell_index(const hv_grid_t &grid, std::uint32_t ix, std::uint32_t iy,
-                       std::uint32_t iz, std::uint32_t iyaw);
+std::size_t cell_index(const hv_grid_t &grid, std::uint32_t ix, std::uint32_t iy, std::uint32_t iz,
+                       std::uint32_t iyaw);
 
 // The vehicle-frame pose of a cell for a stop at y = 0: the table's yaw is relative to
 // the side's inward normal, the IK wants an absolute heading.
@@ -52,6 +53,6 @@ CostTable build_cost_table(const hv_arm_t &arm, const hv_grid_t &grid, unsigned 
 // The file image (header + payload) of a table. Throws runtime_error on failure.
 std::vector<std::uint8_t> serialise_cost_table(const CostTable &table);
 
-}  // namespace hv::tools
+} // namespace hv::tools
 
 #endif

@@ -14,7 +14,8 @@
 #include "progress.hpp"
 #include "tool_config.hpp"
 
-namespace {
+namespace
+{
 
 using namespace hv::tools;
 
@@ -131,9 +132,7 @@ long check_file(const std::string &path, const CostTable &t, long n, unsigned lo
     }
     std::mt19937_64 rng(seed);
     const hv_axis_t *a = t.grid.axis;
-    auto pick = [&rng](std::uint32_t count) {
-        return static_cast<std::uint32_t>(rng() % count);
-    };
+    auto pick = [&rng](std::uint32_t count) { return static_cast<std::uint32_t>(rng() % count); };
     for (long i = 0; i < n && bad == 0; i++) {
         std::uint32_t ix = pick(a[HV_AX_X].count), iy = pick(a[HV_AX_Y].count);
         std::uint32_t iz = pick(a[HV_AX_Z].count), iyaw = pick(a[HV_AX_YAW].count);
@@ -207,8 +206,9 @@ int run(const Options &o)
             continue;
         }
         if (t.clamped > 0) {
-            std::fprintf(stderr, "costgen: warning: %zu cell(s) of the %s arm cost more than "
-                                 "%u ms and were clamped to it\n",
+            std::fprintf(stderr,
+                         "costgen: warning: %zu cell(s) of the %s arm cost more than "
+                         "%u ms and were clamped to it\n",
                          t.clamped, side_name(side), static_cast<unsigned>(HV_COST_MAX_MS));
         }
         char err[512] = {0};
@@ -242,7 +242,7 @@ int run(const Options &o)
     return status;
 }
 
-}  // namespace
+} // namespace
 
 int main(int argc, char **argv)
 {

@@ -3,9 +3,11 @@
 
 #include <cmath>
 
-namespace hv::tools {
+namespace hv::tools
+{
 
-namespace {
+namespace
+{
 
 Eigen::ArrayXd axis_values(const hv_axis_t &a)
 {
@@ -20,7 +22,7 @@ Eigen::ArrayXd axis_values(const hv_axis_t &a)
 
 double planar_reach_m(const hv_config_t &cfg)
 {
-    const double (*o)[3] = cfg.origin_m;
+    const double(*o)[3] = cfg.origin_m;
     double reach = std::hypot(o[1][0], o[1][1]);
     for (int i = 1; i < 4; i++) {
         reach += std::hypot(o[i + 1][0] - o[i][0], o[i + 1][1] - o[i][1]);

@@ -12,7 +12,8 @@
 
 #include "hv/config.h"
 
-namespace hv::tools {
+namespace hv::tools
+{
 
 struct FpaGrid {
     hv_side_t side;
@@ -28,7 +29,10 @@ struct FpaGrid {
     {
         return static_cast<std::size_t>(x.size() * y.size() * z.size());
     }
-    std::size_t points() const { return positions() * static_cast<std::size_t>(yaw.size()); }
+    std::size_t points() const
+    {
+        return positions() * static_cast<std::size_t>(yaw.size());
+    }
 };
 
 // Upper bound (m) of the end effector's horizontal distance from the arm's base axis:
@@ -38,6 +42,6 @@ double planar_reach_m(const hv_config_t &cfg);
 // The FPA of `side` at the configuration's grid.step and grid.yaw_step_deg.
 FpaGrid make_fpa_grid(const hv_config_t &cfg, hv_side_t side);
 
-}  // namespace hv::tools
+} // namespace hv::tools
 
 #endif

@@ -4,7 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
-namespace hv::tools {
+namespace hv::tools
+{
 
 void JsonWriter::separate()
 {
@@ -105,4 +106,4 @@ JsonWriter &JsonWriter::value(bool b)
     return *this;
 }
 
-}  // namespace hv::tools
+} // namespace hv::tools

@@ -7,29 +7,37 @@
 #include <string>
 #include <vector>
 
-namespace hv::tools {
+namespace hv::tools
+{
 
-class JsonWriter {
-public:
+class JsonWriter
+{
+  public:
     JsonWriter &begin_object();
     JsonWriter &end_object();
     JsonWriter &begin_array();
     JsonWriter &end_array();
     JsonWriter &key(const std::string &k); // inside an object, before each value
     JsonWriter &value(const std::string &s);
-    JsonWriter &value(const char *s) { return value(std::string(s)); }
+    JsonWriter &value(const char *s)
+    {
+        return value(std::string(s));
+    }
     JsonWriter &value(double d);
     JsonWriter &value(std::int64_t n);
     JsonWriter &value(bool b);
-    const std::string &str() const { return out_; }
+    const std::string &str() const
+    {
+        return out_;
+    }
 
-private:
+  private:
     void separate();
     std::string out_;
     std::vector<bool> first_; // per open container: no element written yet
     bool after_key_ = false;
 };
 
-}  // namespace hv::tools
+} // namespace hv::tools
 
 #endif

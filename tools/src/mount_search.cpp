@@ -9,9 +9,11 @@
 
 #include "cli_args.hpp"
 
-namespace hv::tools {
+namespace hv::tools
+{
 
-namespace {
+namespace
+{
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kLimitTol = 1e-9; // the IK's own joint-limit tolerance (core/src/scara.c)
@@ -61,12 +63,9 @@ Objective parse_objective(const std::string &option, const std::string &value)
 const char *objective_name(Objective o)
 {
     switch (o) {
-    case Objective::Stem:
-        return "stem";
-    case Objective::Suction:
-        return "suction";
-    case Objective::Points:
-        break;
+    case Objective::Stem: return "stem";
+    case Objective::Suction: return "suction";
+    case Objective::Points: break;
     }
     return "points";
 }
@@ -74,12 +73,9 @@ const char *objective_name(Objective o)
 std::int64_t objective_value(const Coverage &c, Objective o)
 {
     switch (o) {
-    case Objective::Stem:
-        return c.stem_positions;
-    case Objective::Suction:
-        return c.suction_positions;
-    case Objective::Points:
-        break;
+    case Objective::Stem: return c.stem_positions;
+    case Objective::Suction: return c.suction_positions;
+    case Objective::Points: break;
     }
     return c.points;
 }
@@ -143,10 +139,10 @@ Coverage evaluate_pose(const hv_config_t &cfg, const FpaGrid &fpa, double offset
 SweepAxes make_sweep_axes(const hv_config_t &cfg)
 {
     SweepAxes a;
-    a.offset_m = range_values(cfg.search_offset_min_m, cfg.search_offset_max_m,
-                              cfg.search_offset_step_m);
-    a.theta_rad = range_values(cfg.search_theta_min_rad, cfg.search_theta_max_rad,
-                               cfg.search_theta_step_rad);
+    a.offset_m =
+        range_values(cfg.search_offset_min_m, cfg.search_offset_max_m, cfg.search_offset_step_m);
+    a.theta_rad =
+        range_values(cfg.search_theta_min_rad, cfg.search_theta_max_rad, cfg.search_theta_step_rad);
     return a;
 }
 
@@ -177,10 +173,9 @@ std::vector<SideSweep> sweep(const hv_config_t &cfg, const std::vector<FpaGrid> 
             }
             std::size_t s = i / per_side, j = i % per_side;
             try {
-                out[s].cov[j] = evaluate_pose(cfg, fpas[s],
-                                              axes.offset_m[static_cast<Eigen::Index>(j / n_theta)],
-                                              axes.theta_rad[static_cast<Eigen::Index>(j % n_theta)],
-                                              opt);
+                out[s].cov[j] = evaluate_pose(
+                    cfg, fpas[s], axes.offset_m[static_cast<Eigen::Index>(j / n_theta)],
+                    axes.theta_rad[static_cast<Eigen::Index>(j % n_theta)], opt);
             } catch (const std::exception &e) {
                 if (!failure_set.test_and_set()) {
                     failure = e.what();

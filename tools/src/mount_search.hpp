@@ -24,7 +24,8 @@
 #include "hv/config.h"
 #include "progress.hpp"
 
-namespace hv::tools {
+namespace hv::tools
+{
 
 struct Coverage {
     std::int64_t points = 0;
@@ -83,9 +84,9 @@ std::vector<SideSweep> sweep(const hv_config_t &cfg, const std::vector<FpaGrid> 
 struct BestPose {
     Eigen::Index i_offset = -1;
     double offset_m = 0.0;
-    std::vector<Eigen::Index> i_theta;   // per swept side
-    std::vector<double> theta_rad;       // per swept side
-    std::int64_t objective = -1;         // summed over the swept sides
+    std::vector<Eigen::Index> i_theta; // per swept side
+    std::vector<double> theta_rad;     // per swept side
+    std::int64_t objective = -1;       // summed over the swept sides
 };
 BestPose best_pose(const std::vector<SideSweep> &sweeps, const SweepAxes &axes, Objective o);
 

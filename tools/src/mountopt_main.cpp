@@ -17,7 +17,8 @@
 #include "progress.hpp"
 #include "tool_config.hpp"
 
-namespace {
+namespace
+{
 
 using namespace hv::tools;
 
@@ -111,8 +112,8 @@ Options parse(int argc, char **argv, bool *help)
 struct Report {
     std::string label;
     double offset_m;
-    std::vector<double> theta_rad;  // per side
-    std::vector<Coverage> cov;      // per side
+    std::vector<double> theta_rad; // per side
+    std::vector<Coverage> cov;     // per side
 };
 
 Report evaluate_report(const hv_config_t &cfg, const std::vector<FpaGrid> &fpas,
@@ -138,8 +139,7 @@ double pct(std::int64_t n, std::size_t of)
 // times the y step. Independent of the y window.
 double row_equiv_m(std::int64_t positions, const FpaGrid &f)
 {
-    return static_cast<double>(positions) / static_cast<double>(f.x.size() * f.z.size()) *
-           f.step_m;
+    return static_cast<double>(positions) / static_cast<double>(f.x.size() * f.z.size()) * f.step_m;
 }
 
 void print_report(const Report &r, const std::vector<FpaGrid> &fpas)
@@ -149,10 +149,9 @@ void print_report(const Report &r, const std::vector<FpaGrid> &fpas)
         const FpaGrid &f = fpas[s];
         std::printf("  %-22s %-5s %5.3f %7.1f  %8" PRId64 " %5.1f%%  %7" PRId64 " %5.3f  %7" PRId64
                     " %5.3f  %7" PRId64 " %5.3f  %7" PRId64 " %5.3f\n",
-                    r.label.c_str(), side_name(f.side), r.offset_m, r.theta_rad[s] / kDeg,
-                    c.points, pct(c.points, f.points()), c.stem_positions,
-                    row_equiv_m(c.stem_positions, f), c.any_yaw_positions,
-                    row_equiv_m(c.any_yaw_positions, f), c.yaw0_positions,
+                    r.label.c_str(), side_name(f.side), r.offset_m, r.theta_rad[s] / kDeg, c.points,
+                    pct(c.points, f.points()), c.stem_positions, row_equiv_m(c.stem_positions, f),
+                    c.any_yaw_positions, row_equiv_m(c.any_yaw_positions, f), c.yaw0_positions,
                     row_equiv_m(c.yaw0_positions, f), c.suction_positions,
                     row_equiv_m(c.suction_positions, f));
     }
@@ -186,10 +185,9 @@ void json_report(JsonWriter &j, const Report &r, const std::vector<FpaGrid> &fpa
     j.end_object();
 }
 
-std::string json_summary(const Options &o, const hv_config_t &cfg,
-                         const std::vector<FpaGrid> &fpas, const SweepAxes &axes,
-                         const std::vector<SideSweep> &sweeps, const BestPose &best,
-                         const std::vector<Report> &reports)
+std::string json_summary(const Options &o, const hv_config_t &cfg, const std::vector<FpaGrid> &fpas,
+                         const SweepAxes &axes, const std::vector<SideSweep> &sweeps,
+                         const BestPose &best, const std::vector<Report> &reports)
 {
     JsonWriter j;
     j.begin_object();
@@ -205,10 +203,17 @@ std::string json_summary(const Options &o, const hv_config_t &cfg,
         j.key("x_m").begin_array().value(f.x[0]).value(f.x[f.x.size() - 1]).end_array();
         j.key("y_m").begin_array().value(f.y[0]).value(f.y[f.y.size() - 1]).end_array();
         j.key("z_m").begin_array().value(f.z[0]).value(f.z[f.z.size() - 1]).end_array();
-        j.key("yaw_deg").begin_array().value(json_deg(f.yaw[0])).value(json_deg(f.yaw[f.yaw.size() - 1])).end_array();
-        j.key("counts").begin_array()
-            .value(static_cast<std::int64_t>(f.x.size())).value(static_cast<std::int64_t>(f.y.size()))
-            .value(static_cast<std::int64_t>(f.z.size())).value(static_cast<std::int64_t>(f.yaw.size()))
+        j.key("yaw_deg")
+            .begin_array()
+            .value(json_deg(f.yaw[0]))
+            .value(json_deg(f.yaw[f.yaw.size() - 1]))
+            .end_array();
+        j.key("counts")
+            .begin_array()
+            .value(static_cast<std::int64_t>(f.x.size()))
+            .value(static_cast<std::int64_t>(f.y.size()))
+            .value(static_cast<std::int64_t>(f.z.size()))
+            .value(static_cast<std::int64_t>(f.yaw.size()))
             .end_array();
         j.key("step_m").value(f.step_m);
         j.key("yaw_step_deg").value(json_deg(f.yaw_step_rad));
@@ -280,10 +285,10 @@ int run(const Options &o)
     std::printf("FPA per side: |x| %.3f..%.3f m (%ld), y base %+.3f +- %.3f m (%ld), "
                 "z %.3f..%.3f m (%ld), yaw %.1f..%.1f deg (%ld): %zu positions, %zu points\n",
                 std::abs(f0.x[0]), std::abs(f0.x[f0.x.size() - 1]), static_cast<long>(f0.x.size()),
-                f0.y[f0.y.size() / 2], f0.y_half_window_m, static_cast<long>(f0.y.size()),
-                f0.z[0], f0.z[f0.z.size() - 1], static_cast<long>(f0.z.size()), f0.yaw[0] / kDeg,
-                f0.yaw[f0.yaw.size() - 1] / kDeg, static_cast<long>(f0.yaw.size()),
-                f0.positions(), f0.points());
+                f0.y[f0.y.size() / 2], f0.y_half_window_m, static_cast<long>(f0.y.size()), f0.z[0],
+                f0.z[f0.z.size() - 1], static_cast<long>(f0.z.size()), f0.yaw[0] / kDeg,
+                f0.yaw[f0.yaw.size() - 1] / kDeg, static_cast<long>(f0.yaw.size()), f0.positions(),
+                f0.points());
     std::printf("search: D %.3f..%.3f m (%ld values), theta %.1f..%.1f deg (%ld values), "
                 "%ld candidates per side\n",
                 axes.offset_m[0], axes.offset_m[axes.offset_m.size() - 1],
@@ -305,19 +310,19 @@ int run(const Options &o)
     BestPose best_stem = best_pose(sweeps, axes, Objective::Stem);
 
     std::vector<Report> reports;
-    reports.push_back(evaluate_report(cfg, fpas, std::string("ours (best ") +
-                                      objective_name(o.objective) + ")",
-                                      best.offset_m, best.theta_rad, o.full_z));
+    reports.push_back(
+        evaluate_report(cfg, fpas, std::string("ours (best ") + objective_name(o.objective) + ")",
+                        best.offset_m, best.theta_rad, o.full_z));
     if (o.objective != Objective::Stem) {
         reports.push_back(evaluate_report(cfg, fpas, "ours (best stem)", best_stem.offset_m,
                                           best_stem.theta_rad, o.full_z));
     }
     std::vector<double> paper(fpas.size(), kPaperThetaDeg * kDeg);
     std::vector<double> paper_mirror(fpas.size(), -kPaperThetaDeg * kDeg);
-    reports.push_back(evaluate_report(cfg, fpas, "paper (43.5 deg)", kPaperOffsetM, paper,
-                                      o.full_z));
-    reports.push_back(evaluate_report(cfg, fpas, "paper (-43.5 deg)", kPaperOffsetM,
-                                      paper_mirror, o.full_z));
+    reports.push_back(
+        evaluate_report(cfg, fpas, "paper (43.5 deg)", kPaperOffsetM, paper, o.full_z));
+    reports.push_back(
+        evaluate_report(cfg, fpas, "paper (-43.5 deg)", kPaperOffsetM, paper_mirror, o.full_z));
     // The other reading of the paper (README, docs/FRAMES.md): D measured from the aisle
     // centre line rather than from the canopy face, and theta counter-clockwise.
     std::vector<double> paper_face(fpas.size(), -kPaperThetaDeg * kDeg);
@@ -328,8 +333,8 @@ int run(const Options &o)
     for (const FpaGrid &f : fpas) {
         configured.push_back(cfg.theta_rad[f.side]);
     }
-    reports.push_back(evaluate_report(cfg, fpas, "config (mount.*)", cfg.offset_m, configured,
-                                      o.full_z));
+    reports.push_back(
+        evaluate_report(cfg, fpas, "config (mount.*)", cfg.offset_m, configured, o.full_z));
 
     std::printf("\ncoverage per arm (%% of the FPA window; 'row m' = positions / (x levels * "
                 "z levels) * y step: metres of row covered in full)\n");
@@ -370,7 +375,7 @@ int run(const Options &o)
     return kExitOk;
 }
 
-}  // namespace
+} // namespace
 
 int main(int argc, char **argv)
 {

@@ -4,7 +4,8 @@
 #include <cstdio>
 #include <unistd.h>
 
-namespace hv::tools {
+namespace hv::tools
+{
 
 Progress::Progress(std::string label, std::size_t total, bool quiet)
     : label_(std::move(label)), total_(total), quiet_(quiet), tty_(isatty(STDERR_FILENO) != 0),
@@ -25,16 +26,16 @@ void Progress::update(std::size_t done)
             return;
         }
         last_print_ = now;
-        std::fprintf(stderr, "\r%s: %zu/%zu (%5.1f %%) %.1f s", label_.c_str(), done, total_,
-                     pct, elapsed);
+        std::fprintf(stderr, "\r%s: %zu/%zu (%5.1f %%) %.1f s", label_.c_str(), done, total_, pct,
+                     elapsed);
         std::fflush(stderr);
         return;
     }
     int decile = static_cast<int>(10 * done / total_);
     if (decile > last_decile_) {
         last_decile_ = decile;
-        std::fprintf(stderr, "%s: %zu/%zu (%5.1f %%) %.1f s\n", label_.c_str(), done, total_,
-                     pct, elapsed);
+        std::fprintf(stderr, "%s: %zu/%zu (%5.1f %%) %.1f s\n", label_.c_str(), done, total_, pct,
+                     elapsed);
     }
 }
 
@@ -46,4 +47,4 @@ void Progress::finish()
     }
 }
 
-}  // namespace hv::tools
+} // namespace hv::tools

@@ -7,15 +7,17 @@
 #include <cstddef>
 #include <string>
 
-namespace hv::tools {
+namespace hv::tools
+{
 
-class Progress {
-public:
+class Progress
+{
+  public:
     Progress(std::string label, std::size_t total, bool quiet);
     void update(std::size_t done);
     void finish();
 
-private:
+  private:
     std::string label_;
     std::size_t total_;
     bool quiet_;
@@ -24,6 +26,6 @@ private:
     std::chrono::steady_clock::time_point start_, last_print_;
 };
 
-}  // namespace hv::tools
+} // namespace hv::tools
 
 #endif

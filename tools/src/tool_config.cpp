@@ -4,7 +4,8 @@
 #include "cli_args.hpp"
 #include "hv/file_io.h"
 
-namespace hv::tools {
+namespace hv::tools
+{
 
 hv_config_t load_config(const std::string &path)
 {
@@ -35,4 +36,4 @@ const char *side_name(hv_side_t side)
     return side == HV_SIDE_LEFT ? "left" : "right";
 }
 
-}  // namespace hv::tools
+} // namespace hv::tools

@@ -7,7 +7,8 @@
 
 #include "hv/config.h"
 
-namespace hv::tools {
+namespace hv::tools
+{
 
 // Load and validate `path`. Throws InputError with the core's one-line message
 // "<path>:<line>: <key>: <message>" (or "<path>: open: ..." when unreadable).
@@ -19,6 +20,6 @@ std::vector<hv_side_t> parse_sides(const std::string &option, const std::string 
 
 const char *side_name(hv_side_t side);
 
-}  // namespace hv::tools
+} // namespace hv::tools
 
 #endif

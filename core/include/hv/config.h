@@ -22,29 +22,29 @@ extern "C" {
 
 typedef struct hv_config {
     /* arm as built (both arms are the same model) */
-    double origin_m[5][3];                /* arm.origin.{j1,j2,j3,j4,ee} */
-    hv_joint_limit_t limit[HV_NJOINTS];   /* joint{1..4}.{min,max,vmax,amax} */
-    double home[HV_NJOINTS];              /* arm.home */
-    int elbow_free;                       /* arm.elbow_free (0/1) */
+    double origin_m[5][3];              /* arm.origin.{j1,j2,j3,j4,ee} */
+    hv_joint_limit_t limit[HV_NJOINTS]; /* joint{1..4}.{min,max,vmax,amax} */
+    double home[HV_NJOINTS];            /* arm.home */
+    int elbow_free;                     /* arm.elbow_free (0/1) */
 
     /* mount (DESIGN §2 and docs/FRAMES.md) */
-    double base_height_m;    /* mount.base_height */
-    double base_spacing_m;   /* mount.base_spacing: along the row, left base ahead (+y) */
-    double offset_m;         /* mount.offset: the paper's D, lateral distance of each base
+    double base_height_m;  /* mount.base_height */
+    double base_spacing_m; /* mount.base_spacing: along the row, left base ahead (+y) */
+    double offset_m;       /* mount.offset: the paper's D, lateral distance of each base
                                 from its canopy's near face (towards the aisle centre) */
-    double theta_rad[2];     /* mount.theta_left_deg / theta_right_deg: base rotation from
+    double theta_rad[2];   /* mount.theta_left_deg / theta_right_deg: base rotation from
                                 the side's inward normal, clockwise seen from above for
                                 the right arm (the left arm is the right one turned half
                                 a turn about z) */
 
     /* row and fruit-planted area */
-    double row_length_m;      /* row.length */
-    double aisle_width_m;     /* row.aisle_width: between the two canopies' near faces */
-    double canopy_depth_m;    /* row.canopy_depth */
-    double canopy_z_min_m;    /* row.canopy_z_min: lowest fruit height above the floor */
-    double canopy_height_m;   /* row.canopy_height */
-    double pick_yaw_max_rad;  /* row.pick_yaw_max_deg: stem cutting needs |yaw| <= this */
-    int stops_beyond_ends;    /* row.stops_beyond_ends (0/1): 1 lets the vehicle stop beyond
+    double row_length_m;     /* row.length */
+    double aisle_width_m;    /* row.aisle_width: between the two canopies' near faces */
+    double canopy_depth_m;   /* row.canopy_depth */
+    double canopy_z_min_m;   /* row.canopy_z_min: lowest fruit height above the floor */
+    double canopy_height_m;  /* row.canopy_height */
+    double pick_yaw_max_rad; /* row.pick_yaw_max_deg: stem cutting needs |yaw| <= this */
+    int stops_beyond_ends;   /* row.stops_beyond_ends (0/1): 1 lets the vehicle stop beyond
                                  the row's ends as far as an arm reaches into the row
                                  (hv_pick_stop_margin); 0 keeps stops in [0, row.length] */
 
@@ -54,16 +54,16 @@ typedef struct hv_config {
     double stop_penalty_s;     /* vehicle.stop_penalty: the paper's tau */
 
     /* the pick cycle: home -> fruit, cut, fruit -> home, release */
-    double cut_s;              /* pick.cut_time (s) */
-    double release_s;          /* pick.release_time (s) */
-    int pick_cycle;            /* plan.pick_cycle (0/1): 1 plans in the robot's time (a pick
+    double cut_s;     /* pick.cut_time (s) */
+    double release_s; /* pick.release_time (s) */
+    int pick_cycle;   /* plan.pick_cycle (0/1): 1 plans in the robot's time (a pick
                                   costs its whole cycle, a stop what the drive loses
                                   stopping: hv_config_stop_time_s); 0 in the paper's (G one
                                   way home -> fruit, tau = vehicle.stop_penalty) */
 
     /* online mode: the camera's view along the row, relative to the vehicle's position */
-    double camera_lead_m;      /* camera.lead: near edge of the view ahead of the vehicle (m) */
-    double camera_window_m;    /* camera.window: length of the view along the row (m, > 0) */
+    double camera_lead_m;   /* camera.lead: near edge of the view ahead of the vehicle (m) */
+    double camera_window_m; /* camera.window: length of the view along the row (m, > 0) */
 
     /* grids */
     double grid_step_m;        /* grid.step: stops and x, y, z of the cost table */

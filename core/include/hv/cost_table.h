@@ -35,17 +35,17 @@
 extern "C" {
 #endif
 
-#define HV_COSTTAB_MAGIC "HVCOSTTB" /* 8 bytes, no terminator in the file */
-#define HV_COSTTAB_VERSION 1u
+#define HV_COSTTAB_MAGIC        "HVCOSTTB" /* 8 bytes, no terminator in the file */
+#define HV_COSTTAB_VERSION      1u
 #define HV_COSTTAB_HEADER_BYTES 512u
-#define HV_COST_UNREACHABLE 0xFFFFu /* sentinel cell value */
-#define HV_COST_MAX_MS 0xFFFEu      /* largest representable cost (65.534 s) */
+#define HV_COST_UNREACHABLE     0xFFFFu /* sentinel cell value */
+#define HV_COST_MAX_MS          0xFFFEu /* largest representable cost (65.534 s) */
 
 enum { HV_AX_X = 0, HV_AX_Y = 1, HV_AX_Z = 2, HV_AX_YAW = 3, HV_NAXES = 4 };
 
 typedef struct hv_axis {
-    double origin; /* value at index 0 (m or rad) */
-    double step;   /* > 0 (m or rad) */
+    double origin;  /* value at index 0 (m or rad) */
+    double step;    /* > 0 (m or rad) */
     uint32_t count; /* >= 1 */
 } hv_axis_t;
 
@@ -56,7 +56,7 @@ typedef struct hv_grid {
 /* A validated table. Points into the caller's buffer; valid as long as the buffer is. */
 typedef struct hv_costtab {
     hv_grid_t grid;
-    hv_arm_t arm;           /* the arm (geometry, limits, home, mount) the table was built for */
+    hv_arm_t arm; /* the arm (geometry, limits, home, mount) the table was built for */
     uint32_t generator_version;
     const uint8_t *payload; /* 2 * cells bytes, little-endian uint16 */
     size_t cells;
@@ -73,9 +73,9 @@ size_t hv_costtab_file_bytes(const hv_grid_t *grid);
 
 /* Serialise the header for `arm`/`grid` and a payload of `cells` uint16 costs (host order)
  * into `out` (at least hv_costtab_file_bytes(grid) bytes). Computes both CRCs. */
-hv_status_t hv_costtab_write(const hv_grid_t *grid, const hv_arm_t *arm,
-                             uint32_t generator_version, const uint16_t *costs_ms,
-                             uint8_t *out, size_t out_len, hv_diag_t *diag);
+hv_status_t hv_costtab_write(const hv_grid_t *grid, const hv_arm_t *arm, uint32_t generator_version,
+                             const uint16_t *costs_ms, uint8_t *out, size_t out_len,
+                             hv_diag_t *diag);
 
 /* Validate a table in `buf` and fill `tab`. Errors (each with diag->field set):
  * HV_ERR_TAB_TRUNCATED, HV_ERR_TAB_MAGIC, HV_ERR_TAB_VERSION, HV_ERR_TAB_HEADER,
@@ -84,8 +84,8 @@ hv_status_t hv_costtab_open(hv_costtab_t *tab, const void *buf, size_t len, hv_d
 
 /* Check that a loaded table fits what the caller expects (side, and the same grid as
  * `expected` when not NULL). HV_ERR_TAB_MISMATCH with diag naming the field. */
-hv_status_t hv_costtab_expect(const hv_costtab_t *tab, hv_side_t side,
-                              const hv_grid_t *expected, hv_diag_t *diag);
+hv_status_t hv_costtab_expect(const hv_costtab_t *tab, hv_side_t side, const hv_grid_t *expected,
+                              hv_diag_t *diag);
 
 /* hv_costtab_expect() for arm->side and `expected`, then the arm the table was built for
  * against `arm`: elbow mode, home pose, joint limits, mount (base position and heading)

@@ -17,8 +17,7 @@ extern "C" {
 
 /* Read a whole file into a malloc'd buffer (*data, *len; one extra NUL byte after it).
  * HV_ERR_IO with `err` (errlen bytes) describing the failure. Free with free(). */
-hv_status_t hv_file_read_all(const char *path, void **data, size_t *len, char *err,
-                             size_t errlen);
+hv_status_t hv_file_read_all(const char *path, void **data, size_t *len, char *err, size_t errlen);
 
 /* Write `len` bytes to `path` atomically: a temporary file in the same folder, fsync,
  * rename. A failure never leaves a half-written file at `path`. */
@@ -36,8 +35,7 @@ typedef struct hv_costtab_file {
 } hv_costtab_file_t;
 
 /* Read and validate a cost table file. On error nothing is kept allocated. */
-hv_status_t hv_costtab_load(const char *path, hv_costtab_file_t *file, char *err,
-                            size_t errlen);
+hv_status_t hv_costtab_load(const char *path, hv_costtab_file_t *file, char *err, size_t errlen);
 void hv_costtab_unload(hv_costtab_file_t *file);
 
 /* Read a table (hv_costtab_load) and check it against the configuration's `side` arm and

@@ -44,8 +44,7 @@ void hv_pick_pose(hv_side_t side, double x_m, double y_rel_m, double z_m, double
  * the way back takes the same time); else HV_ERR_NAN, HV_ERR_UNREACHABLE or
  * HV_ERR_JOINT_LIMIT, and *why (may be NULL) says which of height, depth, yaw. */
 hv_status_t hv_pick_solve(const hv_arm_t *arm, double x_m, double y_rel_m, double z_m,
-                          double yaw_rad, double q[HV_NJOINTS], double *move_s,
-                          hv_pick_why_t *why);
+                          double yaw_rad, double q[HV_NJOINTS], double *move_s, hv_pick_why_t *why);
 
 /* Samples between the grid's hide the extremes by less than a step in y; x and yaw samples
  * shift them by a few mm more. Spans are widened by this many y steps to cover both. */
@@ -63,8 +62,7 @@ hv_status_t hv_pick_reach_span(const hv_arm_t *arm, const hv_grid_t *area, doubl
  * both arms' reach spans (hv_pick_reach_span, indexed by hv_side_t): a fruit at the row's
  * start is reached from stops down to start - y_rel_max, one at its end from stops up to
  * end - y_rel_min. The larger of the two, rounded up to a whole number of `step`. */
-double hv_pick_margin_of_spans(const double y_rel_min[2], const double y_rel_max[2],
-                               double step);
+double hv_pick_margin_of_spans(const double y_rel_min[2], const double y_rel_max[2], double step);
 
 /* hv_pick_margin_of_spans() of the configured arms over their fruit areas: the distance the
  * candidate stops extend beyond each row end when row.stops_beyond_ends is set. */

@@ -26,10 +26,10 @@ extern "C" {
 hv_status_t hv_record_write(int fd, char *line, size_t len, size_t cap, int sync);
 
 typedef enum hv_record_check {
-    HV_RECORD_OK = 0,      /* the checksum matches: the text ends where " *" was */
-    HV_RECORD_NO_SUM,      /* no " *" in the line */
-    HV_RECORD_BAD_FIELD,   /* what follows " *" is not 8 lowercase hex digits */
-    HV_RECORD_MISMATCH     /* the text is not what was written (corrupt record) */
+    HV_RECORD_OK = 0,    /* the checksum matches: the text ends where " *" was */
+    HV_RECORD_NO_SUM,    /* no " *" in the line */
+    HV_RECORD_BAD_FIELD, /* what follows " *" is not 8 lowercase hex digits */
+    HV_RECORD_MISMATCH   /* the text is not what was written (corrupt record) */
 } hv_record_check_t;
 
 /* Check one complete line (`len` bytes, without its newline, NUL-terminated at len); on

@@ -19,11 +19,11 @@ typedef enum hv_status {
     HV_OK = 0,
 
     /* generic */
-    HV_ERR_ARG = -1,         /* NULL pointer or argument outside its documented domain */
-    HV_ERR_NAN = -2,         /* a NaN or infinite number where a finite one is required */
-    HV_ERR_NOMEM = -3,       /* caller-supplied buffer too small (core never allocates) */
-    HV_ERR_IO = -4,          /* file could not be opened, read or written (io helpers only) */
-    HV_ERR_FRUIT_ID = -5,    /* a fruit id outside the allowed set (hv/fruit_id.h) */
+    HV_ERR_ARG = -1,      /* NULL pointer or argument outside its documented domain */
+    HV_ERR_NAN = -2,      /* a NaN or infinite number where a finite one is required */
+    HV_ERR_NOMEM = -3,    /* caller-supplied buffer too small (core never allocates) */
+    HV_ERR_IO = -4,       /* file could not be opened, read or written (io helpers only) */
+    HV_ERR_FRUIT_ID = -5, /* a fruit id outside the allowed set (hv/fruit_id.h) */
 
     /* kinematics */
     HV_ERR_UNREACHABLE = -10, /* pose outside the arm's workspace */
@@ -33,11 +33,11 @@ typedef enum hv_status {
     HV_ERR_TAB_TRUNCATED = -20, /* buffer shorter than the header or header+payload */
     HV_ERR_TAB_MAGIC = -21,
     HV_ERR_TAB_VERSION = -22,
-    HV_ERR_TAB_HEADER = -23,    /* header size or a header field is inconsistent */
-    HV_ERR_TAB_GRID = -24,      /* grid axis invalid, or payload size != cells * 2 */
-    HV_ERR_TAB_CRC = -25,       /* payload or header CRC-32 mismatch */
-    HV_ERR_TAB_MISMATCH = -26,  /* table valid but built for another arm/grid than expected */
-    HV_ERR_OUT_OF_GRID = -27,   /* lookup pose outside the table grid (treated as unreachable) */
+    HV_ERR_TAB_HEADER = -23,   /* header size or a header field is inconsistent */
+    HV_ERR_TAB_GRID = -24,     /* grid axis invalid, or payload size != cells * 2 */
+    HV_ERR_TAB_CRC = -25,      /* payload or header CRC-32 mismatch */
+    HV_ERR_TAB_MISMATCH = -26, /* table valid but built for another arm/grid than expected */
+    HV_ERR_OUT_OF_GRID = -27,  /* lookup pose outside the table grid (treated as unreachable) */
 
     /* configuration text */
     HV_ERR_CFG_SYNTAX = -30,  /* a line is not `key = value` or a value does not parse */

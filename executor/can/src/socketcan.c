@@ -172,7 +172,8 @@ hv_status_t hv_can_socketcan_open(hv_can_bus_t *bus, const char *ifname,
     if (fd < 0) {
         bus->last_errno = errno;
         return (errno == EAFNOSUPPORT || errno == EPROTONOSUPPORT)
-                   ? (hv_status_t)HV_CAN_ERR_UNSUPPORTED : (hv_status_t)HV_CAN_ERR_SOCKET;
+                   ? (hv_status_t)HV_CAN_ERR_UNSUPPORTED
+                   : (hv_status_t)HV_CAN_ERR_SOCKET;
     }
     unsigned idx = if_nametoindex(ifname);
     if (idx == 0) {

@@ -193,8 +193,7 @@ static int open_tx(uint32_t if_be, uint32_t *src_addr_be, uint16_t *src_port_be)
 }
 
 hv_status_t hv_can_udp_open(hv_can_bus_t *bus, const char *group, uint16_t port,
-                            const char *if_addr, const hv_can_filter_t *filters,
-                            size_t n_filters)
+                            const char *if_addr, const hv_can_filter_t *filters, size_t n_filters)
 {
     if (!bus)
         return HV_ERR_ARG;

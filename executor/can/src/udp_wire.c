@@ -43,8 +43,8 @@ static void pack_bool(msgpack_packer *pk, const char *key, int value)
         msgpack_pack_false(pk);
 }
 
-hv_status_t hv_can_udp_wire_encode(const hv_can_frame_t *frame, double timestamp_s,
-                                   uint8_t *buf, size_t cap, size_t *len)
+hv_status_t hv_can_udp_wire_encode(const hv_can_frame_t *frame, double timestamp_s, uint8_t *buf,
+                                   size_t cap, size_t *len)
 {
     if (!frame || !buf || !len || !isfinite(timestamp_s) || timestamp_s < 0.0)
         return HV_ERR_ARG;
@@ -87,12 +87,30 @@ hv_status_t hv_can_udp_wire_encode(const hv_can_frame_t *frame, double timestamp
 
 /* Parsed keys; `seen` has one bit per key so duplicates and absences are caught. */
 enum wire_key {
-    K_TIMESTAMP, K_ID, K_EXT, K_RTR, K_ERR, K_CHANNEL, K_DLC, K_DATA, K_FD, K_BRS, K_ESI,
+    K_TIMESTAMP,
+    K_ID,
+    K_EXT,
+    K_RTR,
+    K_ERR,
+    K_CHANNEL,
+    K_DLC,
+    K_DATA,
+    K_FD,
+    K_BRS,
+    K_ESI,
     K_COUNT
 };
-static const char *const wire_key_names[K_COUNT] = {
-    "timestamp", "arbitration_id", "is_extended_id", "is_remote_frame", "is_error_frame",
-    "channel", "dlc", "data", "is_fd", "bitrate_switch", "error_state_indicator"};
+static const char *const wire_key_names[K_COUNT] = {"timestamp",
+                                                    "arbitration_id",
+                                                    "is_extended_id",
+                                                    "is_remote_frame",
+                                                    "is_error_frame",
+                                                    "channel",
+                                                    "dlc",
+                                                    "data",
+                                                    "is_fd",
+                                                    "bitrate_switch",
+                                                    "error_state_indicator"};
 
 static int key_index(const msgpack_object *key)
 {
@@ -148,7 +166,9 @@ static int take_field(int k, const msgpack_object *v, wire_fields_t *f)
             return -1;
         /* the frame keeps int64 ns: a later time (past 2262) would overflow it */
         return (isfinite(f->timestamp_s) && f->timestamp_s >= 0.0 &&
-                f->timestamp_s < WIRE_MAX_TIMESTAMP_S) ? 0 : -1;
+                f->timestamp_s < WIRE_MAX_TIMESTAMP_S)
+                   ? 0
+                   : -1;
     case K_ID: return get_uint(v, &f->id);
     case K_EXT: return get_bool(v, &f->ext);
     case K_RTR: return get_bool(v, &f->rtr);
@@ -158,7 +178,9 @@ static int take_field(int k, const msgpack_object *v, wire_fields_t *f)
     case K_ESI: return get_bool(v, &f->esi);
     case K_CHANNEL: /* informational only */
         return (v->type == MSGPACK_OBJECT_NIL || v->type == MSGPACK_OBJECT_STR ||
-                v->type == MSGPACK_OBJECT_POSITIVE_INTEGER) ? 0 : -1;
+                v->type == MSGPACK_OBJECT_POSITIVE_INTEGER)
+                   ? 0
+                   : -1;
     case K_DLC:
         if (v->type == MSGPACK_OBJECT_NIL)
             return 0; /* python-can: dlc None means len(data) */
@@ -264,28 +286,58 @@ static int wire_sane(const uint8_t *buf, size_t len)
             skip = b & 0x1fu;
         } else {
             switch (b) {
-            case 0xc4: case 0xd9: width = 1; break;           /* bin8, str8 */
-            case 0xc5: case 0xda: width = 2; break;           /* bin16, str16 */
-            case 0xc6: case 0xdb: width = 4; break;           /* bin32, str32 */
-            case 0xc7: width = 1; skip = 1; break;            /* ext8: + type byte */
-            case 0xc8: width = 2; skip = 1; break;
-            case 0xc9: width = 4; skip = 1; break;
+            case 0xc4:
+            case 0xd9: width = 1; break; /* bin8, str8 */
+            case 0xc5:
+            case 0xda: width = 2; break; /* bin16, str16 */
+            case 0xc6:
+            case 0xdb: width = 4; break; /* bin32, str32 */
+            case 0xc7:
+                width = 1;
+                skip = 1;
+                break; /* ext8: + type byte */
+            case 0xc8:
+                width = 2;
+                skip = 1;
+                break;
+            case 0xc9:
+                width = 4;
+                skip = 1;
+                break;
             case 0xca: skip = 4; break;
             case 0xcb: skip = 8; break;
-            case 0xcc: case 0xd0: skip = 1; break;
-            case 0xcd: case 0xd1: skip = 2; break;
-            case 0xce: case 0xd2: skip = 4; break;
-            case 0xcf: case 0xd3: skip = 8; break;
-            case 0xd4: skip = 2; break;                       /* fixext 1..16 + type */
+            case 0xcc:
+            case 0xd0: skip = 1; break;
+            case 0xcd:
+            case 0xd1: skip = 2; break;
+            case 0xce:
+            case 0xd2: skip = 4; break;
+            case 0xcf:
+            case 0xd3: skip = 8; break;
+            case 0xd4: skip = 2; break; /* fixext 1..16 + type */
             case 0xd5: skip = 3; break;
             case 0xd6: skip = 5; break;
             case 0xd7: skip = 9; break;
             case 0xd8: skip = 17; break;
-            case 0xdc: width = 2; is_count = 1; break;        /* array16 */
-            case 0xdd: width = 4; is_count = 1; break;
-            case 0xde: width = 2; is_count = 1; pairs = 1; break; /* map16 */
-            case 0xdf: width = 4; is_count = 1; pairs = 1; break;
-            default: return -1;                               /* 0xc1: never used */
+            case 0xdc:
+                width = 2;
+                is_count = 1;
+                break; /* array16 */
+            case 0xdd:
+                width = 4;
+                is_count = 1;
+                break;
+            case 0xde:
+                width = 2;
+                is_count = 1;
+                pairs = 1;
+                break; /* map16 */
+            case 0xdf:
+                width = 4;
+                is_count = 1;
+                pairs = 1;
+                break;
+            default: return -1; /* 0xc1: never used */
             }
         }
         if (width) {

@@ -14,8 +14,8 @@
 #include "hv/can_bus.h"
 #include "hv/can_messages.h"
 
-#define EXIT_BUS 1     /* the bus could not be opened or failed */
-#define EXIT_USAGE 2   /* bad command line or input line */
+#define EXIT_BUS     1 /* the bus could not be opened or failed */
+#define EXIT_USAGE   2 /* bad command line or input line */
 #define EXIT_TIMEOUT 3 /* fewer frames than asked for before the timeout / lost frames */
 
 static const char usage[] =
@@ -114,8 +114,18 @@ static int parse_filter(const char *v, opts_t *o)
     return 0;
 }
 
-enum { OPT_BUS = 256, OPT_COUNT, OPT_TIMEOUT, OPT_WINDOW, OPT_RCVBUF, OPT_ID, OPT_REPLY_ID,
-       OPT_OFFSET, OPT_FILTER, OPT_QUIET };
+enum {
+    OPT_BUS = 256,
+    OPT_COUNT,
+    OPT_TIMEOUT,
+    OPT_WINDOW,
+    OPT_RCVBUF,
+    OPT_ID,
+    OPT_REPLY_ID,
+    OPT_OFFSET,
+    OPT_FILTER,
+    OPT_QUIET
+};
 
 /* One option's value into `o`; -1 when it is out of range or malformed. */
 static int apply_option(int opt, const char *v, opts_t *o)
@@ -130,10 +140,13 @@ static int apply_option(int opt, const char *v, opts_t *o)
             return -1;
         o->timeout_ms = (int)n;
         return 0;
-    case OPT_WINDOW: return (parse_long(v, &o->window) || o->window < 1 || o->window > 1024) ? -1 : 0;
-    case OPT_RCVBUF: return (parse_long(v, &o->rcvbuf) || o->rcvbuf < 0 || o->rcvbuf > (1l << 30)) ? -1 : 0;
+    case OPT_WINDOW:
+        return (parse_long(v, &o->window) || o->window < 1 || o->window > 1024) ? -1 : 0;
+    case OPT_RCVBUF:
+        return (parse_long(v, &o->rcvbuf) || o->rcvbuf < 0 || o->rcvbuf > (1l << 30)) ? -1 : 0;
     case OPT_ID: return (parse_hex_u32(v, &o->id) || o->id > HV_CAN_SFF_MASK) ? -1 : 0;
-    case OPT_REPLY_ID: return (parse_hex_u32(v, &o->reply_id) || o->reply_id > HV_CAN_SFF_MASK) ? -1 : 0;
+    case OPT_REPLY_ID:
+        return (parse_hex_u32(v, &o->reply_id) || o->reply_id > HV_CAN_SFF_MASK) ? -1 : 0;
     case OPT_OFFSET: return (parse_hex_u32(v, &o->offset) || o->offset > HV_CAN_SFF_MASK) ? -1 : 0;
     case OPT_FILTER: return parse_filter(v, o);
     default: return -1;
@@ -312,8 +325,8 @@ static int pack_line(char *line, hv_can_frame_t *f)
             return -1;
         }
         if (values[k] < m->minimum[k] || values[k] > m->maximum[k]) {
-            fprintf(stderr, "hv-can-tool: %s.%s=%s outside the DBC range [%.17g, %.17g]\n",
-                    name, tok, eq + 1, m->minimum[k], m->maximum[k]);
+            fprintf(stderr, "hv-can-tool: %s.%s=%s outside the DBC range [%.17g, %.17g]\n", name,
+                    tok, eq + 1, m->minimum[k], m->maximum[k]);
             return -1;
         }
         seen[k] = 1;
@@ -517,8 +530,8 @@ static int cmd_recv(const opts_t *o, hv_can_bus_t *bus, int echo)
         if (echo) {
             if (f.flags & HV_CAN_FLAG_ERR)
                 continue;
-            f.id = (f.id + o->offset) & ((f.flags & HV_CAN_FLAG_EXT) ? HV_CAN_EFF_MASK
-                                                                     : HV_CAN_SFF_MASK);
+            f.id = (f.id + o->offset) &
+                   ((f.flags & HV_CAN_FLAG_EXT) ? HV_CAN_EFF_MASK : HV_CAN_SFF_MASK);
             if (send_checked(bus, &f, o->timeout_ms))
                 return EXIT_BUS;
         } else if (!o->quiet) {
@@ -607,8 +620,8 @@ out:;
         long p99 = (long)((double)(done - 1) * 0.99 + 0.5);
         printf("ping frames=%ld lost=%ld window=%ld seconds=%.3f fps=%.0f rtt_median_us=%.1f "
                "rtt_p99_us=%.1f rtt_max_us=%.1f\n",
-               done, lost, o->window, elapsed, (double)done / elapsed,
-               rtt[(done - 1) / 2] * 1e6, rtt[p99] * 1e6, rtt[done - 1] * 1e6);
+               done, lost, o->window, elapsed, (double)done / elapsed, rtt[(done - 1) / 2] * 1e6,
+               rtt[p99] * 1e6, rtt[done - 1] * 1e6);
     } else {
         printf("ping frames=0 lost=%ld\n", lost);
     }
@@ -685,7 +698,7 @@ int main(int argc, char **argv)
     if (!strcmp(o.command, "unpack"))
         return cmd_unpack();
     static const char *const bus_cmds[] = {"send", "send-msg", "recv", "echo",
-                                           "ping", "flood", "sink"};
+                                           "ping", "flood",    "sink"};
     size_t c;
     for (c = 0; c < sizeof bus_cmds / sizeof *bus_cmds && strcmp(o.command, bus_cmds[c]); c++) {
     }

@@ -33,8 +33,8 @@ typedef struct hv_exec_can_tx {
 
 /* Encode an action as a frame. *has_frame = 0 for actions that are not CAN (journal,
  * telemetry). HV_ERR_EXEC_CAN_FRAME when a value does not fit its signal. */
-hv_status_t hv_exec_can_encode(const hv_exec_action_t *a, hv_exec_can_tx_t *tx,
-                               hv_can_frame_t *f, int *has_frame);
+hv_status_t hv_exec_can_encode(const hv_exec_action_t *a, hv_exec_can_tx_t *tx, hv_can_frame_t *f,
+                               int *has_frame);
 
 #ifdef __cplusplus
 }

@@ -50,15 +50,15 @@ extern "C" {
 #endif
 
 typedef struct hv_exec_journal {
-    int fd;              /* -1 when closed */
+    int fd; /* -1 when closed */
     uint32_t plan_hash;
     const hv_exec_plan_t *plan;
-    int online;          /* 1: the plan grows, its stops are journalled (O, P, Q) */
+    int online;                /* 1: the plan grows, its stops are journalled (O, P, Q) */
     hv_exec_plan_t *grow;      /* online: the plan replay rebuilds (== plan) */
     uint16_t stops_journalled; /* online: plan stops [0, this) are in the journal */
     int course_journalled;     /* online: the O record is in the journal */
-    unsigned records;    /* records replayed + written */
-    unsigned torn_bytes; /* bytes of a torn last line removed at open */
+    unsigned records;          /* records replayed + written */
+    unsigned torn_bytes;       /* bytes of a torn last line removed at open */
     char path[512];
 } hv_exec_journal_t;
 
@@ -68,9 +68,8 @@ uint32_t hv_exec_plan_hash(const hv_exec_plan_t *plan);
 /* Open (create when absent) the journal of `plan` at `path`; replay what it holds into
  * `progress` (zeroed first). Codes: HV_ERR_EXEC_JOURNAL_IO, _FORMAT, _PLAN, _UNKNOWN;
  * `err` gets "<path>: line <n>: <what>". */
-hv_status_t hv_exec_journal_open(hv_exec_journal_t *j, const char *path,
-                                 const hv_exec_plan_t *plan, hv_exec_progress_t *progress,
-                                 char *err, size_t errlen);
+hv_status_t hv_exec_journal_open(hv_exec_journal_t *j, const char *path, const hv_exec_plan_t *plan,
+                                 hv_exec_progress_t *progress, char *err, size_t errlen);
 
 /* Online: open (create when absent) the journal at `path` of a plan that grows. An
  * existing journal first rebuilds `plan` (empty on entry: course 0, no stops) from its O,

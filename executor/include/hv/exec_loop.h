@@ -21,8 +21,8 @@ extern "C" {
 #endif
 
 typedef struct hv_exec_loop_stats {
-    uint64_t steps;            /* calls of hv_exec_step */
-    uint64_t step_ns_total;    /* time spent in hv_exec_step */
+    uint64_t steps;         /* calls of hv_exec_step */
+    uint64_t step_ns_total; /* time spent in hv_exec_step */
     uint64_t step_ns_max;
     uint64_t frames_rx, frames_tx, frames_rx_malformed, send_failures;
     uint64_t journal_records;
@@ -32,15 +32,15 @@ typedef struct hv_exec_loop_stats {
 typedef struct hv_exec_loop {
     hv_exec_sm_t *sm;
     hv_can_bus_t *bus;
-    hv_exec_journal_t *journal;      /* may be NULL (no journal: tests only) */
-    hv_exec_telemetry_t *tm;         /* may be NULL */
-    volatile sig_atomic_t *stop;     /* set by a signal handler: stop safely */
-    FILE *progress;                  /* phase changes and outcomes, or NULL */
-    const char *clear_by;            /* the operator who cleared the e-stop (E record), or
+    hv_exec_journal_t *journal;  /* may be NULL (no journal: tests only) */
+    hv_exec_telemetry_t *tm;     /* may be NULL */
+    volatile sig_atomic_t *stop; /* set by a signal handler: stop safely */
+    FILE *progress;              /* phase changes and outcomes, or NULL */
+    const char *clear_by;        /* the operator who cleared the e-stop (E record), or
                                         NULL: an e-stop clear then fails like a journal write */
-    double tick_s;                   /* timer tick (s, real), default 0.01 */
-    double linger_s;                 /* keep running after the end (e-stop repeats), s */
-    hv_exec_feed_t *feed;            /* online: the planner's stops, or NULL */
+    double tick_s;               /* timer tick (s, real), default 0.01 */
+    double linger_s;             /* keep running after the end (e-stop repeats), s */
+    hv_exec_feed_t *feed;        /* online: the planner's stops, or NULL */
     /* private */
     hv_exec_can_tx_t tx;
     hv_exec_arm_sample_t samples[2];

@@ -20,14 +20,14 @@ typedef enum hv_exec_outcome {
 
 typedef enum hv_exec_reason {
     HV_RSN_OK = 0,
-    HV_RSN_RESUMED,          /* picked: cut before a restart, released after it */
-    HV_RSN_IK_UNREACHABLE,   /* the IK has no solution within the joint limits */
-    HV_RSN_REJECTED,         /* the arm rejected the setpoint on every attempt */
-    HV_RSN_JOINT_FAULT,      /* joint limit / following error on every attempt */
-    HV_RSN_EE_FAULT,         /* end-effector fault on every attempt */
-    HV_RSN_TIMEOUT,          /* a motion or end-effector action did not finish in time */
-    HV_RSN_CUT_FAILED,       /* the end effector reported the cut failed on every attempt */
-    HV_RSN_DROPPED,          /* cut confirmed, fruit no longer held: never cut twice */
+    HV_RSN_RESUMED,        /* picked: cut before a restart, released after it */
+    HV_RSN_IK_UNREACHABLE, /* the IK has no solution within the joint limits */
+    HV_RSN_REJECTED,       /* the arm rejected the setpoint on every attempt */
+    HV_RSN_JOINT_FAULT,    /* joint limit / following error on every attempt */
+    HV_RSN_EE_FAULT,       /* end-effector fault on every attempt */
+    HV_RSN_TIMEOUT,        /* a motion or end-effector action did not finish in time */
+    HV_RSN_CUT_FAILED,     /* the end effector reported the cut failed on every attempt */
+    HV_RSN_DROPPED,        /* cut confirmed, fruit no longer held: never cut twice */
     HV_RSN_COUNT
 } hv_exec_reason_t;
 
@@ -45,11 +45,11 @@ typedef struct hv_exec_progress {
     uint8_t reason[HV_EXEC_MAX_PICKS];  /* hv_exec_reason_t when DONE */
     uint8_t stop_reached[HV_EXEC_MAX_STOPS];
     int row_done;
-    unsigned estop_clears;              /* operator e-stop clears journalled (E records) */
+    unsigned estop_clears; /* operator e-stop clears journalled (E records) */
 } hv_exec_progress_t;
 
-const char *hv_exec_outcome_name(int outcome);  /* "picked", "failed", "skipped" */
-const char *hv_exec_reason_name(int reason);    /* "ok", "ik_unreachable", ... */
+const char *hv_exec_outcome_name(int outcome); /* "picked", "failed", "skipped" */
+const char *hv_exec_reason_name(int reason);   /* "ok", "ik_unreachable", ... */
 /* Parse the names back; -1 when unknown. */
 int hv_exec_outcome_parse(const char *name);
 int hv_exec_reason_parse(const char *name);

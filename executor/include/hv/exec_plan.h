@@ -35,33 +35,33 @@ extern "C" {
 #ifndef HV_EXEC_MAX_PICKS
 #define HV_EXEC_MAX_PICKS 4096u /* both arms together */
 #endif
-#define HV_EXEC_ID_LEN 32u       /* fruit id incl. its NUL */
+#define HV_EXEC_ID_LEN 32u /* fruit id incl. its NUL */
 
 typedef struct hv_exec_pick {
     char id[HV_EXEC_ID_LEN]; /* fruit id from the map */
     hv_side_t side;
-    uint16_t stop;           /* index into hv_exec_plan_t.stops */
-    double x_m, y_m, z_m;    /* fruit position: x, z vehicle frame, y along the row */
-    double yaw_rad;          /* pick heading relative to the side's inward normal */
-    double cost_s;           /* the plan's G (home -> fruit) */
-    double start_s;          /* the plan's start of this pick after arrival at the stop */
+    uint16_t stop;        /* index into hv_exec_plan_t.stops */
+    double x_m, y_m, z_m; /* fruit position: x, z vehicle frame, y along the row */
+    double yaw_rad;       /* pick heading relative to the side's inward normal */
+    double cost_s;        /* the plan's G (home -> fruit) */
+    double start_s;       /* the plan's start of this pick after arrival at the stop */
     /* filled by hv_exec_plan_prepare() */
-    int reachable;           /* 1: IK found a solution within the joint limits */
-    hv_status_t ik_status;   /* HV_OK or the IK's error when not reachable */
-    double q[HV_NJOINTS];    /* joint setpoint at the fruit (m, rad) */
-    double move_s;           /* rest-to-rest time home -> q (s, plan time) */
-    double cycle_s;          /* expected pick cycle: 2 * move_s + cut_s + release_s */
+    int reachable;         /* 1: IK found a solution within the joint limits */
+    hv_status_t ik_status; /* HV_OK or the IK's error when not reachable */
+    double q[HV_NJOINTS];  /* joint setpoint at the fruit (m, rad) */
+    double move_s;         /* rest-to-rest time home -> q (s, plan time) */
+    double cycle_s;        /* expected pick cycle: 2 * move_s + cut_s + release_s */
 } hv_exec_pick_t;
 
 typedef struct hv_exec_stop {
-    uint32_t plan_index;     /* the plan's stop index p (grid index along the row) */
-    double y_m;              /* stop position along the row */
-    uint16_t first[2];       /* first pick of each arm (indexed by hv_side_t) */
-    uint16_t count[2];       /* number of picks of each arm */
+    uint32_t plan_index; /* the plan's stop index p (grid index along the row) */
+    double y_m;          /* stop position along the row */
+    uint16_t first[2];   /* first pick of each arm (indexed by hv_side_t) */
+    uint16_t count[2];   /* number of picks of each arm */
     /* filled by hv_exec_plan_prepare() */
-    double arm_s[2];         /* expected busy time of each arm at this stop */
-    double expected_s;       /* max of arm_s */
-    double drive_s;          /* expected vehicle move from the previous stop (or the course
+    double arm_s[2];   /* expected busy time of each arm at this stop */
+    double expected_s; /* max of arm_s */
+    double drive_s;    /* expected vehicle move from the previous stop (or the course
                                 start) */
 } hv_exec_stop_t;
 
@@ -71,9 +71,9 @@ typedef struct hv_exec_plan {
     hv_exec_stop_t stops[HV_EXEC_MAX_STOPS];
     hv_exec_pick_t picks[HV_EXEC_MAX_PICKS];
     double row_start_m, row_length_m;
-    double stop_margin_m;       /* the course runs this far beyond both row ends (m) */
-    double planned_makespan_s;  /* the plan's totals.makespan_s (paper's objective) */
-    double planned_pick_s;      /* the plan's totals.pick_time_s */
+    double stop_margin_m;      /* the course runs this far beyond both row ends (m) */
+    double planned_makespan_s; /* the plan's totals.makespan_s (paper's objective) */
+    double planned_pick_s;     /* the plan's totals.pick_time_s */
     /* filled by hv_exec_plan_prepare() */
     double home[2][HV_NJOINTS]; /* home pose of each arm */
     double final_drive_s;       /* expected move from the last stop to the course end */
@@ -83,10 +83,10 @@ typedef struct hv_exec_plan {
 
 /* Timing model of the pick cycle and the vehicle (plan time, s). */
 typedef struct hv_exec_timing {
-    double cut_s;               /* end effector cut, > 0 */
-    double release_s;           /* end effector release into the container, > 0 */
-    double vehicle_speed_mps;   /* > 0 */
-    double vehicle_accel_mps2;  /* > 0 */
+    double cut_s;              /* end effector cut, > 0 */
+    double release_s;          /* end effector release into the container, > 0 */
+    double vehicle_speed_mps;  /* > 0 */
+    double vehicle_accel_mps2; /* > 0 */
 } hv_exec_timing_t;
 
 /* Solve every pick's IK with `arm[side]` (pose relative to its stop: y - stop y, heading =

@@ -70,14 +70,14 @@ enum { HV_EXEC_VEHICLE = 0, HV_EXEC_LEFT = 1, HV_EXEC_RIGHT = 2, HV_EXEC_NODES =
  * from the DBC's value tables by the build. */
 
 /* Arm FaultBits (DBC) */
-#define HV_ARM_FAULT_JOINTS 0x00FFu   /* bits 0..7: joint limit, following error (stall) */
-#define HV_ARM_FAULT_EE 0x0100u       /* bit 8 */
-#define HV_ARM_FAULT_COMM 0x0200u     /* bit 9: the arm lost our heartbeat */
-#define HV_ARM_FAULT_ESTOP 0x0400u    /* bit 10 */
+#define HV_ARM_FAULT_JOINTS   0x00FFu /* bits 0..7: joint limit, following error (stall) */
+#define HV_ARM_FAULT_EE       0x0100u /* bit 8 */
+#define HV_ARM_FAULT_COMM     0x0200u /* bit 9: the arm lost our heartbeat */
+#define HV_ARM_FAULT_ESTOP    0x0400u /* bit 10 */
 #define HV_ARM_FAULT_REJECTED 0x0800u /* bit 11: setpoint out of range */
 /* Vehicle FaultBits (DBC) */
-#define HV_VEH_FAULT_COMM 0x08u
-#define HV_VEH_FAULT_ESTOP 0x10u
+#define HV_VEH_FAULT_COMM     0x08u
+#define HV_VEH_FAULT_ESTOP    0x10u
 
 #define HV_PROTOCOL_VERSION 1
 
@@ -90,7 +90,7 @@ typedef enum hv_exec_phase {
     HV_PH_FINAL_DRIVE,
     HV_PH_ROW_DONE,
     HV_PH_SAFE,
-    HV_PH_WAIT_PLAN,   /* online: every committed stop done, waiting for the planner's next */
+    HV_PH_WAIT_PLAN, /* online: every committed stop done, waiting for the planner's next */
     HV_PH_COUNT
 } hv_exec_phase_t;
 
@@ -105,30 +105,30 @@ typedef enum hv_exec_enable_step {
 } hv_exec_enable_step_t;
 
 typedef enum hv_exec_arm_phase {
-    HV_ARM_IDLE = 0,   /* no pick at this stop yet / between stops */
+    HV_ARM_IDLE = 0, /* no pick at this stop yet / between stops */
     HV_ARM_APPROACH,
     HV_ARM_CUT,
     HV_ARM_RETURN,
     HV_ARM_RELEASE,
-    HV_ARM_RECOVER,    /* DISABLE -> CLEAR_FAULT -> ENABLE -> HOME */
-    HV_ARM_DONE,       /* all picks of this stop finished */
+    HV_ARM_RECOVER, /* DISABLE -> CLEAR_FAULT -> ENABLE -> HOME */
+    HV_ARM_DONE,    /* all picks of this stop finished */
     HV_ARM_PHASE_COUNT
 } hv_exec_arm_phase_t;
 
 /* Why the executor went to SAFE. */
 typedef enum hv_exec_safe_reason {
     HV_SAFE_NONE = 0,
-    HV_SAFE_ESTOP,          /* a node reports e-stop */
-    HV_SAFE_HEARTBEAT,      /* lost heartbeat of a node */
-    HV_SAFE_NODES_ABSENT,   /* not every node appeared within startup_timeout_s */
-    HV_SAFE_TIME_SCALE,     /* nodes disagree on the time scale (or with ours) */
-    HV_SAFE_COMM,           /* a node reports it lost our heartbeat */
+    HV_SAFE_ESTOP,        /* a node reports e-stop */
+    HV_SAFE_HEARTBEAT,    /* lost heartbeat of a node */
+    HV_SAFE_NODES_ABSENT, /* not every node appeared within startup_timeout_s */
+    HV_SAFE_TIME_SCALE,   /* nodes disagree on the time scale (or with ours) */
+    HV_SAFE_COMM,         /* a node reports it lost our heartbeat */
     HV_SAFE_VEHICLE_FAULT,
-    HV_SAFE_TIMEOUT,        /* start-up, vehicle move or recovery did not finish in time */
-    HV_SAFE_FAULT,          /* a node faulted during start-up or recovery */
-    HV_SAFE_JOURNAL,        /* the journal could not be written */
-    HV_SAFE_OPERATOR,       /* stop requested (signal) */
-    HV_SAFE_ESTOP_LATCHED,  /* a node reports a latched e-stop at start-up, no operator clear */
+    HV_SAFE_TIMEOUT,       /* start-up, vehicle move or recovery did not finish in time */
+    HV_SAFE_FAULT,         /* a node faulted during start-up or recovery */
+    HV_SAFE_JOURNAL,       /* the journal could not be written */
+    HV_SAFE_OPERATOR,      /* stop requested (signal) */
+    HV_SAFE_ESTOP_LATCHED, /* a node reports a latched e-stop at start-up, no operator clear */
     HV_SAFE_COUNT
 } hv_exec_safe_reason_t;
 
@@ -164,8 +164,8 @@ void hv_exec_params_default(hv_exec_params_t *p);
 double hv_exec_home_max_s(const hv_arm_t *arm);
 
 typedef enum hv_exec_event_kind {
-    HV_EV_TICK = 0,       /* time passed */
-    HV_EV_HEARTBEAT,      /* a node's heartbeat */
+    HV_EV_TICK = 0,  /* time passed */
+    HV_EV_HEARTBEAT, /* a node's heartbeat */
     HV_EV_VEHICLE_STATUS,
     HV_EV_ARM_STATUS,
     HV_EV_EE_STATUS,
@@ -176,17 +176,41 @@ typedef enum hv_exec_event_kind {
 
 typedef struct hv_exec_event {
     hv_exec_event_kind_t kind;
-    int node;             /* HV_EXEC_VEHICLE / _LEFT / _RIGHT (arm and ee events: the arm) */
+    int node; /* HV_EXEC_VEHICLE / _LEFT / _RIGHT (arm and ee events: the arm) */
     union {
-        struct { int health; double time_scale; int protocol; } hb;
-        struct { double position_m; int state; int arrived; int fault_bits; int move_seq;
-                 int cmd_seq; } veh;
-        struct { int state; int reached; int homed; int sp_seq; int cmd_seq;
-                 int fault_bits; } arm;
-        struct { int state; int action; int ee_seq; int fruit_held; } ee;
+        struct {
+            int health;
+            double time_scale;
+            int protocol;
+        } hb;
+        struct {
+            double position_m;
+            int state;
+            int arrived;
+            int fault_bits;
+            int move_seq;
+            int cmd_seq;
+        } veh;
+        struct {
+            int state;
+            int reached;
+            int homed;
+            int sp_seq;
+            int cmd_seq;
+            int fault_bits;
+        } arm;
+        struct {
+            int state;
+            int action;
+            int ee_seq;
+            int fruit_held;
+        } ee;
         /* final: no stop will follow; advance_m: the planner has committed the course up
          * to here, so the vehicle may drive this far when no stop with work is ahead */
-        struct { int final; double advance_m; } plan;
+        struct {
+            int final;
+            double advance_m;
+        } plan;
     } u;
 } hv_exec_event_t;
 
@@ -203,31 +227,64 @@ typedef enum hv_exec_action_kind {
 } hv_exec_action_kind_t;
 
 typedef enum hv_exec_journal_kind {
-    HV_JR_STOP = 0, /* stop reached */
-    HV_JR_CUT,      /* cut issued for a pick */
-    HV_JR_RELEASE,  /* release issued for a pick */
-    HV_JR_OUTCOME,  /* a pick's outcome */
-    HV_JR_DONE,     /* row done */
+    HV_JR_STOP = 0,   /* stop reached */
+    HV_JR_CUT,        /* cut issued for a pick */
+    HV_JR_RELEASE,    /* release issued for a pick */
+    HV_JR_OUTCOME,    /* a pick's outcome */
+    HV_JR_DONE,       /* row done */
     HV_JR_ESTOP_CLEAR /* the operator's e-stop clear, of the nodes in u.jr.nodes */
 } hv_exec_journal_kind_t;
 
 typedef enum hv_exec_fruit_event_kind {
-    HV_FE_APPROACH = 0, HV_FE_CUT, HV_FE_RETURN, HV_FE_RELEASE, HV_FE_OUTCOME, HV_FE_FAULT
+    HV_FE_APPROACH = 0,
+    HV_FE_CUT,
+    HV_FE_RETURN,
+    HV_FE_RELEASE,
+    HV_FE_OUTCOME,
+    HV_FE_FAULT
 } hv_exec_fruit_event_kind_t;
 
 typedef struct hv_exec_action {
     hv_exec_action_kind_t kind;
     int node; /* HV_EXEC_* for commands, setpoints, ee */
     union {
-        struct { int health; double time_scale; } hb;
-        struct { int command; int seq; } cmd;
-        struct { double q[HV_NJOINTS]; int seq; } sp;
-        struct { int action; int seq; } ee;
-        struct { double target_m; double speed_mps; int seq; } move;
-        struct { hv_exec_journal_kind_t kind; int pick; int stop; int attempt;
-                 int outcome; int reason; unsigned nodes; } jr; /* nodes: 1 << HV_EXEC_* */
-        struct { hv_exec_fruit_event_kind_t kind; int pick; int attempt; int outcome;
-                 int reason; } fe;
+        struct {
+            int health;
+            double time_scale;
+        } hb;
+        struct {
+            int command;
+            int seq;
+        } cmd;
+        struct {
+            double q[HV_NJOINTS];
+            int seq;
+        } sp;
+        struct {
+            int action;
+            int seq;
+        } ee;
+        struct {
+            double target_m;
+            double speed_mps;
+            int seq;
+        } move;
+        struct {
+            hv_exec_journal_kind_t kind;
+            int pick;
+            int stop;
+            int attempt;
+            int outcome;
+            int reason;
+            unsigned nodes;
+        } jr; /* nodes: 1 << HV_EXEC_* */
+        struct {
+            hv_exec_fruit_event_kind_t kind;
+            int pick;
+            int attempt;
+            int outcome;
+            int reason;
+        } fe;
     } u;
 } hv_exec_action_t;
 
@@ -247,11 +304,12 @@ typedef struct hv_exec_node {
     double time_scale;
     int health;
     int state, fault_bits, homed, reached, sp_seq, cmd_seq; /* last status */
-    int move_seq, arrived; double position_m;               /* vehicle */
-    int ee_seen, ee_state, ee_action, ee_seq, fruit_held;   /* arms: last EeStatus */
+    int move_seq, arrived;
+    double position_m;                                    /* vehicle */
+    int ee_seen, ee_state, ee_action, ee_seq, fruit_held; /* arms: last EeStatus */
     /* what we sent */
     int next_cmd_seq, next_sp_seq, next_ee_seq, next_move_seq;
-    int wait_cmd_seq;      /* command awaiting its echo, -1 none */
+    int wait_cmd_seq; /* command awaiting its echo, -1 none */
     /* the last command/setpoint/ee/move sent to this node, repeated every resend_s until
      * the node echoes its sequence number (a lost frame is not a fault) */
     int resend_active;
@@ -261,50 +319,50 @@ typedef struct hv_exec_node {
 
 typedef struct hv_exec_arm {
     hv_exec_arm_phase_t phase;
-    int pick;              /* current pick (plan index), -1 none */
-    unsigned next;         /* next pick of this arm at this stop, 0..count */
-    unsigned attempt;      /* attempts of the current pick so far (1 on the first) */
-    int sp_seq, ee_seq;    /* what the current phase waits for */
+    int pick;           /* current pick (plan index), -1 none */
+    unsigned next;      /* next pick of this arm at this stop, 0..count */
+    unsigned attempt;   /* attempts of the current pick so far (1 on the first) */
+    int sp_seq, ee_seq; /* what the current phase waits for */
     uint64_t deadline_ns;
-    int cut_confirmed;     /* the end effector reported the cut of the current pick done */
-    int recover_step;      /* RECOVER: 0 DISABLE, 1 CLEAR_FAULT, 2 ENABLE, 3 HOME */
-    int fault_reason;      /* hv_exec_reason_t that started the recovery */
+    int cut_confirmed; /* the end effector reported the cut of the current pick done */
+    int recover_step;  /* RECOVER: 0 DISABLE, 1 CLEAR_FAULT, 2 ENABLE, 3 HOME */
+    int fault_reason;  /* hv_exec_reason_t that started the recovery */
     uint64_t pick_start_ns;
 } hv_exec_arm_t;
 
 typedef struct hv_exec_sm {
     const hv_exec_plan_t *plan;
     hv_exec_params_t prm;
-    hv_exec_progress_t prog;   /* per-pick progress (journal replay + this run) */
+    hv_exec_progress_t prog; /* per-pick progress (journal replay + this run) */
     hv_exec_phase_t phase;
-    int sub;                   /* ENABLE: the hv_exec_enable_step_t reached */
-    unsigned latched;          /* nodes (1 << HV_EXEC_*) that reported an e-stop at start-up */
-    uint64_t rx;               /* heartbeats and statuses received so far (their order) */
-    uint64_t clear_rx;         /* rx when the last CLEAR_ESTOP was echoed: later is fresh */
+    int sub;           /* ENABLE: the hv_exec_enable_step_t reached */
+    unsigned latched;  /* nodes (1 << HV_EXEC_*) that reported an e-stop at start-up */
+    uint64_t rx;       /* heartbeats and statuses received so far (their order) */
+    uint64_t clear_rx; /* rx when the last CLEAR_ESTOP was echoed: later is fresh */
     hv_exec_safe_reason_t safe_reason;
-    int safe_node;             /* node of the safe reason, -1 when none */
-    double time_scale;         /* in use (from the nodes once they agree) */
+    int safe_node;     /* node of the safe reason, -1 when none */
+    double time_scale; /* in use (from the nodes once they agree) */
     hv_exec_node_t node[HV_EXEC_NODES];
     hv_exec_arm_t arm[2];
-    int stop;                  /* current stop (plan position), -1 before the first */
-    uint64_t t_start_ns;       /* step 0 */
-    uint64_t deadline_ns;      /* phase deadline (start-up, drive) */
+    int stop;             /* current stop (plan position), -1 before the first */
+    uint64_t t_start_ns;  /* step 0 */
+    uint64_t deadline_ns; /* phase deadline (start-up, drive) */
     uint64_t next_hb_ns;
-    uint64_t t_row_start_ns;   /* first move sent; 0 = not yet */
-    uint64_t t_row_end_ns;     /* row done; 0 = not yet */
+    uint64_t t_row_start_ns;          /* first move sent; 0 = not yet */
+    uint64_t t_row_end_ns;            /* row done; 0 = not yet */
     unsigned picked, failed, skipped; /* outcomes recorded in this run */
-    unsigned faults;           /* recoverable arm faults seen in this run */
-    unsigned resends;          /* frames sent again for want of an acknowledgement */
-    int started;               /* first step done */
+    unsigned faults;                  /* recoverable arm faults seen in this run */
+    unsigned resends;                 /* frames sent again for want of an acknowledgement */
+    int started;                      /* first step done */
     /* online (params.online) */
-    int plan_final;            /* the planner said no stop will follow */
-    double advance_m;          /* the course is committed up to here (m) */
-    int advancing;             /* WAIT_PLAN: a move to advance_m is under way */
-    uint64_t wait_from_ns;     /* WAIT_PLAN entered */
-    int wait_first;            /* this wait came before the row started */
-    uint64_t wait_first_ns;    /* real time waited for the first stop (before the row) */
-    uint64_t wait_row_ns;      /* real time waited for the planner once the row started */
-    unsigned waits;            /* times the vehicle waited for the planner in the row */
+    int plan_final;         /* the planner said no stop will follow */
+    double advance_m;       /* the course is committed up to here (m) */
+    int advancing;          /* WAIT_PLAN: a move to advance_m is under way */
+    uint64_t wait_from_ns;  /* WAIT_PLAN entered */
+    int wait_first;         /* this wait came before the row started */
+    uint64_t wait_first_ns; /* real time waited for the first stop (before the row) */
+    uint64_t wait_row_ns;   /* real time waited for the planner once the row started */
+    unsigned waits;         /* times the vehicle waited for the planner in the row */
 } hv_exec_sm_t;
 
 /* Set up for `plan` (prepared) with `params`; `progress` from the journal, or NULL for a
@@ -323,8 +381,7 @@ double hv_exec_executed_s(const hv_exec_sm_t *sm, uint64_t now_ns);
 
 /* Online: plan time (s) the vehicle waited for the planner before its first stop (*first_s)
  * and once the row had started (*row_s), the current wait included. */
-void hv_exec_plan_wait_s(const hv_exec_sm_t *sm, uint64_t now_ns, double *first_s,
-                         double *row_s);
+void hv_exec_plan_wait_s(const hv_exec_sm_t *sm, uint64_t now_ns, double *first_s, double *row_s);
 
 /* 1 once the run ended (ROW_DONE or SAFE). */
 int hv_exec_finished(const hv_exec_sm_t *sm);

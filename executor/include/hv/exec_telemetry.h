@@ -18,10 +18,10 @@
 extern "C" {
 #endif
 
-#define HV_TM_CH_PLAN "HARVEST_PLAN"
-#define HV_TM_CH_STATE "HARVEST_EXEC_STATE"
-#define HV_TM_CH_FRUIT "HARVEST_FRUIT"
-#define HV_TM_CH_ARM_LEFT "HARVEST_ARM_LEFT"
+#define HV_TM_CH_PLAN      "HARVEST_PLAN"
+#define HV_TM_CH_STATE     "HARVEST_EXEC_STATE"
+#define HV_TM_CH_FRUIT     "HARVEST_FRUIT"
+#define HV_TM_CH_ARM_LEFT  "HARVEST_ARM_LEFT"
 #define HV_TM_CH_ARM_RIGHT "HARVEST_ARM_RIGHT"
 #define HV_TM_CH_CAN_STATS "HARVEST_CAN_STATS"
 
@@ -35,8 +35,8 @@ typedef struct hv_exec_arm_sample {
 /* Bus counters (a copy of the CAN layer's, so telemetry does not depend on it). */
 typedef struct hv_exec_bus_stats {
     const char *bus;
-    uint64_t tx_frames, rx_frames, rx_error_frames, rx_malformed, rx_unsupported,
-        rx_filtered, rx_kernel_drops, tx_failures;
+    uint64_t tx_frames, rx_frames, rx_error_frames, rx_malformed, rx_unsupported, rx_filtered,
+        rx_kernel_drops, tx_failures;
 } hv_exec_bus_stats_t;
 
 typedef struct hv_exec_telemetry hv_exec_telemetry_t;
@@ -44,8 +44,7 @@ typedef struct hv_exec_telemetry hv_exec_telemetry_t;
 typedef struct hv_exec_telemetry_ops {
     int (*plan)(hv_exec_telemetry_t *t, const hv_exec_plan_t *plan, const char *path,
                 const hv_exec_params_t *prm, double time_scale, int64_t utime);
-    int (*state)(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, uint64_t now_ns,
-                 int64_t utime);
+    int (*state)(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, uint64_t now_ns, int64_t utime);
     int (*fruit)(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const hv_exec_action_t *fe,
                  uint64_t now_ns, int64_t utime);
     int (*arm)(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const hv_exec_arm_sample_t *s,
@@ -74,12 +73,11 @@ void hv_exec_tm_plan(hv_exec_telemetry_t *t, const hv_exec_plan_t *plan, const c
                      const hv_exec_params_t *prm, double time_scale, int64_t utime);
 void hv_exec_tm_state(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, uint64_t now_ns,
                       int64_t utime);
-void hv_exec_tm_fruit(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm,
-                      const hv_exec_action_t *fe, uint64_t now_ns, int64_t utime);
-void hv_exec_tm_arm(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm,
-                    const hv_exec_arm_sample_t *s, int64_t utime);
-void hv_exec_tm_can_stats(hv_exec_telemetry_t *t, const hv_exec_bus_stats_t *s,
-                          int64_t utime);
+void hv_exec_tm_fruit(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const hv_exec_action_t *fe,
+                      uint64_t now_ns, int64_t utime);
+void hv_exec_tm_arm(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const hv_exec_arm_sample_t *s,
+                    int64_t utime);
+void hv_exec_tm_can_stats(hv_exec_telemetry_t *t, const hv_exec_bus_stats_t *s, int64_t utime);
 void hv_exec_telemetry_close(hv_exec_telemetry_t *t);
 
 /* Picks without an outcome yet (journal included). */

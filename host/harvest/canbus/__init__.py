@@ -4,7 +4,16 @@ private network namespaces for UDP multicast (netns) and the QEMU vcan test bed 
 The DBC in executor/can/harvest.dbc is the single source of truth (DESIGN §6); this
 package only loads it, it never restates a frame layout.
 """
+
 from .protocol import (  # noqa: F401
-    BROADCAST_NODE, COMMANDS, DBC_PATH, NODES, PROTOCOL_VERSION, Protocol, ProtocolError,
-    frame_id, load, split_id,
+    BROADCAST_NODE,
+    COMMANDS,
+    DBC_PATH,
+    NODES,
+    PROTOCOL_VERSION,
+    Protocol,
+    ProtocolError,
+    frame_id,
+    load,
+    split_id,
 )

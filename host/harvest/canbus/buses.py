@@ -5,6 +5,7 @@ Bus specs are the ones hv-can-tool takes: "socketcan:vcan0" or
 Note: python-can's udp_multicast bus receives the frames it sent itself (python-can
 4.6.1 cannot turn that off); `recv_foreign` skips them, the C transport never sees its own.
 """
+
 import can
 
 UDP_GROUP = "239.74.163.2"
@@ -16,7 +17,9 @@ def parse_spec(spec):
     kind, _, rest = spec.partition(":")
     if kind == "socketcan":
         if not rest:
-            raise ValueError(f"bus spec '{spec}': socketcan needs an interface, e.g. socketcan:vcan0")
+            raise ValueError(
+                f"bus spec '{spec}': socketcan needs an interface, e.g. socketcan:vcan0"
+            )
         return "socketcan", {"channel": rest}
     if kind == "udp":
         parts = rest.split(":") if rest else []
@@ -44,14 +47,18 @@ def is_undecodable_datagram(exc):
     raised; the datagram is consumed by then, so the next recv() reads the next one. A
     failing socket raises CanOperationError from an OSError, or with no cause: not this.
     """
-    return (isinstance(exc, can.CanOperationError) and exc.__cause__ is not None
-            and not isinstance(exc.__cause__, OSError))
+    return (
+        isinstance(exc, can.CanOperationError)
+        and exc.__cause__ is not None
+        and not isinstance(exc.__cause__, OSError)
+    )
 
 
 def recv_foreign(bus, sent_ids, timeout):
     """Next message whose id is not in `sent_ids` (our own looped-back udp frames), or
     None after `timeout` seconds without one."""
     import time
+
     deadline = time.monotonic() + timeout
     while True:
         left = deadline - time.monotonic()

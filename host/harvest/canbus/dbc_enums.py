@@ -8,6 +8,7 @@ nobody named, is an error here (and so in the build) rather than a silent differ
 
     python -m harvest.canbus.dbc_enums --c-header OUT.h [--dbc PATH]
 """
+
 import argparse
 import os
 import re
@@ -49,21 +50,29 @@ def tables(proto):
                     raise EnumError(f"{proto.path}: {msg}.{signal} has no value table (VAL_)")
                 bad = [label for label in choices.values() if not _LABEL.fullmatch(label)]
                 if bad:
-                    raise EnumError(f"{proto.path}: {msg}.{signal}: label {bad[0]!r} is not an "
-                                    "upper-case identifier (it names a C and a Python constant)")
+                    raise EnumError(
+                        f"{proto.path}: {msg}.{signal}: label {bad[0]!r} is not an "
+                        "upper-case identifier (it names a C and a Python constant)"
+                    )
                 if name in found and found[name][1] != choices:
-                    raise EnumError(f"{proto.path}: {msg}.{signal} values {choices} differ from "
-                                    f"{found[name][0]}'s {found[name][1]}")
+                    raise EnumError(
+                        f"{proto.path}: {msg}.{signal} values {choices} differ from "
+                        f"{found[name][0]}'s {found[name][1]}"
+                    )
                 found.setdefault(name, (f"{msg}.{signal}", choices))
                 typed[(msg, signal)] = name
         if name not in found:
-            raise EnumError(f"{proto.path}: no message carries enum {name} "
-                            f"({', '.join(f'<Node>{k}.{s}' for k, s in pairs)})")
+            raise EnumError(
+                f"{proto.path}: no message carries enum {name} "
+                f"({', '.join(f'<Node>{k}.{s}' for k, s in pairs)})"
+            )
     for m in proto.messages:
         for s in m.signals:
             if s.choices and (m.name, s.name) not in typed:
-                raise EnumError(f"{proto.path}: {m.name}.{s.name} has a value table that no "
-                                f"enum of harvest.canbus.dbc_enums.SPEC names")
+                raise EnumError(
+                    f"{proto.path}: {m.name}.{s.name} has a value table that no "
+                    f"enum of harvest.canbus.dbc_enums.SPEC names"
+                )
     return {name: choices for name, (_, choices) in found.items()}
 
 
@@ -71,8 +80,12 @@ def c_header(proto):
     """The text of hv/can_enums.h: one C enum per table, HV_CAN_<prefix>_<LABEL> = value."""
     t = tables(proto)
     dbc = os.path.basename(proto.path)
-    out = [f"/* Generated from {dbc} by harvest.canbus.dbc_enums: do not edit. */",
-           "#ifndef HV_CAN_ENUMS_H", "#define HV_CAN_ENUMS_H", ""]
+    out = [
+        f"/* Generated from {dbc} by harvest.canbus.dbc_enums: do not edit. */",
+        "#ifndef HV_CAN_ENUMS_H",
+        "#define HV_CAN_ENUMS_H",
+        "",
+    ]
     for name, prefix, pairs in SPEC:
         where = ", ".join(f"<Node>{k}.{s}" for k, s in pairs)
         items = sorted(t[name].items())
@@ -86,8 +99,10 @@ def c_header(proto):
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(prog="python -m harvest.canbus.dbc_enums",
-                                description="Write the C header of the DBC's value tables.")
+    p = argparse.ArgumentParser(
+        prog="python -m harvest.canbus.dbc_enums",
+        description="Write the C header of the DBC's value tables.",
+    )
     p.add_argument("--dbc", default=protocol.DBC_PATH, help="the DBC (default: %(default)s)")
     p.add_argument("--c-header", required=True, help="header to write (replaced atomically)")
     args = p.parse_args(argv)

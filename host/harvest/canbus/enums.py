@@ -8,6 +8,7 @@ firmware's plan upload).
 Which signal each one types, and the checks that make them the DBC's, are dbc_enums.SPEC;
 the C side gets the same tables as hv/can_enums.h (HV_CAN_CMD_CLEAR_ESTOP, ...).
 """
+
 import enum
 
 from . import protocol
@@ -15,9 +16,12 @@ from .dbc_enums import EnumError, tables
 
 
 def _int_enums(proto):
-    return {name: enum.IntEnum(name, {label: value for value, label in sorted(t.items())},
-                               module=__name__)
-            for name, t in tables(proto).items()}
+    return {
+        name: enum.IntEnum(
+            name, {label: value for value, label in sorted(t.items())}, module=__name__
+        )
+        for name, t in tables(proto).items()
+    }
 
 
 _ENUMS = _int_enums(protocol.load())
@@ -50,5 +54,7 @@ def check_same(proto):
     got = tables(proto)
     for name in have:
         if got[name] != have[name]:
-            raise EnumError(f"{proto.path}: {name} values {got[name]} differ from "
-                            f"{protocol.DBC_PATH}'s {have[name]}, which this program uses")
+            raise EnumError(
+                f"{proto.path}: {name} values {got[name]} differ from "
+                f"{protocol.DBC_PATH}'s {have[name]}, which this program uses"
+            )

@@ -5,6 +5,7 @@ guest (testbed/run-in-guest, DESIGN §6).
     proc = run_in_guest(["python", "-m", "pytest", ...], rw=[tmpdir])
     guest_or_skip(proc)               # pytest.skip("SKIPPED: ...") when the guest cannot run
 """
+
 import os
 import socket
 import subprocess
@@ -49,8 +50,7 @@ def run_in_guest(argv, timeout=600, rw=(), cwd=None, env=None):
     if cwd:
         cmd += ["--cwd", str(cwd)]
     cmd += ["--"] + [str(a) for a in argv]
-    return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout + 60,
-                          env=env)
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout + 60, env=env)
 
 
 def skip_reason(proc):
@@ -68,5 +68,6 @@ def guest_or_skip(proc):
     reason = skip_reason(proc)
     if reason is not None:
         import pytest
+
         pytest.skip(reason)
     return proc

@@ -8,6 +8,7 @@ loopback). Two ways in:
 - `netns_command(argv)` wraps a command line so it runs in its own such namespace
   (`unshare -rn sh -c ...`), for scripts and benchmarks.
 """
+
 import ctypes
 import os
 import shutil
@@ -40,8 +41,10 @@ def enter_private_netns():
     flags = CLONE_NEWNET if uid == 0 else CLONE_NEWNET | CLONE_NEWUSER
     if libc.unshare(flags) != 0:
         err = ctypes.get_errno()
-        raise NetnsUnavailable(f"unshare(CLONE_NEWNET{'' if uid == 0 else '|CLONE_NEWUSER'}) "
-                               f"failed: {os.strerror(err)}")
+        raise NetnsUnavailable(
+            f"unshare(CLONE_NEWNET{'' if uid == 0 else '|CLONE_NEWUSER'}) "
+            f"failed: {os.strerror(err)}"
+        )
     if uid != 0:
         # become root of the new user namespace so that we may configure its network
         _write("/proc/self/setgroups", "deny")
@@ -56,6 +59,7 @@ def in_private_netns():
     """True when the only interface is lo (i.e. we are inside such a namespace). Asks the
     kernel (if_nameindex), not /sys/class/net, which shows the mounter's namespace."""
     import socket
+
     return [name for _, name in socket.if_nameindex()] == ["lo"]
 
 

@@ -5,6 +5,7 @@ ExecutorPlanData frames of 6, then the executor's ExecutorPlanStatus says how it
 
     python -m harvest.canbus.plan_upload --bus udp IMAGE
 """
+
 import argparse
 import sys
 import time
@@ -24,18 +25,20 @@ def frames(image):
     """The upload's messages, (name, signals), in order."""
     yield "ExecutorPlanBegin", {"TotalBytes": len(image), "Crc32": zlib.crc32(image)}
     for off in range(0, len(image), CHUNK):
-        chunk = image[off:off + CHUNK].ljust(CHUNK, b"\0")
+        chunk = image[off : off + CHUNK].ljust(CHUNK, b"\0")
         yield "ExecutorPlanData", {"Offset": off, "Data": int.from_bytes(chunk, "little")}
 
 
 def send(bus, image, pace_s=0.0005):
     """Send the upload on `bus`; pace_s between data frames keeps a bridge's queues short."""
     import can
+
     proto = load()
     for name, signals in frames(image):
         m = proto.message(name)
-        bus.send(can.Message(arbitration_id=m.frame_id, data=m.encode(signals),
-                             is_extended_id=False))
+        bus.send(
+            can.Message(arbitration_id=m.frame_id, data=m.encode(signals), is_extended_id=False)
+        )
         if name == "ExecutorPlanData" and pace_s:
             time.sleep(pace_s)
 
@@ -54,8 +57,10 @@ def wait_status(bus, want, timeout):
         s = m.decode(msg.data)  # State by the DBC's value table
         last = (str(s["State"]), int(s["BytesReceived"]), int(s["Error"]))
         if last[0] == "REFUSED":
-            raise UploadError(f"the executor refused the plan after {last[1]} bytes: error "
-                              f"{last[2]} (firmware/fw_status.h)")
+            raise UploadError(
+                f"the executor refused the plan after {last[1]} bytes: error "
+                f"{last[2]} (firmware/fw_status.h)"
+            )
         if last[0] in want:
             return last
     raise UploadError(f"no ExecutorPlanStatus {'/'.join(want)} within {timeout} s (last: {last})")
@@ -77,8 +82,9 @@ def upload(bus, image, timeout=30.0, pace_s=0.0005, attempts=3):
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(prog="python -m harvest.canbus.plan_upload",
-                                description=__doc__.split("\n\n")[0])
+    p = argparse.ArgumentParser(
+        prog="python -m harvest.canbus.plan_upload", description=__doc__.split("\n\n")[0]
+    )
     p.add_argument("image", help="plan image written by harvest-fw-plan")
     p.add_argument("--bus", default="udp", help="socketcan:IFNAME or udp[:GROUP[:PORT]] (udp)")
     p.add_argument("--timeout", type=float, default=30.0, help="s to wait for RUNNING (30)")

@@ -13,12 +13,15 @@ Typical use (simulator side):
     name, fields = proto.decode(frame_id, data)     # -> ("LeftArmSetpoint", {...})
     proto.name_for("left_arm", "setpoint")          # -> "LeftArmSetpoint"
 """
+
 import os
 
 import cantools
 
 # host/harvest/canbus/protocol.py -> repository root is four levels up.
-_ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+_ROOT = os.path.dirname(
+    os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+)
 DBC_PATH = os.environ.get("HV_CAN_DBC", os.path.join(_ROOT, "executor", "can", "harvest.dbc"))
 
 PROTOCOL_VERSION = 1  # the ProtocolVersion every heartbeat carries
@@ -33,17 +36,17 @@ NODES = {
 }
 # command name -> (command number, DBC message-name suffix)
 COMMANDS = {
-    "estop": (0, "Estop"),            # broadcast node only: the whole message name is "Estop"
+    "estop": (0, "Estop"),  # broadcast node only: the whole message name is "Estop"
     "heartbeat": (1, "Heartbeat"),
     "command": (2, "Command"),
     "status": (3, "Status"),
-    "setpoint": (4, "Setpoint"),      # arms
-    "move": (4, "Move"),              # vehicle
+    "setpoint": (4, "Setpoint"),  # arms
+    "move": (4, "Move"),  # vehicle
     "joint_state": (5, "JointState"),
     "joint_velocity": (6, "JointVelocity"),
     "ee_command": (7, "EeCommand"),
     "ee_status": (8, "EeStatus"),
-    "plan_begin": (9, "PlanBegin"),    # executor: the plan upload (firmware/)
+    "plan_begin": (9, "PlanBegin"),  # executor: the plan upload (firmware/)
     "plan_data": (10, "PlanData"),
     "plan_status": (11, "PlanStatus"),
 }
@@ -89,13 +92,15 @@ class Protocol:
                 expected = frame_id(BROADCAST_NODE, 0)
             else:
                 prefix = next((p for p in prefixes if m.name.startswith(p)), None)
-                suffix = m.name[len(prefix):] if prefix else None
+                suffix = m.name[len(prefix) :] if prefix else None
                 if prefix is None or suffix not in suffix_cmds:
                     raise ProtocolError(f"{where}: name is not <Node><Kind> of protocol.py")
                 expected = frame_id(prefixes[prefix], suffix_cmds[suffix])
             if m.frame_id != expected:
-                raise ProtocolError(f"{where}: frame id 0x{m.frame_id:03x}, layout says "
-                                    f"0x{expected:03x} (node {node_id}, command {command})")
+                raise ProtocolError(
+                    f"{where}: frame id 0x{m.frame_id:03x}, layout says "
+                    f"0x{expected:03x} (node {node_id}, command {command})"
+                )
 
     @property
     def messages(self):

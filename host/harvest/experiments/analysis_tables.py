@@ -1,5 +1,6 @@
 """Make the analysis tables of cost_analysis.py with costgen: right arm, joint 3 limited and
 free, on the widened grid. Made once per output directory (temp file, then renamed)."""
+
 import os
 import subprocess
 

@@ -4,6 +4,7 @@ An explicit path wins; otherwise they are looked up in the build directory named
 --build-dir or $HV_BUILD_DIR (what ctest sets). A missing program is an error that says
 where it was looked for, never a silent substitute.
 """
+
 import os
 
 PLANNER = os.path.join("planner", "harvest-plan")
@@ -25,7 +26,9 @@ def find(relpath, explicit_path=None, explicit_build_dir=None):
     else:
         bdir = build_dir(explicit_build_dir)
         if not bdir:
-            raise MissingProgram(f"{relpath}: no build directory (give --build-dir or set HV_BUILD_DIR)")
+            raise MissingProgram(
+                f"{relpath}: no build directory (give --build-dir or set HV_BUILD_DIR)"
+            )
         tried = [os.path.join(bdir, relpath)]
     for p in tried:
         if os.path.isfile(p) and os.access(p, os.X_OK):

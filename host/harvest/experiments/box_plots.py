@@ -1,4 +1,5 @@
 """The paper's Fig. 7: number of stops, throughput and runtime by alpha and method."""
+
 from .figures import METHOD_COLORS, METHOD_LABELS, plt, save
 
 METRICS = (
@@ -32,8 +33,14 @@ def box_plot(rows, metric, ylabel, log_y=False, methods=("fov", "serial", "milp"
                 pos.append(i + (j - (len(methods) - 1) / 2.0) * width)
         if not data:
             continue
-        bp = ax.boxplot(data, positions=pos, widths=width * 0.85, patch_artist=True,
-                        manage_ticks=False, medianprops={"color": "black"})
+        bp = ax.boxplot(
+            data,
+            positions=pos,
+            widths=width * 0.85,
+            patch_artist=True,
+            manage_ticks=False,
+            medianprops={"color": "black"},
+        )
         for box in bp["boxes"]:
             box.set_facecolor(METHOD_COLORS[m])
         ax.plot([], [], "s", color=METHOD_COLORS[m], label=METHOD_LABELS[m])

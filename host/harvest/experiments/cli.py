@@ -1,17 +1,18 @@
 """`python -m harvest experiments`: the paper's comparison in one command.
 
-  run       plan every (alpha, seed, method) with the planner CLI -> OUT/results.csv
-  cost-models
-            plan the same instances in the other cost model -> OUT/pick_cycle_<0|1>/
-            (the dual-arm / single-arm ratio and the gain over FOV in both)
-  fov-width plan FOV again at each --fov-widths on the same instances, in each cost model
-            planned -> OUT/fov_width/, OUT/pick_cycle_<0|1>/fov_width/ (the MILP's gain
-            over FOV as a function of FOV's window width)
-  plots     box plots (stops, throughput, runtime) and a top view of one plan
-  analysis  the cost-G and coverage figures from cost tables made by costgen
-  report    OUT/report.md: our numbers beside each claim of the paper
-  all       run, cost-models, fov-width, plots, analysis and report (the default)
+run       plan every (alpha, seed, method) with the planner CLI -> OUT/results.csv
+cost-models
+          plan the same instances in the other cost model -> OUT/pick_cycle_<0|1>/
+          (the dual-arm / single-arm ratio and the gain over FOV in both)
+fov-width plan FOV again at each --fov-widths on the same instances, in each cost model
+          planned -> OUT/fov_width/, OUT/pick_cycle_<0|1>/fov_width/ (the MILP's gain
+          over FOV as a function of FOV's window width)
+plots     box plots (stops, throughput, runtime) and a top view of one plan
+analysis  the cost-G and coverage figures from cost tables made by costgen
+report    OUT/report.md: our numbers beside each claim of the paper
+all       run, cost-models, fov-width, plots, analysis and report (the default)
 """
+
 import argparse
 import json
 import math
@@ -21,12 +22,29 @@ import sys
 
 from ..scenario import fruit_map
 from ..scenario.config import Config, ConfigError, Row, default_config_path
-from . import (analysis_tables, box_plots, cost_analysis, cost_models, cost_table, plan_file,
-               plan_view, report, sensitivity)
+from . import (
+    analysis_tables,
+    box_plots,
+    cost_analysis,
+    cost_models,
+    cost_table,
+    plan_file,
+    plan_view,
+    report,
+    sensitivity,
+)
 from . import results as results_mod
 from .binaries import COSTGEN, PLANNER, MissingProgram, find
-from .runner import (METHODS, PAPER_ALPHAS, PAPER_SEEDS, QUICK_ALPHAS, QUICK_SEEDS, RunError,
-                     Settings, run)
+from .runner import (
+    METHODS,
+    PAPER_ALPHAS,
+    PAPER_SEEDS,
+    QUICK_ALPHAS,
+    QUICK_SEEDS,
+    RunError,
+    Settings,
+    run,
+)
 
 STEPS = ("run", "cost-models", "fov-width", "plots", "analysis", "report", "all")
 
@@ -35,50 +53,88 @@ def build_parser():
     p = argparse.ArgumentParser(
         prog="python -m harvest experiments",
         description="Reproduce the paper's comparison (FOV, Serial, MILP) on the real planner: "
-                    "instances, a resumable runner, plots, analysis figures and a report.",
+        "instances, a resumable runner, plots, analysis figures and a report.",
         formatter_class=argparse.RawDescriptionHelpFormatter,
-        epilog=__doc__.split("\n", 2)[2] +
-        "\nAn interrupted run (Ctrl-C, kill) resumes where it stopped when run again with "
-        "the same --out:\nfinished rows are never recomputed.")
+        epilog=__doc__.split("\n", 2)[2]
+        + "\nAn interrupted run (Ctrl-C, kill) resumes where it stopped when run again with "
+        "the same --out:\nfinished rows are never recomputed.",
+    )
     p.add_argument("step", nargs="?", choices=STEPS, default="all")
     p.add_argument("--out", required=True, help="output directory (created; reused to resume)")
-    p.add_argument("--config", default=default_config_path(), help="harvest config (default: %(default)s)")
-    p.add_argument("--build-dir", default=None,
-                   help="build directory with planner/harvest-plan and tools/costgen "
-                        "(default: $HV_BUILD_DIR)")
+    p.add_argument(
+        "--config", default=default_config_path(), help="harvest config (default: %(default)s)"
+    )
+    p.add_argument(
+        "--build-dir",
+        default=None,
+        help="build directory with planner/harvest-plan and tools/costgen (default: $HV_BUILD_DIR)",
+    )
     p.add_argument("--planner", default=None, help="path of harvest-plan (overrides --build-dir)")
     p.add_argument("--costgen", default=None, help="path of costgen (overrides --build-dir)")
-    p.add_argument("--quick", action="store_true",
-                   help=f"quick set: alphas {', '.join(f'{a:g}' for a in QUICK_ALPHAS)} x "
-                        f"{len(QUICK_SEEDS)} seeds (the tests use it)")
-    p.add_argument("--alphas", default=None,
-                   help="comma-separated alphas (default: the paper's 0.25,0.4,1,2.5,4)")
+    p.add_argument(
+        "--quick",
+        action="store_true",
+        help=f"quick set: alphas {', '.join(f'{a:g}' for a in QUICK_ALPHAS)} x "
+        f"{len(QUICK_SEEDS)} seeds (the tests use it)",
+    )
+    p.add_argument(
+        "--alphas",
+        default=None,
+        help="comma-separated alphas (default: the paper's 0.25,0.4,1,2.5,4)",
+    )
     p.add_argument("--seeds", type=int, default=None, help="seeds 0..N-1 (default: 10)")
     p.add_argument("--methods", default=",".join(METHODS), help="default: %(default)s")
-    p.add_argument("--time-limit", type=float, default=None,
-                   help="planner --time-limit in s (default: the planner's own)")
-    p.add_argument("--fov-width", type=float, default=None,
-                   help="planner --fov-width in m (default: the planner's own)")
-    p.add_argument("--fov-widths", default=",".join(f"{w:g}" for w in sensitivity.DEFAULT_WIDTHS_M),
-                   help="fov-width step: FOV window widths in m, comma-separated "
-                        "(default: %(default)s)")
-    p.add_argument("--jobs", type=int, default=1,
-                   help="planners run at once (default 1: the MILP runtime is benchmarked)")
-    p.add_argument("--distribution", choices=("uniform", "clustered", "gradient"),
-                   default="uniform", help="fruit distribution of the instances "
-                   "(default: the paper's uniform rows; see 'python -m harvest scenario --help')")
-    p.add_argument("--stops-beyond-ends", action="store_true",
-                   help="let the vehicle stop beyond the row's ends as far as an arm reaches "
-                        "into the row (the product's default, row.stops_beyond_ends = 1); "
-                        "without it the planner gets the paper's N = 201 candidate stops over "
-                        "the row")
-    p.add_argument("--pick-cycle", action="store_true",
-                   help="plan in the robot's time: a pick costs its whole cycle (2 t(home -> "
-                        "fruit) + cut + release), a stop the drive's v/a (the product's "
-                        "default, plan.pick_cycle = 1); without it the paper's one-way G and "
-                        "tau")
-    p.add_argument("--retry-errors", action="store_true",
-                   help="run again the rows whose plan failed (they are kept as final otherwise)")
+    p.add_argument(
+        "--time-limit",
+        type=float,
+        default=None,
+        help="planner --time-limit in s (default: the planner's own)",
+    )
+    p.add_argument(
+        "--fov-width",
+        type=float,
+        default=None,
+        help="planner --fov-width in m (default: the planner's own)",
+    )
+    p.add_argument(
+        "--fov-widths",
+        default=",".join(f"{w:g}" for w in sensitivity.DEFAULT_WIDTHS_M),
+        help="fov-width step: FOV window widths in m, comma-separated (default: %(default)s)",
+    )
+    p.add_argument(
+        "--jobs",
+        type=int,
+        default=1,
+        help="planners run at once (default 1: the MILP runtime is benchmarked)",
+    )
+    p.add_argument(
+        "--distribution",
+        choices=("uniform", "clustered", "gradient"),
+        default="uniform",
+        help="fruit distribution of the instances "
+        "(default: the paper's uniform rows; see 'python -m harvest scenario --help')",
+    )
+    p.add_argument(
+        "--stops-beyond-ends",
+        action="store_true",
+        help="let the vehicle stop beyond the row's ends as far as an arm reaches "
+        "into the row (the product's default, row.stops_beyond_ends = 1); "
+        "without it the planner gets the paper's N = 201 candidate stops over "
+        "the row",
+    )
+    p.add_argument(
+        "--pick-cycle",
+        action="store_true",
+        help="plan in the robot's time: a pick costs its whole cycle (2 t(home -> "
+        "fruit) + cut + release), a stop the drive's v/a (the product's "
+        "default, plan.pick_cycle = 1); without it the paper's one-way G and "
+        "tau",
+    )
+    p.add_argument(
+        "--retry-errors",
+        action="store_true",
+        help="run again the rows whose plan failed (they are kept as final otherwise)",
+    )
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     return p
 
@@ -89,14 +145,18 @@ def _settings(args, need_planner):
         try:
             alphas = tuple(float(a) for a in args.alphas.split(","))
         except ValueError:
-            raise RunError(f"--alphas: not a comma-separated list of numbers: {args.alphas!r}") from None
+            raise RunError(
+                f"--alphas: not a comma-separated list of numbers: {args.alphas!r}"
+            ) from None
     seeds = QUICK_SEEDS if args.quick else PAPER_SEEDS
     if args.seeds is not None:
         seeds = tuple(range(args.seeds))
     methods = tuple(m for m in args.methods.split(",") if m)
     unknown = [m for m in methods if m not in METHODS]
     if unknown or not methods:
-        raise RunError(f"--methods: unknown {', '.join(unknown) or '(empty)'}; use {', '.join(METHODS)}")
+        raise RunError(
+            f"--methods: unknown {', '.join(unknown) or '(empty)'}; use {', '.join(METHODS)}"
+        )
     if any(a < 0 or not math.isfinite(a) for a in alphas) or not seeds:
         raise RunError("--alphas must be >= 0 and --seeds >= 1")
     if args.jobs < 1:
@@ -109,12 +169,22 @@ def _settings(args, need_planner):
         raise RunError(str(e)) from None
     planner = find(PLANNER, args.planner, args.build_dir) if need_planner else ""
     costgen = find(COSTGEN, args.costgen, args.build_dir) if need_planner else ""
-    return Settings(config=os.path.abspath(args.config), out_dir=os.path.abspath(args.out),
-                    planner=planner, costgen=costgen, alphas=alphas, seeds=seeds,
-                    methods=methods, distribution=args.distribution, time_limit_s=args.time_limit, fov_width_m=args.fov_width,
-                    jobs=args.jobs, stops_beyond_ends=args.stops_beyond_ends,
-                    pick_cycle=args.pick_cycle,
-                    progress=not args.no_progress)
+    return Settings(
+        config=os.path.abspath(args.config),
+        out_dir=os.path.abspath(args.out),
+        planner=planner,
+        costgen=costgen,
+        alphas=alphas,
+        seeds=seeds,
+        methods=methods,
+        distribution=args.distribution,
+        time_limit_s=args.time_limit,
+        fov_width_m=args.fov_width,
+        jobs=args.jobs,
+        stops_beyond_ends=args.stops_beyond_ends,
+        pick_cycle=args.pick_cycle,
+        progress=not args.no_progress,
+    )
 
 
 def _rows(out):
@@ -137,9 +207,12 @@ def _pick_plan(out, rows):
 
 def _width_tables(out):
     """{pick_cycle: gain by FOV width} of each cost model planned and swept."""
-    return {pc: sensitivity.gain_by_width(results_mod.read(os.path.join(d, "results.csv")),
-                                          sensitivity.load(d))
-            for pc, d in cost_models.dirs(out).items()}
+    return {
+        pc: sensitivity.gain_by_width(
+            results_mod.read(os.path.join(d, "results.csv")), sensitivity.load(d)
+        )
+        for pc, d in cost_models.dirs(out).items()
+    }
 
 
 def do_plots(args):
@@ -155,10 +228,16 @@ def do_plots(args):
         plan = plan_file.load(plan_path)
         fruits = fruit_map.read(plan_file.input_path(plan_path, plan, "fruit_map"))
         bases = Row(Config.load(plan_file.input_path(plan_path, plan, "config"))).arm_bases()
-        paths += plan_view.write(plan, fruits, bases, fig_dir, "plan_top_view",
-                                 title=f"{r['method'].upper()} plan, alpha {r['alpha']:g}, seed "
-                                       f"{r['seed']}: {r['stops']} stops, makespan "
-                                       f"{r['makespan_s']:.1f} s, status {r['status']}")
+        paths += plan_view.write(
+            plan,
+            fruits,
+            bases,
+            fig_dir,
+            "plan_top_view",
+            title=f"{r['method'].upper()} plan, alpha {r['alpha']:g}, seed "
+            f"{r['seed']}: {r['stops']} stops, makespan "
+            f"{r['makespan_s']:.1f} s, status {r['status']}",
+        )
     print(f"experiments: {len(paths)} figure files in {fig_dir}")
     return paths
 
@@ -170,22 +249,30 @@ def do_analysis(args, row_cfg):
     limited, free = cost_table.load(lim_path), cost_table.load(free_path)
     base_xy = (limited.base[0], limited.base[1])
     fig_dir = os.path.join(out, "figures")
-    paths = cost_analysis.write_figures(limited, free, row_cfg, row_cfg.yaw_max_rad, base_xy, fig_dir)
+    paths = cost_analysis.write_figures(
+        limited, free, row_cfg, row_cfg.yaw_max_rad, base_xy, fig_dir
+    )
     g_l = cost_analysis.z_slice(limited)[:, cost_analysis.yaw_index(limited, 0.0), :]
     g_f = cost_analysis.z_slice(free)[:, cost_analysis.yaw_index(free, 0.0), :]
-    numbers = {"coverage_m2": cost_analysis.coverage_numbers(limited, free, row_cfg, row_cfg.yaw_max_rad),
-               "roughness_s": {"limited": cost_analysis.roughness(g_l),
-                               "free": cost_analysis.roughness(g_f)},
-               "z_m": limited.axes["z"].origin}
+    numbers = {
+        "coverage_m2": cost_analysis.coverage_numbers(limited, free, row_cfg, row_cfg.yaw_max_rad),
+        "roughness_s": {
+            "limited": cost_analysis.roughness(g_l),
+            "free": cost_analysis.roughness(g_f),
+        },
+        "z_m": limited.axes["z"].origin,
+    }
     with open(os.path.join(out, "analysis.json"), "w", encoding="utf-8") as f:
         json.dump(numbers, f, indent=1)
     print(f"experiments: analysis figures in {fig_dir}")
     return paths
 
 
-_DIST_TEXT = {"uniform": "the paper's uniform rows",
-              "clustered": "clustered rows (trusses; not the paper's data)",
-              "gradient": "rows with a ripeness gradient (not the paper's data)"}
+_DIST_TEXT = {
+    "uniform": "the paper's uniform rows",
+    "clustered": "clustered rows (trusses; not the paper's data)",
+    "gradient": "rows with a ripeness gradient (not the paper's data)",
+}
 
 
 def _show_path(path):
@@ -213,15 +300,17 @@ def do_report(args, s):
     pick_cycle = bool(info.get("pick_cycle"))
     costs = f" (costs: {report.cost_model_text(pick_cycle)})"
     table_costs = " (costs: none, the cost table's G = t(home -> fruit) itself)"
-    captions = {"boxplot_stops": "Number of stops by alpha and method" + costs,
-                "boxplot_throughput": "Throughput by alpha and method" + costs,
-                "boxplot_runtime": "Planner runtime by alpha and method" + costs,
-                sensitivity.FIGURE_STEM: "MILP throughput gain over FOV by FOV window width"
-                                         " (costs: per curve, plan.pick_cycle = 0 the paper's, "
-                                         "= 1 the robot's pick cycle)",
-                "plan_top_view": "Top view of one plan: fruits, stops, arms, busy and idle time" + costs,
-                "cost_G_joint3": "Cost G with joint 3 unlimited and limited" + table_costs,
-                "coverage_pick_modes": "Coverage per pick mode; single-sided coverage" + table_costs}
+    captions = {
+        "boxplot_stops": "Number of stops by alpha and method" + costs,
+        "boxplot_throughput": "Throughput by alpha and method" + costs,
+        "boxplot_runtime": "Planner runtime by alpha and method" + costs,
+        sensitivity.FIGURE_STEM: "MILP throughput gain over FOV by FOV window width"
+        " (costs: per curve, plan.pick_cycle = 0 the paper's, "
+        "= 1 the robot's pick cycle)",
+        "plan_top_view": "Top view of one plan: fruits, stops, arms, busy and idle time" + costs,
+        "cost_G_joint3": "Cost G with joint 3 unlimited and limited" + table_costs,
+        "coverage_pick_modes": "Coverage per pick mode; single-sided coverage" + table_costs,
+    }
     for stem, cap in captions.items():
         p = os.path.join(fig_dir, stem + ".png")
         if os.path.exists(p):
@@ -234,37 +323,57 @@ def do_report(args, s):
         b = info.get("planner_build") or {}
         if b:
             sanitized = b.get("HV_SANITIZE", "OFF").upper() in ("ON", "1", "TRUE", "YES")
-            build = (f"; planner build {b.get('CMAKE_BUILD_TYPE') or '?'}"
-                     + (", **with ASan+UBSan: runtimes are inflated by the sanitizers and not "
-                        "comparable with the paper's**" if sanitized else ", no sanitizers"))
+            build = f"; planner build {b.get('CMAKE_BUILD_TYPE') or '?'}" + (
+                ", **with ASan+UBSan: runtimes are inflated by the sanitizers and not "
+                "comparable with the paper's**"
+                if sanitized
+                else ", no sanitizers"
+            )
     alphas = sorted({r["alpha"] for r in rows})
     seeds = sorted({r["seed"] for r in rows})
     settings_text = (
-        f"- Instances: {_DIST_TEXT.get(rows[0]['distribution'], rows[0]['distribution'])}, m^L = {rows[0]['n_left']}, alpha in "
+        f"- Instances: {_DIST_TEXT.get(rows[0]['distribution'], rows[0]['distribution'])}, "
+        f"m^L = {rows[0]['n_left']}, alpha in "
         f"{{{', '.join(f'{a:g}' for a in alphas)}}}, seeds {seeds[0]}..{seeds[-1]} "
         f"({len(seeds)} per alpha); config `{_show_path(s.config)}`, "
-        + ("candidate stops beyond the row's ends as far as an arm reaches "
-           "(row.stops_beyond_ends = 1)" if info.get("stops_beyond_ends") else
-           "the paper's candidate stops (N = 201 on a 2 m row): stop p is the vehicle at "
-           "y = p x grid.step along the row, its arm bases half mount.base_spacing ahead of "
-           "and behind it (row.stops_beyond_ends = 0)") + "; costs of the main run: "
-        + report.cost_model_text(pick_cycle) + ".\n"
+        + (
+            "candidate stops beyond the row's ends as far as an arm reaches "
+            "(row.stops_beyond_ends = 1)"
+            if info.get("stops_beyond_ends")
+            else "the paper's candidate stops (N = 201 on a 2 m row): stop p is the vehicle at "
+            "y = p x grid.step along the row, its arm bases half mount.base_spacing ahead of "
+            "and behind it (row.stops_beyond_ends = 0)"
+        )
+        + "; costs of the main run: "
+        + report.cost_model_text(pick_cycle)
+        + ".\n"
         f"- Planner: `harvest-plan` (GLPK), MILP time limit {tl}{build}; {os.cpu_count()} CPU(s), "
         f"{platform.machine()}, Python {platform.python_version()}.\n"
-        "- Paper: Gurobi on an AMD 7950, 128 GB.")
+        "- Paper: Gurobi on an AMD 7950, 128 GB."
+    )
     reasons = {}
     for r in rows:
         if r["method"] == "milp" and r["plan"] and r["status"] != "error":
             for u in plan_file.load(os.path.join(out, r["plan"])).get("unreachable", []):
                 reasons[u.get("reason", "?")] = reasons.get(u.get("reason", "?"), 0) + 1
-    main_width = (f"{info['fov_width_m']:g} m" if info.get("fov_width_m") is not None else
-                  "the planner's default width (harvest-plan --help)")
+    main_width = (
+        f"{info['fov_width_m']:g} m"
+        if info.get("fov_width_m") is not None
+        else "the planner's default width (harvest-plan --help)"
+    )
     fov_width = report.fov_width_section(_width_tables(out), pick_cycle, main_width)
     models = {pc: cost_models.ratios(rs) for pc, rs in cost_models.load(out).items()}
-    path = report.write(os.path.join(out, "report.md"), rows, settings_text, figures,
-                        report.analysis_section(os.path.join(out, "analysis.json")),
-                        unreachable_reasons=reasons, pick_cycle=pick_cycle, fov_width=fov_width,
-                        cost_models=report.cost_models_section(models, pick_cycle))
+    path = report.write(
+        os.path.join(out, "report.md"),
+        rows,
+        settings_text,
+        figures,
+        report.analysis_section(os.path.join(out, "analysis.json")),
+        unreachable_reasons=reasons,
+        pick_cycle=pick_cycle,
+        fov_width=fov_width,
+        cost_models=report.cost_models_section(models, pick_cycle),
+    )
     print(f"experiments: report {path}")
     return path
 
@@ -278,18 +387,25 @@ def main(argv):
         os.makedirs(s.out_dir, exist_ok=True)
         if args.step in ("run", "all"):
             ran, total = run(s, retry_errors=args.retry_errors)
-            print(f"experiments: {ran} plan(s) computed now, {total} in "
-                  f"{os.path.join(s.out_dir, 'results.csv')}")
+            print(
+                f"experiments: {ran} plan(s) computed now, {total} in "
+                f"{os.path.join(s.out_dir, 'results.csv')}"
+            )
         if args.step in ("cost-models", "all"):
             ran = cost_models.run_other(s, retry_errors=args.retry_errors)
-            print(f"experiments: {ran} plan(s) computed now in "
-                  f"{os.path.join(s.out_dir, cost_models.subdir(not s.pick_cycle))}")
+            print(
+                f"experiments: {ran} plan(s) computed now in "
+                f"{os.path.join(s.out_dir, cost_models.subdir(not s.pick_cycle))}"
+            )
         if args.step in ("fov-width", "all"):
             for ss in cost_models.planned(s):
-                ran = sensitivity.run_sweep(ss, sensitivity.parse_widths(args.fov_widths),
-                                            retry_errors=args.retry_errors)
-                print(f"experiments: {ran} FOV plan(s) computed now in "
-                      f"{os.path.join(ss.out_dir, sensitivity.SUBDIR)}")
+                ran = sensitivity.run_sweep(
+                    ss, sensitivity.parse_widths(args.fov_widths), retry_errors=args.retry_errors
+                )
+                print(
+                    f"experiments: {ran} FOV plan(s) computed now in "
+                    f"{os.path.join(ss.out_dir, sensitivity.SUBDIR)}"
+                )
         if args.step in ("plots", "all"):
             do_plots(args)
         if args.step in ("analysis", "all"):
@@ -298,8 +414,16 @@ def main(argv):
             do_report(args, s)
     except KeyboardInterrupt:
         return 130
-    except (ConfigError, RunError, MissingProgram, results_mod.ResultsError, plan_file.PlanError,
-            cost_table.CostTableError, fruit_map.FruitMapError, OSError) as e:
+    except (
+        ConfigError,
+        RunError,
+        MissingProgram,
+        results_mod.ResultsError,
+        plan_file.PlanError,
+        cost_table.CostTableError,
+        fruit_map.FruitMapError,
+        OSError,
+    ) as e:
         print(f"experiments: {e}", file=sys.stderr)
         return 1
     return 0

@@ -5,9 +5,10 @@ shows it) of tables made by costgen from a derived config whose only changes wid
 grid: x over the whole reach instead of the canopy depth, yaw over the full circle, and
 z around mid-canopy. The arm, mount, limits and home pose are the project's.
 """
-import math
-import numpy as np
 
+import math
+
+import numpy as np
 from matplotlib.colors import ListedColormap
 
 from .figures import plt, save
@@ -82,8 +83,12 @@ def roughness(g):
 
 def _extent(table):
     ys, xs = table.axes["y"], table.axes["x"]
-    return [ys.origin - ys.step / 2, ys.origin + ys.step * (ys.count - 0.5),
-            xs.origin - xs.step / 2, xs.origin + xs.step * (xs.count - 0.5)]
+    return [
+        ys.origin - ys.step / 2,
+        ys.origin + ys.step * (ys.count - 0.5),
+        xs.origin - xs.step / 2,
+        xs.origin + xs.step * (xs.count - 0.5),
+    ]
 
 
 def _fpa_lines(ax, row):
@@ -98,10 +103,20 @@ def cost_figure(limited, free, row, base_xy):
     both = np.concatenate([gl[np.isfinite(gl)], gf[np.isfinite(gf)]])
     vmax = float(both.max()) if both.size else 1.0
     fig, axes = plt.subplots(1, 2, figsize=(10.0, 4.2), sharey=True, layout="constrained")
-    for ax, g, t, name in ((axes[0], gf, free, "(a) joint 3 unlimited (elbow free)"),
-                           (axes[1], gl, limited, "(b) joint 3 limited to [0, 2.8] rad")):
-        im = ax.imshow(g, origin="lower", extent=_extent(t), aspect="equal", cmap="viridis",
-                       vmin=0.0, vmax=vmax, interpolation="nearest")
+    for ax, g, t, name in (
+        (axes[0], gf, free, "(a) joint 3 unlimited (elbow free)"),
+        (axes[1], gl, limited, "(b) joint 3 limited to [0, 2.8] rad"),
+    ):
+        im = ax.imshow(
+            g,
+            origin="lower",
+            extent=_extent(t),
+            aspect="equal",
+            cmap="viridis",
+            vmin=0.0,
+            vmax=vmax,
+            interpolation="nearest",
+        )
         _fpa_lines(ax, row)
         ax.plot([base_xy[1]], [base_xy[0]], "r^", ms=7)
         ax.set_title(f"{name}\nroughness {roughness(g):.3f} s/cell", fontsize=9)
@@ -109,8 +124,10 @@ def cost_figure(limited, free, row, base_xy):
     axes[0].set_ylabel("x (m), right arm")
     fig.colorbar(im, ax=axes, label="G (s), yaw 0, white = unreachable", shrink=0.8)
     z = limited.axes["z"].origin
-    fig.suptitle(f"Pick cost G on the slice z = {z:.2f} m (dashed: canopy depth; "
-                 "triangle: arm base)", fontsize=10)
+    fig.suptitle(
+        f"Pick cost G on the slice z = {z:.2f} m (dashed: canopy depth; triangle: arm base)",
+        fontsize=10,
+    )
     return fig
 
 
@@ -127,8 +144,16 @@ def coverage_figure(limited, free, row, yaw_max_rad, base_xy):
     for k, m in enumerate(modes.values(), 1):
         layer[m] = np.maximum(layer[m], k)
     cmap = ListedColormap(["white"] + list(MODE_COLORS))
-    axes[0].imshow(layer, origin="lower", extent=_extent(limited), aspect="equal", cmap=cmap,
-                   vmin=-0.5, vmax=4.5, interpolation="nearest")
+    axes[0].imshow(
+        layer,
+        origin="lower",
+        extent=_extent(limited),
+        aspect="equal",
+        cmap=cmap,
+        vmin=-0.5,
+        vmax=4.5,
+        interpolation="nearest",
+    )
     for name, c in zip(modes, MODE_COLORS):
         axes[0].plot([], [], "s", color=c, label=name)
     axes[0].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.25), ncol=2)
@@ -139,8 +164,16 @@ def coverage_figure(limited, free, row, yaw_max_rad, base_xy):
     b[both] = 1
     b[single] = 2
     cmap2 = ListedColormap(["white", "#1f77b4", "#ff7f0e"])
-    axes[1].imshow(b, origin="lower", extent=_extent(limited), aspect="equal", cmap=cmap2,
-                   vmin=-0.5, vmax=2.5, interpolation="nearest")
+    axes[1].imshow(
+        b,
+        origin="lower",
+        extent=_extent(limited),
+        aspect="equal",
+        cmap=cmap2,
+        vmin=-0.5,
+        vmax=2.5,
+        interpolation="nearest",
+    )
     axes[1].plot([], [], "s", color="#1f77b4", label="yaw 0, either elbow (joint 3 free)")
     axes[1].plot([], [], "s", color="#ff7f0e", label="yaw 0, single-sided (joint 3 limited)")
     axes[1].legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.25), ncol=1)
@@ -157,15 +190,19 @@ def coverage_numbers(limited, free, row, yaw_max_rad):
     """Area (m^2) of the canopy band one stop covers in each mode (for the report)."""
     cell = limited.axes["x"].step * limited.axes["y"].step
     fpa = fpa_mask(limited, row)
-    out = {name: float((m & fpa).sum() * cell) for name, m in
-           coverage_modes(limited, yaw_max_rad).items()}
-    out["yaw 0, joint 3 free"] = float((free.reachable()[:, 0, yaw_index(free, 0.0), :] & fpa).sum() * cell)
+    out = {
+        name: float((m & fpa).sum() * cell)
+        for name, m in coverage_modes(limited, yaw_max_rad).items()
+    }
+    out["yaw 0, joint 3 free"] = float(
+        (free.reachable()[:, 0, yaw_index(free, 0.0), :] & fpa).sum() * cell
+    )
     return out
 
 
 def write_figures(limited, free, row, yaw_max_rad, base_xy, out_dir):
     paths = save(cost_figure(limited, free, row, base_xy), out_dir, "cost_G_joint3")
-    paths += save(coverage_figure(limited, free, row, yaw_max_rad, base_xy), out_dir,
-                  "coverage_pick_modes")
+    paths += save(
+        coverage_figure(limited, free, row, yaw_max_rad, base_xy), out_dir, "coverage_pick_modes"
+    )
     return paths
-

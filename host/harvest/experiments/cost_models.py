@@ -6,6 +6,7 @@ The main run plans in one of them; this plans the same instances in the other, i
 OUT/pick_cycle_<0|1>/ (a derived run), so the dual-arm / single-arm ratio (MILP over
 Serial) and the gain over FOV can be read in both.
 """
+
 import json
 import os
 import statistics
@@ -81,9 +82,16 @@ def ratios(rows):
                 d["gain"].append(thr / ms["fov"]["throughput_fruit_per_s"] - 1.0)
         if "serial" in ms:
             d["serial"].append(ms["serial"]["makespan_s"])
-    return [{"alpha": a, "n": len(d["dual"]), "dual_median": _median(d["dual"]),
-             "dual_min": min(d["dual"], default=float("nan")),
-             "dual_max": max(d["dual"], default=float("nan")),
-             "milp_makespan_s": _median(d["milp"]), "serial_makespan_s": _median(d["serial"]),
-             "fov_gain_median": _median(d["gain"])}
-            for a, d in sorted(per.items())]
+    return [
+        {
+            "alpha": a,
+            "n": len(d["dual"]),
+            "dual_median": _median(d["dual"]),
+            "dual_min": min(d["dual"], default=float("nan")),
+            "dual_max": max(d["dual"], default=float("nan")),
+            "milp_makespan_s": _median(d["milp"]),
+            "serial_makespan_s": _median(d["serial"]),
+            "fov_gain_median": _median(d["gain"]),
+        }
+        for a, d in sorted(per.items())
+    ]

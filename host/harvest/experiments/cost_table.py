@@ -4,6 +4,7 @@ The byte layout is the one documented at the top of core/src/cost_table.c; this 
 checks what the C loader checks (magic, version, sizes, layout, both CRC-32s) so a
 figure is never drawn from a truncated or stale table.
 """
+
 import struct
 import zlib
 from dataclasses import dataclass
@@ -26,7 +27,7 @@ class CostTableError(ValueError):
 @dataclass
 class Axis:
     origin: float  # m or rad
-    step: float    # m or rad
+    step: float  # m or rad
     count: int
 
     def values(self):
@@ -41,11 +42,11 @@ class Axis:
 @dataclass
 class CostTable:
     path: str
-    side: str          # "L" or "R"
+    side: str  # "L" or "R"
     elbow_free: bool
-    axes: dict         # name -> Axis
+    axes: dict  # name -> Axis
     cost_unit_s: float
-    base: tuple        # mount: base x, y, z (m) and heading (rad), vehicle frame
+    base: tuple  # mount: base x, y, z (m) and heading (rad), vehicle frame
     costs: np.ndarray  # uint16 [x][z][yaw][y], UNREACHABLE where the arm cannot pick
 
     def seconds(self):
@@ -69,7 +70,9 @@ def load(path):
         return CostTableError(f"{path}: header field '{field}': {what}")
 
     if len(data) < HEADER_BYTES:
-        raise bad("header", f"file is {len(data)} bytes, shorter than the {HEADER_BYTES}-byte header")
+        raise bad(
+            "header", f"file is {len(data)} bytes, shorter than the {HEADER_BYTES}-byte header"
+        )
     if data[:8] != MAGIC:
         raise bad("magic", f"expected {MAGIC!r}, got {data[:8]!r}")
     version, hbytes, encoding, side, elbow, layout = struct.unpack_from("<6I", data, 8)
@@ -101,11 +104,14 @@ def load(path):
     if payload_bytes != 2 * cells:
         raise bad("payload_bytes", f"{payload_bytes} does not match the grid's {cells} cells")
     if len(data) != HEADER_BYTES + payload_bytes:
-        raise bad("payload_bytes", f"file has {len(data) - HEADER_BYTES} payload bytes, "
-                                   f"header says {payload_bytes}")
+        raise bad(
+            "payload_bytes",
+            f"file has {len(data) - HEADER_BYTES} payload bytes, header says {payload_bytes}",
+        )
     payload = memoryview(data)[HEADER_BYTES:]
     if zlib.crc32(payload) != payload_crc:
         raise bad("payload_crc", "CRC-32 of the payload does not match")
     costs = np.frombuffer(payload, dtype="<u2").reshape(
-        axes["x"].count, axes["z"].count, axes["yaw"].count, axes["y"].count)
+        axes["x"].count, axes["z"].count, axes["yaw"].count, axes["y"].count
+    )
     return CostTable(path, "L" if side == 0 else "R", bool(elbow), axes, cost_unit_s, base, costs)

@@ -1,4 +1,5 @@
 """Shared matplotlib set-up: the Agg backend (no display) and saving as PNG and SVG."""
+
 import os
 
 import matplotlib

@@ -1,8 +1,8 @@
 """The planner's plan JSON (docs/PLAN_FORMAT.md): load it and take the figures we report."""
+
 import json
 import math
 import os
-
 
 PLAN_VERSION = 2  # plan/include/hv/plan.h HV_PLAN_FORMAT_VERSION
 
@@ -20,9 +20,13 @@ def load(path):
     except json.JSONDecodeError as e:
         raise PlanError(f"{path}: not JSON: {e}") from None
     if plan.get("format") != "harvest-plan":
-        raise PlanError(f"{path}: field 'format' must be 'harvest-plan', got {plan.get('format')!r}")
+        raise PlanError(
+            f"{path}: field 'format' must be 'harvest-plan', got {plan.get('format')!r}"
+        )
     if plan.get("version") != PLAN_VERSION:
-        raise PlanError(f"{path}: field 'version' must be {PLAN_VERSION}, got {plan.get('version')!r}")
+        raise PlanError(
+            f"{path}: field 'version' must be {PLAN_VERSION}, got {plan.get('version')!r}"
+        )
     for key in ("solver", "totals", "stops"):
         if key not in plan:
             raise PlanError(f"{path}: missing field '{key}'")
@@ -63,8 +67,10 @@ def summary(path, plan):
         "runtime_s": _num(path, s, "solver", "runtime_s"),
         "status": str(s.get("status", "")),
         "gap": "" if gap is None else _num(path, s, "solver", "gap"),
-        "idle_s": sum(float(st.get("idle_left_s", 0.0)) + float(st.get("idle_right_s", 0.0))
-                      for st in plan["stops"]),
+        "idle_s": sum(
+            float(st.get("idle_left_s", 0.0)) + float(st.get("idle_right_s", 0.0))
+            for st in plan["stops"]
+        ),
     }
     if s.get("time_limit_s") is not None:  # the limit the planner applied (its default too)
         out["time_limit_s"] = _num(path, s, "solver", "time_limit_s")

@@ -1,4 +1,5 @@
 """Top view of one plan: fruits, stops, which arm picks what, and each stop's idle time."""
+
 import numpy as np
 
 from .figures import plt, save
@@ -11,8 +12,9 @@ def plan_figure(plan, fruits, bases, title=""):
     Each picked fruit is joined to the arm base that picks it, coloured by stop.
     """
     stops = plan["stops"]
-    fig, (top, bars) = plt.subplots(2, 1, figsize=(10.0, 6.0), sharex=True,
-                                    gridspec_kw={"height_ratios": [2.2, 1.0]})
+    fig, (top, bars) = plt.subplots(
+        2, 1, figsize=(10.0, 6.0), sharex=True, gridspec_kw={"height_ratios": [2.2, 1.0]}
+    )
     cmap = plt.get_cmap("tab10")
     picked = set()
     for k, st in enumerate(stops):
@@ -27,21 +29,36 @@ def plan_figure(plan, fruits, bases, title=""):
             for f in st.get(arm, []):
                 picked.add(str(f["id"]))
                 top.plot([y + dy, f["y"]], [bx, f["x"]], color=c, lw=0.6, alpha=0.6)
-                top.plot([f["y"]], [f["x"]], linestyle="none", color=c, ms=4,
-                         marker="o" if arm == "left" else "s")
+                top.plot(
+                    [f["y"]],
+                    [f["x"]],
+                    linestyle="none",
+                    color=c,
+                    ms=4,
+                    marker="o" if arm == "left" else "s",
+                )
     rest = [f for f in fruits if f.id not in picked]
     if rest:
-        top.plot([f.y for f in rest], [f.x for f in rest], "x", color="grey", ms=5,
-                 label="not picked")
+        top.plot(
+            [f.y for f in rest], [f.x for f in rest], "x", color="grey", ms=5, label="not picked"
+        )
         top.legend(loc="upper right", fontsize=8)
     top.axhline(0.0, color="black", lw=0.5)
     top.set_ylabel("x (m): left < 0 < right")
-    top.set_title(title or f"{plan.get('method', '?').upper()} plan: "
-                  f"{len(stops)} stops, makespan {plan['totals']['makespan_s']:.1f} s")
+    top.set_title(
+        title
+        or f"{plan.get('method', '?').upper()} plan: "
+        f"{len(stops)} stops, makespan {plan['totals']['makespan_s']:.1f} s"
+    )
     # in the aisle band, between the stop markers and the right bases: no fruit hangs there
-    top.text(0.005, 0.60, "o left arm's fruit   \u25a1 right arm's fruit   \u25b2 arm base   "
-             "\u25bc stop", transform=top.transAxes,
-             va="top", fontsize=8)
+    top.text(
+        0.005,
+        0.60,
+        "o left arm's fruit   \u25a1 right arm's fruit   \u25b2 arm base   \u25bc stop",
+        transform=top.transAxes,
+        va="top",
+        fontsize=8,
+    )
     ys = np.array([st["y_m"] for st in stops])
     cl = np.array([st.get("C_left_s", 0.0) for st in stops])
     cr = np.array([st.get("C_right_s", 0.0) for st in stops])
@@ -49,11 +66,20 @@ def plan_figure(plan, fruits, bases, title=""):
     ir = np.array([st.get("idle_right_s", 0.0) for st in stops])
     w = 0.03
     bars.bar(ys - w / 2, cl, w, color="#0072b2", label="left arm busy")
-    bars.bar(ys - w / 2, il, w, bottom=cl, color="#0072b2", alpha=0.25, hatch="//",
-             label="left arm idle")
+    bars.bar(
+        ys - w / 2, il, w, bottom=cl, color="#0072b2", alpha=0.25, hatch="//", label="left arm idle"
+    )
     bars.bar(ys + w / 2, cr, w, color="#d55e00", label="right arm busy")
-    bars.bar(ys + w / 2, ir, w, bottom=cr, color="#d55e00", alpha=0.25, hatch="//",
-             label="right arm idle")
+    bars.bar(
+        ys + w / 2,
+        ir,
+        w,
+        bottom=cr,
+        color="#d55e00",
+        alpha=0.25,
+        hatch="//",
+        label="right arm idle",
+    )
     bars.set_ylim(0.0, 1.15 * max(1.0, float(np.max(np.maximum(cl + il, cr + ir), initial=0.0))))
     bars.set_xlabel("y along the row (m)")
     bars.set_ylabel("time at stop (s)")

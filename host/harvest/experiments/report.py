@@ -3,14 +3,15 @@
 Every number here is computed from results.csv (and the analysis tables); the text around
 it is chosen by those numbers, so the report cannot claim agreement the data does not show.
 """
+
 import json
 import math
 import os
 import statistics
 
-PAPER_GAIN_LO, PAPER_GAIN_HI = 0.10, 0.20   # throughput gain of MILP over FOV (paper)
-PAPER_DUAL_RATIO = 2.0                      # dual arm / single arm at alpha = 1 (paper)
-PAPER_RUNTIME_S = 7.0                       # MILP runtime, Gurobi, AMD 7950 (paper)
+PAPER_GAIN_LO, PAPER_GAIN_HI = 0.10, 0.20  # throughput gain of MILP over FOV (paper)
+PAPER_DUAL_RATIO = 2.0  # dual arm / single arm at alpha = 1 (paper)
+PAPER_RUNTIME_S = 7.0  # MILP runtime, Gurobi, AMD 7950 (paper)
 PROVEN = ("optimal",)
 
 
@@ -41,9 +42,11 @@ def _pct(v):
 
 def summary_table(rows, methods):
     alphas = sorted({r["alpha"] for r in rows})
-    lines = ["| alpha | method | plans | stops (median) | makespan s (median) | "
-             "throughput fruit/s (median) | runtime s (median / max) | status | unreachable |",
-             "|---|---|---|---|---|---|---|---|---|"]
+    lines = [
+        "| alpha | method | plans | stops (median) | makespan s (median) | "
+        "throughput fruit/s (median) | runtime s (median / max) | status | unreachable |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
     for a in alphas:
         for m in methods:
             rs = [r for r in rows if r["alpha"] == a and r["method"] == m]
@@ -56,11 +59,13 @@ def summary_table(rows, methods):
             st = ", ".join(f"{k} {v}" for k, v in sorted(statuses.items()))
             rt = [r["runtime_s"] for r in ok]
             lines.append(
-                f"| {a:g} | {m} | {len(ok)}/{len(rs)} | {_fmt(_med([r['stops'] for r in ok]), 1)} | "
+                f"| {a:g} | {m} | {len(ok)}/{len(rs)} | "
+                f"{_fmt(_med([r['stops'] for r in ok]), 1)} | "
                 f"{_fmt(_med([r['makespan_s'] for r in ok]), 1)} | "
                 f"{_fmt(_med([r['throughput_fruit_per_s'] for r in ok]), 3)} | "
                 f"{_fmt(_med(rt), 2)} / {_fmt(max(rt) if rt else math.nan, 2)} | {st} | "
-                f"{sum(r['fruits_unreachable'] or 0 for r in ok)} |")
+                f"{sum(r['fruits_unreachable'] or 0 for r in ok)} |"
+            )
     return "\n".join(lines)
 
 
@@ -81,33 +86,56 @@ def claim_stops(inst):
         for m in med:
             if m in ms:
                 med[m].setdefault(key[1], []).append(ms[m]["stops"])
-    trend = "; ".join(f"{m}: " + ", ".join(f"{_fmt(_med(v), 1)} at alpha {a:g}"
-                                           for a, v in sorted(med[m].items())) for m in med)
-    text = ["**Paper:** MILP consistently needs the fewest stops; stops rise with alpha.",
-            f"**Ours:** MILP has no more stops than both baselines on {fewest} of {n} instances; "
-            f"more than FOV on {len(worse['fov'])}, more than Serial on {len(worse['serial'])}. "
-            f"Median stops per method: {trend}."]
+    trend = "; ".join(
+        f"{m}: "
+        + ", ".join(f"{_fmt(_med(v), 1)} at alpha {a:g}" for a, v in sorted(med[m].items()))
+        for m in med
+    )
+    text = [
+        "**Paper:** MILP consistently needs the fewest stops; stops rise with alpha.",
+        f"**Ours:** MILP has no more stops than both baselines on {fewest} of {n} instances; "
+        f"more than FOV on {len(worse['fov'])}, more than Serial on {len(worse['serial'])}. "
+        f"Median stops per method: {trend}.",
+    ]
     if n and fewest == n:
         text.append("**Verdict:** holds.")
     elif n:
-        why = ("the objective is time, not stops: one more stop costs tau = 5 s and pays off "
-               "when it saves more than that in picking (G grows fast with the fruit's distance "
-               "from the arm's sweet spot, see the cost figure) or in one arm waiting for the "
-               "other")
-        per_fruit = {m: _med([ms[m]["pick_time_s"] / ms[m]["fruits_planned"]
-                              for ms in inst.values() if m in ms and ms[m]["fruits_planned"]])
-                     for m in ("fov", "milp")}
-        why += (f"; median pick time per fruit (stop time C_p shared out): FOV "
-                f"{_fmt(per_fruit['fov'])} s, MILP {_fmt(per_fruit['milp'])} s")
+        why = (
+            "the objective is time, not stops: one more stop costs tau = 5 s and pays off "
+            "when it saves more than that in picking (G grows fast with the fruit's distance "
+            "from the arm's sweet spot, see the cost figure) or in one arm waiting for the "
+            "other"
+        )
+        per_fruit = {
+            m: _med(
+                [
+                    ms[m]["pick_time_s"] / ms[m]["fruits_planned"]
+                    for ms in inst.values()
+                    if m in ms and ms[m]["fruits_planned"]
+                ]
+            )
+            for m in ("fov", "milp")
+        }
+        why += (
+            f"; median pick time per fruit (stop time C_p shared out): FOV "
+            f"{_fmt(per_fruit['fov'])} s, MILP {_fmt(per_fruit['milp'])} s"
+        )
         if worse["fov"]:
-            why += ("; FOV stops once per camera window (plus a few stops for fruits no window "
-                    "stop reaches), whatever the pick times, so it trades long picks for few stops")
-        text.append(f"**Verdict:** differs on {n - fewest} of {n} instances. Why: {why}. "
-                    "The paper's FOV window is not given; a wider window means even fewer FOV "
-                    "stops, a narrower one more.")
-    return "\n\n".join(text), {"fewest": fewest, "n": n,
-                                "more_than_fov": len(worse["fov"]),
-                                "more_than_serial": len(worse["serial"])}
+            why += (
+                "; FOV stops once per camera window (plus a few stops for fruits no window "
+                "stop reaches), whatever the pick times, so it trades long picks for few stops"
+            )
+        text.append(
+            f"**Verdict:** differs on {n - fewest} of {n} instances. Why: {why}. "
+            "The paper's FOV window is not given; a wider window means even fewer FOV "
+            "stops, a narrower one more."
+        )
+    return "\n\n".join(text), {
+        "fewest": fewest,
+        "n": n,
+        "more_than_fov": len(worse["fov"]),
+        "more_than_serial": len(worse["serial"]),
+    }
 
 
 def claim_throughput(inst, rows):
@@ -119,10 +147,12 @@ def claim_throughput(inst, rows):
             per_alpha.setdefault(key[1], []).append(g)
     med = _med(gains)
     parts = [f"alpha {a:g}: {_pct(_med(v))}" for a, v in sorted(per_alpha.items())]
-    text = ["**Paper:** MILP raises throughput by 10-20 % over FOV.",
-            f"**Ours:** median gain {_pct(med)} over {len(gains)} instances "
-            f"(range {_pct(min(gains) if gains else math.nan)} to "
-            f"{_pct(max(gains) if gains else math.nan)}); per alpha {'; '.join(parts)}."]
+    text = [
+        "**Paper:** MILP raises throughput by 10-20 % over FOV.",
+        f"**Ours:** median gain {_pct(med)} over {len(gains)} instances "
+        f"(range {_pct(min(gains) if gains else math.nan)} to "
+        f"{_pct(max(gains) if gains else math.nan)}); per alpha {'; '.join(parts)}.",
+    ]
     if not gains:
         text.append("**Verdict:** no data.")
     elif PAPER_GAIN_LO <= med <= PAPER_GAIN_HI:
@@ -136,36 +166,57 @@ def claim_throughput(inst, rows):
             "camera's field of view is taken (the paper does not give it; `experiments fov-width` "
             "varies it) and on the pick costs, which depend "
             "on our home pose and mount choices (config/harvest.cfg); "
-            + ("MILP plans stopped by the time limit are feasible, not optimal: proven optima "
-               "would " + ("raise the gain further." if med > PAPER_GAIN_HI else
-                           "raise the gain, mostly where the balanced case is hard for GLPK.")
-               if any(r["method"] == "milp" and r["status"] not in PROVEN for r in rows if _ok(r))
-               else "every MILP plan here is proven optimal, so the difference is not the solver's."))
-    return "\n\n".join(text), {"median_gain": med, "per_alpha": {a: _med(v) for a, v in per_alpha.items()}}
+            + (
+                "MILP plans stopped by the time limit are feasible, not optimal: proven optima "
+                "would "
+                + (
+                    "raise the gain further."
+                    if med > PAPER_GAIN_HI
+                    else "raise the gain, mostly where the balanced case is hard for GLPK."
+                )
+                if any(r["method"] == "milp" and r["status"] not in PROVEN for r in rows if _ok(r))
+                else "every MILP plan here is proven optimal, so the difference is not the "
+                "solver's."
+            )
+        )
+    return "\n\n".join(text), {
+        "median_gain": med,
+        "per_alpha": {a: _med(v) for a, v in per_alpha.items()},
+    }
 
 
 def _breakdown(rs):
     """Median makespan split (s): picks (sum of C_p, idle included), stops x tau, travel."""
     parts = [("picks", "pick_time_s"), ("stops", "stop_time_s"), ("travel", "travel_time_s")]
-    return ", ".join(f"{name} {_fmt(_med([r[c] for r in rs if r[c] is not None]), 0)}"
-                     for name, c in parts) + f" (makespan {_fmt(_med([r['makespan_s'] for r in rs]), 0)})"
+    return (
+        ", ".join(
+            f"{name} {_fmt(_med([r[c] for r in rs if r[c] is not None]), 0)}" for name, c in parts
+        )
+        + f" (makespan {_fmt(_med([r['makespan_s'] for r in rs]), 0)})"
+    )
 
 
 def claim_dual_arm(inst):
-    pairs = [(ms["milp"], ms["serial"]) for key, ms in inst.items()
-             if key[1] == 1.0 and "milp" in ms and "serial" in ms]
+    pairs = [
+        (ms["milp"], ms["serial"])
+        for key, ms in inst.items()
+        if key[1] == 1.0 and "milp" in ms and "serial" in ms
+    ]
     ratios = [m["throughput_fruit_per_s"] / s["throughput_fruit_per_s"] for m, s in pairs]
     med = _med(ratios)
-    text = ["**Paper:** at alpha = 1 the dual-arm robot nearly doubles the single-arm "
-            "throughput.",
-            f"**Ours:** MILP / Serial throughput at alpha = 1: median {_fmt(med, 2)}x over "
-            f"{len(ratios)} instances (range {_fmt(min(ratios) if ratios else math.nan, 2)}x to "
-            f"{_fmt(max(ratios) if ratios else math.nan, 2)}x)."]
+    text = [
+        "**Paper:** at alpha = 1 the dual-arm robot nearly doubles the single-arm throughput.",
+        f"**Ours:** MILP / Serial throughput at alpha = 1: median {_fmt(med, 2)}x over "
+        f"{len(ratios)} instances (range {_fmt(min(ratios) if ratios else math.nan, 2)}x to "
+        f"{_fmt(max(ratios) if ratios else math.nan, 2)}x).",
+    ]
     if not ratios:
         text.append("**Verdict:** no data at alpha = 1.")
         return "\n\n".join(text), {"median_ratio": med}
-    text.append(f"Median makespan split in s: MILP {_breakdown([m for m, _ in pairs])}; "
-                f"Serial {_breakdown([s for _, s in pairs])}.")
+    text.append(
+        f"Median makespan split in s: MILP {_breakdown([m for m, _ in pairs])}; "
+        f"Serial {_breakdown([s for _, s in pairs])}."
+    )
     if abs(med - PAPER_DUAL_RATIO) <= 0.2:
         text.append(f"**Verdict:** holds (within 0.2 of 2x; off by {med - PAPER_DUAL_RATIO:+.2f}).")
     else:
@@ -174,7 +225,8 @@ def claim_dual_arm(inst):
             "above): exactly 2x would need the dual plan's picks to be half of Serial's with no "
             "waiting; but at every stop the faster arm waits for the slower one (its idle time "
             "is inside the picks), and each Serial pass places its stops for one side alone, "
-            "so its picks are cheaper per fruit; the travel and stop terms do not halve either.")
+            "so its picks are cheaper per fruit; the travel and stop terms do not halve either."
+        )
     return "\n\n".join(text), {"median_ratio": med}
 
 
@@ -186,45 +238,60 @@ def claim_runtime(rows):
     by_alpha = {}
     for r in milp:
         by_alpha.setdefault(r["alpha"], []).append(r["runtime_s"])
-    parts = [f"alpha {a:g}: median {_fmt(_med(v))} s, max {_fmt(max(v))} s"
-             for a, v in sorted(by_alpha.items())]
+    parts = [
+        f"alpha {a:g}: median {_fmt(_med(v))} s, max {_fmt(max(v))} s"
+        for a, v in sorted(by_alpha.items())
+    ]
     mx = max(rt) if rt else math.nan
     per_method = ", ".join(
         f"{m} {_med([r['runtime_s'] for r in rows if r['method'] == m and _ok(r)]):.3g} s"
-        for m in ("fov", "serial", "milp"))
-    text = [f"**Paper:** the MILP solves within about {PAPER_RUNTIME_S:g} s (Gurobi, AMD 7950); "
-            "FOV is the fastest method.",
-            f"**Ours, median runtime per method:** {per_method}.",
-            f"**Ours (GLPK):** max {_fmt(mx)} s, median {_fmt(_med(rt))} s over {len(rt)} plans; "
-            f"{'; '.join(parts)}. {len(milp) - len(not_proven)} of {len(milp)} proven optimal"
-            + (f"; {len(not_proven)} stopped early (median gap "
-               f"{_fmt(100.0 * _med(gaps), 2)} %, max {_fmt(100.0 * max(gaps), 2)} %)"
-               if not_proven and gaps else "") + "."]
+        for m in ("fov", "serial", "milp")
+    )
+    text = [
+        f"**Paper:** the MILP solves within about {PAPER_RUNTIME_S:g} s (Gurobi, AMD 7950); "
+        "FOV is the fastest method.",
+        f"**Ours, median runtime per method:** {per_method}.",
+        f"**Ours (GLPK):** max {_fmt(mx)} s, median {_fmt(_med(rt))} s over {len(rt)} plans; "
+        f"{'; '.join(parts)}. {len(milp) - len(not_proven)} of {len(milp)} proven optimal"
+        + (
+            f"; {len(not_proven)} stopped early (median gap "
+            f"{_fmt(100.0 * _med(gaps), 2)} %, max {_fmt(100.0 * max(gaps), 2)} %)"
+            if not_proven and gaps
+            else ""
+        )
+        + ".",
+    ]
     if not rt:
         text.append("**Verdict:** no data.")
     elif mx <= PAPER_RUNTIME_S and not not_proven:
         text.append("**Verdict:** holds: every plan proven optimal within the paper's time.")
     else:
         text.append(
-            f"**Verdict:** differs: {'the slowest plan takes ' + _fmt(mx) + ' s, ' if mx > PAPER_RUNTIME_S else ''}"
+            "**Verdict:** differs: "
+            f"{'the slowest plan takes ' + _fmt(mx) + ' s, ' if mx > PAPER_RUNTIME_S else ''}"
             f"{len(not_proven)} plan(s) not proven optimal. Why: our exact search (branch-and-"
             "price on GLPK's simplex with subset-row cuts, planner/SOLVER.md) gets a tight root "
             "bound but closes its last fraction of a percent slowly at alpha >= 1: near-identical "
             "neighbouring stops give the LP many equivalent fractional optima, and a node costs "
-            "10-300 ms (GLPK's simplex on the master with its cut rows, and the pricing that carries "
-            "the cuts), so the largest instances (alpha 4) search 60-160 nodes in 10 s; our "
-            "machine has 2 cores: the second improves plans and, once the plan is within 0.2 % "
-            "of the bound, searches the tree too.")
+            "10-300 ms (GLPK's simplex on the master with its cut rows, and the pricing that "
+            "carries the cuts), so the largest instances (alpha 4) search 60-160 nodes in 10 s; "
+            "our machine has 2 cores: the second improves plans and, once the plan is within 0.2 % "
+            "of the bound, searches the tree too."
+        )
     return "\n\n".join(text), {"max_s": mx, "not_proven": len(not_proven)}
 
 
 def cost_model_text(pick_cycle):
     """The cost model a table or figure was planned in, named with its config key."""
     if pick_cycle:
-        return ("the robot's time, a pick its whole cycle 2 t(home -> fruit) + cut + release "
-                "and a stop the drive's v/a (plan.pick_cycle = 1)")
-    return ("the paper's, G = t(home -> fruit) one way and tau = vehicle.stop_penalty "
-            "(plan.pick_cycle = 0)")
+        return (
+            "the robot's time, a pick its whole cycle 2 t(home -> fruit) + cut + release "
+            "and a stop the drive's v/a (plan.pick_cycle = 1)"
+        )
+    return (
+        "the paper's, G = t(home -> fruit) one way and tau = vehicle.stop_penalty "
+        "(plan.pick_cycle = 0)"
+    )
 
 
 def costs_line(pick_cycle):
@@ -233,30 +300,40 @@ def costs_line(pick_cycle):
 
 def costs_per_row_line():
     """For a table with a costs column."""
-    return (f"*Costs: per row; plan.pick_cycle = 0 is {cost_model_text(False)}; "
-            f"plan.pick_cycle = 1 is {cost_model_text(True)}.*")
+    return (
+        f"*Costs: per row; plan.pick_cycle = 0 is {cost_model_text(False)}; "
+        f"plan.pick_cycle = 1 is {cost_model_text(True)}.*"
+    )
 
 
 def _width_verdict(rows):
     band = [t for t in rows if PAPER_GAIN_LO <= t["median_gain"] <= PAPER_GAIN_HI]
     low = min(rows, key=lambda t: t["median_gain"])
     if band:
-        text = ("the median gain is inside the paper's band at FOV width "
-                + ", ".join(f"{t['width_m']:g} m" for t in band)
-                + f" (it enters the band at {band[0]['width_m']:g} m, going up from the "
-                  "narrowest window)")
+        text = (
+            "the median gain is inside the paper's band at FOV width "
+            + ", ".join(f"{t['width_m']:g} m" for t in band)
+            + f" (it enters the band at {band[0]['width_m']:g} m, going up from the "
+            "narrowest window)"
+        )
     else:
-        text = ("the median gain is inside the paper's band at no width tried: it is "
-                f"{'above' if low['median_gain'] > PAPER_GAIN_HI else 'below'} the band "
-                "everywhere")
-    text += (f"; the smallest median gain is {_pct(low['median_gain'])}, at "
-             f"{low['width_m']:g} m (FOV median {_fmt(low['fov_stops'], 1)} stops)")
+        text = (
+            "the median gain is inside the paper's band at no width tried: it is "
+            f"{'above' if low['median_gain'] > PAPER_GAIN_HI else 'below'} the band "
+            "everywhere"
+        )
+    text += (
+        f"; the smallest median gain is {_pct(low['median_gain'])}, at "
+        f"{low['width_m']:g} m (FOV median {_fmt(low['fov_stops'], 1)} stops)"
+    )
     first, last = rows[0], rows[-1]
     if low is not first and low is not last:
-        text += (f". Narrower windows add stops ({_fmt(first['fov_stops'], 1)} at "
-                 f"{first['width_m']:g} m), wider ones put fruit far from the window's stop or "
-                 f"out of its reach, picked at extra stops ({_fmt(last['fov_stops'], 1)} at "
-                 f"{last['width_m']:g} m)")
+        text += (
+            f". Narrower windows add stops ({_fmt(first['fov_stops'], 1)} at "
+            f"{first['width_m']:g} m), wider ones put fruit far from the window's stop or "
+            f"out of its reach, picked at extra stops ({_fmt(last['fov_stops'], 1)} at "
+            f"{last['width_m']:g} m)"
+        )
     return text
 
 
@@ -264,48 +341,76 @@ def fov_width_section(tables, main_pick_cycle, main_width):
     """The gain over FOV by FOV window width in each cost model swept
     ({pick_cycle: sensitivity.gain_by_width(...)}), and where it meets the paper's band.
     main_width names the width the main run's FOV used."""
-    models = [pc for pc in sorted(tables, key=lambda m: m != main_pick_cycle)
-              if any(t["n"] for t in tables[pc])]
+    models = [
+        pc
+        for pc in sorted(tables, key=lambda m: m != main_pick_cycle)
+        if any(t["n"] for t in tables[pc])
+    ]
     if not models:
         return None
-    lines = ["| costs | FOV width (m) | instances | FOV stops (median) | gain over FOV (median) | "
-             "gain range | instances inside +10-20 % |", "|---|---|---|---|---|---|---|"]
+    lines = [
+        "| costs | FOV width (m) | instances | FOV stops (median) | gain over FOV (median) | "
+        "gain range | instances inside +10-20 % |",
+        "|---|---|---|---|---|---|---|",
+    ]
     verdicts = []
     for pc in models:
         rows = [t for t in tables[pc] if t["n"]]
         for t in rows:
-            lines.append(f"| plan.pick_cycle = {int(pc)} | {t['width_m']:g} | {t['n']} | "
-                         f"{_fmt(t['fov_stops'], 1)} | {_pct(t['median_gain'])} | "
-                         f"{_pct(t['min_gain'])} to {_pct(t['max_gain'])} | {t['in_band']} |")
+            lines.append(
+                f"| plan.pick_cycle = {int(pc)} | {t['width_m']:g} | {t['n']} | "
+                f"{_fmt(t['fov_stops'], 1)} | {_pct(t['median_gain'])} | "
+                f"{_pct(t['min_gain'])} to {_pct(t['max_gain'])} | {t['in_band']} |"
+            )
         verdicts.append(f"With plan.pick_cycle = {int(pc)}, {_width_verdict(rows)}.")
-    return "\n".join([
-        "#### The gain over FOV by FOV window width", "",
-        "The paper does not give FOV's window width. In each cost model the MILP plans are "
-        "that model's run (the MILP does not depend on the width); FOV is planned again at "
-        "each width on the same instances (`python -m harvest experiments fov-width`). "
-        f"The main run's FOV uses {main_width}.", "",
-        costs_per_row_line(), "", "\n".join(lines), "", " ".join(verdicts)])
+    return "\n".join(
+        [
+            "#### The gain over FOV by FOV window width",
+            "",
+            "The paper does not give FOV's window width. In each cost model the MILP plans are "
+            "that model's run (the MILP does not depend on the width); FOV is planned again at "
+            "each width on the same instances (`python -m harvest experiments fov-width`). "
+            f"The main run's FOV uses {main_width}.",
+            "",
+            costs_per_row_line(),
+            "",
+            "\n".join(lines),
+            "",
+            " ".join(verdicts),
+        ]
+    )
 
 
 def cost_models_section(models, main_pick_cycle):
     """MILP / Serial and MILP over FOV per alpha in each cost model planned
     ({pick_cycle: cost_models.ratios(rows)})."""
-    lines = ["| costs | alpha | instances | MILP / Serial throughput (median) | range | "
-             "MILP makespan s (median) | Serial makespan s (median) | gain over FOV (median) |",
-             "|---|---|---|---|---|---|---|---|"]
+    lines = [
+        "| costs | alpha | instances | MILP / Serial throughput (median) | range | "
+        "MILP makespan s (median) | Serial makespan s (median) | gain over FOV (median) |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
     at_one = []
     for pc in sorted(models, key=lambda m: m != main_pick_cycle):
         name = f"plan.pick_cycle = {int(pc)}"
         for t in models[pc]:
-            lines.append(f"| {name} | {t['alpha']:g} | {t['n']} | {_fmt(t['dual_median'], 2)}x | "
-                         f"{_fmt(t['dual_min'], 2)}x to {_fmt(t['dual_max'], 2)}x | "
-                         f"{_fmt(t['milp_makespan_s'], 1)} | {_fmt(t['serial_makespan_s'], 1)} | "
-                         f"{_pct(t['fov_gain_median'])} |")
+            lines.append(
+                f"| {name} | {t['alpha']:g} | {t['n']} | {_fmt(t['dual_median'], 2)}x | "
+                f"{_fmt(t['dual_min'], 2)}x to {_fmt(t['dual_max'], 2)}x | "
+                f"{_fmt(t['milp_makespan_s'], 1)} | {_fmt(t['serial_makespan_s'], 1)} | "
+                f"{_pct(t['fov_gain_median'])} |"
+            )
             if t["alpha"] == 1.0 and t["n"]:
                 at_one.append(f"{_fmt(t['dual_median'], 2)}x with {cost_model_text(pc)}")
-    text = ["#### Dual arm / single arm in both cost models", "",
-            "The same instances planned in each cost model (`python -m harvest experiments "
-            "cost-models`).", "", costs_per_row_line(), "", "\n".join(lines)]
+    text = [
+        "#### Dual arm / single arm in both cost models",
+        "",
+        "The same instances planned in each cost model (`python -m harvest experiments "
+        "cost-models`).",
+        "",
+        costs_per_row_line(),
+        "",
+        "\n".join(lines),
+    ]
     if len(models) < 2:
         text += ["", "Only the main run's cost model is planned yet."]
     if at_one:
@@ -320,9 +425,14 @@ def sanity(inst):
         if "milp" not in ms:
             continue
         for other in ("fov", "serial"):
-            if other in ms and ms["milp"]["makespan_s"] > ms[other]["makespan_s"] * (1 + 1e-9) + 1e-6:
-                bad.append(f"alpha {key[1]:g} seed {key[2]}: MILP {ms['milp']['makespan_s']:.2f} s "
-                           f"> {other} {ms[other]['makespan_s']:.2f} s")
+            if (
+                other in ms
+                and ms["milp"]["makespan_s"] > ms[other]["makespan_s"] * (1 + 1e-9) + 1e-6
+            ):
+                bad.append(
+                    f"alpha {key[1]:g} seed {key[2]}: MILP {ms['milp']['makespan_s']:.2f} s "
+                    f"> {other} {ms[other]['makespan_s']:.2f} s"
+                )
     return bad
 
 
@@ -333,41 +443,65 @@ def analysis_section(path):
     with open(path, encoding="utf-8") as f:
         a = json.load(f)
     cov = a["coverage_m2"]
-    lines = [f"Slice z = {a['z_m']:.2f} m, right arm, canopy band of one stop "
-             "(|x| over the canopy depth, fruit y - stop y over the table's span):", "",
-             "| pick mode | area of the canopy band covered (m^2) |", "|---|---|"]
+    lines = [
+        f"Slice z = {a['z_m']:.2f} m, right arm, canopy band of one stop "
+        "(|x| over the canopy depth, fruit y - stop y over the table's span):",
+        "",
+        "| pick mode | area of the canopy band covered (m^2) |",
+        "|---|---|",
+    ]
     lines += [f"| {k} | {v:.4f} |" for k, v in cov.items()]
     r = a["roughness_s"]
-    lines += ["", f"Roughness of G at yaw 0 (mean |difference| between neighbouring reachable "
-                  f"cells): joint 3 limited {r['limited']:.4f} s, unlimited {r['free']:.4f} s. "
-              "The paper reads the unlimited cost as less smooth (two IK branches meet) and "
-              "keeps the elbow on one side; "
-              + ("our numbers agree." if r["free"] >= r["limited"] else
-                 "our numbers show the opposite on this slice: with our home pose the other "
-                 "elbow branch is rarely the faster one, so the lifted limit mostly adds "
-                 "reachable cells rather than jumps.")]
+    lines += [
+        "",
+        f"Roughness of G at yaw 0 (mean |difference| between neighbouring reachable "
+        f"cells): joint 3 limited {r['limited']:.4f} s, unlimited {r['free']:.4f} s. "
+        "The paper reads the unlimited cost as less smooth (two IK branches meet) and "
+        "keeps the elbow on one side; "
+        + (
+            "our numbers agree."
+            if r["free"] >= r["limited"]
+            else "our numbers show the opposite on this slice: with our home pose the other "
+            "elbow branch is rarely the faster one, so the lifted limit mostly adds "
+            "reachable cells rather than jumps."
+        ),
+    ]
     return "\n".join(lines)
 
 
 # What each reason of a plan's unreachable list means (docs/PLAN_FORMAT.md).
-WHY_TEXT = {"row_end": "reachable only from vehicle positions beyond the row's ends, which "
-                       "the candidate stops exclude (row.stops_beyond_ends = 0)",
-            "height": "outside joint 1's stroke",
-            "depth": "out of the arm's reach from every vehicle position",
-            "yaw": "in reach, but not at its pick heading within the joint limits"}
+WHY_TEXT = {
+    "row_end": "reachable only from vehicle positions beyond the row's ends, which "
+    "the candidate stops exclude (row.stops_beyond_ends = 0)",
+    "height": "outside joint 1's stroke",
+    "depth": "out of the arm's reach from every vehicle position",
+    "yaw": "in reach, but not at its pick heading within the joint limits",
+}
 
 
 def unreachable_text(total, reasons):
     """The check line's explanation of the unreachable fruits, from the plans' reasons."""
     if not total:
         return "."
-    parts = [f"{n} {why} ({WHY_TEXT.get(why, 'unknown reason')})"
-             for why, n in sorted(reasons.items(), key=lambda kv: -kv[1])]
+    parts = [
+        f"{n} {why} ({WHY_TEXT.get(why, 'unknown reason')})"
+        for why, n in sorted(reasons.items(), key=lambda kv: -kv[1])
+    ]
     return ": " + "; ".join(parts) + ". The paper counts all m^L + m^R fruits."
 
 
-def write(path, rows, settings_text, figures, analysis=None, methods=("fov", "serial", "milp"),
-          unreachable_reasons=None, pick_cycle=False, fov_width=None, cost_models=None):
+def write(
+    path,
+    rows,
+    settings_text,
+    figures,
+    analysis=None,
+    methods=("fov", "serial", "milp"),
+    unreachable_reasons=None,
+    pick_cycle=False,
+    fov_width=None,
+    cost_models=None,
+):
     """Write the report; `figures` maps a caption to a path (relative links are made).
     pick_cycle: the main run's cost model; fov_width, cost_models: the sections of the
     derived runs (fov_width_section, cost_models_section), left out when None."""
@@ -379,36 +513,76 @@ def write(path, rows, settings_text, figures, analysis=None, methods=("fov", "se
     c4, _ = claim_runtime(rows)
     bad = sanity(inst)
     errors = [r for r in rows if r["status"] == "error"]
-    out = ["# Reproducing the paper's comparison (FOV, Serial, MILP)", "",
-           "Generated by `python -m harvest experiments` from `results.csv` (the main run) "
-           + ("and the derived runs' results.csv (`fov_width/`, `pick_cycle_<0|1>/`)"
-              if fov_width or cost_models else "")
-           + "; every number below is computed from them.", "", "## Set-up", "", settings_text, "",
-           "## Results by alpha and method", "", costs_line(pick_cycle), "",
-           summary_table(rows, methods), "",
-           "## The paper's claims beside ours", "",
-           "Each claim is read on the main run, planned with the costs above; the tables after "
-           "claims 2 and 3 add the derived runs (other FOV widths, the other cost model).", "",
-           "### 1. Fewest stops", "", c1, "",
-           "### 2. Throughput over FOV", "", c2, ""]
+    out = [
+        "# Reproducing the paper's comparison (FOV, Serial, MILP)",
+        "",
+        "Generated by `python -m harvest experiments` from `results.csv` (the main run) "
+        + (
+            "and the derived runs' results.csv (`fov_width/`, `pick_cycle_<0|1>/`)"
+            if fov_width or cost_models
+            else ""
+        )
+        + "; every number below is computed from them.",
+        "",
+        "## Set-up",
+        "",
+        settings_text,
+        "",
+        "## Results by alpha and method",
+        "",
+        costs_line(pick_cycle),
+        "",
+        summary_table(rows, methods),
+        "",
+        "## The paper's claims beside ours",
+        "",
+        "Each claim is read on the main run, planned with the costs above; the tables after "
+        "claims 2 and 3 add the derived runs (other FOV widths, the other cost model).",
+        "",
+        "### 1. Fewest stops",
+        "",
+        c1,
+        "",
+        "### 2. Throughput over FOV",
+        "",
+        c2,
+        "",
+    ]
     if fov_width:
         out += [fov_width, ""]
     out += ["### 3. Dual arm vs single arm at alpha = 1", "", c3, ""]
     if cost_models:
         out += [cost_models, ""]
-    out += ["### 4. Runtime", "", c4, "",
-            "## Checks", ""]
-    out.append(f"- MILP makespan never above FOV's or Serial's on the same instance: "
-               + ("yes, on every instance." if not bad else
-                  f"**no**, on {len(bad)}: " + "; ".join(bad[:5])))
-    out.append(f"- Planner failures: {len(errors)}"
-               + ("" if not errors else " (" + "; ".join(
-                   f"{r['method']} alpha {r['alpha']:g} seed {r['seed']}: {r['error']}"
-                   for r in errors[:5]) + ")"))
-    unreachable = sum(r["fruits_unreachable"] or 0 for r in rows if _ok(r) and r["method"] == "milp")
-    out.append(f"- Fruits no stop can reach (left out of every plan and of its throughput): "
-               f"{unreachable} over all MILP plans"
-               + unreachable_text(unreachable, unreachable_reasons or {}))
+    out += ["### 4. Runtime", "", c4, "", "## Checks", ""]
+    out.append(
+        "- MILP makespan never above FOV's or Serial's on the same instance: "
+        + (
+            "yes, on every instance."
+            if not bad
+            else f"**no**, on {len(bad)}: " + "; ".join(bad[:5])
+        )
+    )
+    out.append(
+        f"- Planner failures: {len(errors)}"
+        + (
+            ""
+            if not errors
+            else " ("
+            + "; ".join(
+                f"{r['method']} alpha {r['alpha']:g} seed {r['seed']}: {r['error']}"
+                for r in errors[:5]
+            )
+            + ")"
+        )
+    )
+    unreachable = sum(
+        r["fruits_unreachable"] or 0 for r in rows if _ok(r) and r["method"] == "milp"
+    )
+    out.append(
+        f"- Fruits no stop can reach (left out of every plan and of its throughput): "
+        f"{unreachable} over all MILP plans"
+        + unreachable_text(unreachable, unreachable_reasons or {})
+    )
     if analysis:
         out += ["", "## Analysis figures from our cost tables", "", analysis]
     if figures:

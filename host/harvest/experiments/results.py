@@ -4,6 +4,7 @@ Resuming reads the rows already there and skips their keys, so an interrupted ru
 recomputes finished work. A kill can at worst leave a torn last line (no newline): it is
 cut off on open, with a warning, and that row is computed again.
 """
+
 import csv
 import io
 import os
@@ -11,11 +12,39 @@ import sys
 
 KEY = ("distribution", "alpha", "seed", "method")
 COLUMNS = KEY + (
-    "n_left", "n_right", "stops", "makespan_s", "throughput_fruit_per_s", "runtime_s",
-    "status", "gap", "pick_time_s", "stop_time_s", "travel_time_s", "idle_s", "fruits_planned", "fruits_unreachable",
-    "time_limit_s", "wall_s", "plan", "finished_utc", "error")
-FLOAT_COLUMNS = ("alpha", "makespan_s", "throughput_fruit_per_s", "runtime_s", "gap",
-                 "pick_time_s", "stop_time_s", "travel_time_s", "idle_s", "time_limit_s", "wall_s")
+    "n_left",
+    "n_right",
+    "stops",
+    "makespan_s",
+    "throughput_fruit_per_s",
+    "runtime_s",
+    "status",
+    "gap",
+    "pick_time_s",
+    "stop_time_s",
+    "travel_time_s",
+    "idle_s",
+    "fruits_planned",
+    "fruits_unreachable",
+    "time_limit_s",
+    "wall_s",
+    "plan",
+    "finished_utc",
+    "error",
+)
+FLOAT_COLUMNS = (
+    "alpha",
+    "makespan_s",
+    "throughput_fruit_per_s",
+    "runtime_s",
+    "gap",
+    "pick_time_s",
+    "stop_time_s",
+    "travel_time_s",
+    "idle_s",
+    "time_limit_s",
+    "wall_s",
+)
 INT_COLUMNS = ("seed", "n_left", "n_right", "stops", "fruits_planned", "fruits_unreachable")
 
 
@@ -51,8 +80,10 @@ def read(path):
     if not rows:
         return []
     if tuple(rows[0]) != COLUMNS:
-        raise ResultsError(f"{path}:1: header is not this runner's columns "
-                           f"({','.join(COLUMNS)}): use another --out directory")
+        raise ResultsError(
+            f"{path}:1: header is not this runner's columns "
+            f"({','.join(COLUMNS)}): use another --out directory"
+        )
     out = []
     for n, r in enumerate(rows[1:], 2):
         if len(r) != len(COLUMNS):
@@ -70,7 +101,9 @@ class ResultsFile:
         rows = read(path)
         self.done = {row_key(r): r for r in rows}
         if len(self.done) != len(rows):
-            raise ResultsError(f"{path}: the same (distribution, alpha, seed, method) appears twice")
+            raise ResultsError(
+                f"{path}: the same (distribution, alpha, seed, method) appears twice"
+            )
         if not rows and not self._has_header():
             with open(path, "w", encoding="utf-8", newline="") as f:
                 f.write(self._line(COLUMNS))
@@ -88,8 +121,11 @@ class ResultsFile:
             if not data or data.endswith(b"\n"):
                 return
             keep = data.rfind(b"\n") + 1
-            print(f"results: {self.path}: dropping an unfinished last line "
-                  f"({len(data) - keep} bytes) left by an interrupted run", file=log)
+            print(
+                f"results: {self.path}: dropping an unfinished last line "
+                f"({len(data) - keep} bytes) left by an interrupted run",
+                file=log,
+            )
             f.truncate(keep)
 
     @staticmethod
@@ -102,8 +138,10 @@ class ResultsFile:
         missing = [c for c in COLUMNS if c not in row]
         if missing:
             raise ResultsError(f"results row lacks {', '.join(missing)}")
-        values = ["" if row[c] is None else (repr(row[c]) if isinstance(row[c], float) else row[c])
-                  for c in COLUMNS]
+        values = [
+            "" if row[c] is None else (repr(row[c]) if isinstance(row[c], float) else row[c])
+            for c in COLUMNS
+        ]
         line = self._line(values)
         # One write of the whole line, then flush + fsync: a kill between rows loses nothing.
         with open(self.path, "a", encoding="utf-8", newline="") as f:
@@ -121,7 +159,9 @@ class ResultsFile:
         with open(self.path, encoding="utf-8", newline="") as f:
             lines = f.read().splitlines(keepends=True)
         # read() kept the file's row order, so line k + 1 is rows[k]
-        kept_lines = [lines[0]] + [lines[k + 1] for k, r in enumerate(rows) if r["status"] != "error"]
+        kept_lines = [lines[0]] + [
+            lines[k + 1] for k, r in enumerate(rows) if r["status"] != "error"
+        ]
         tmp = f"{self.path}.tmp{os.getpid()}"
         with open(tmp, "w", encoding="utf-8", newline="") as f:
             f.writelines(kept_lines)

@@ -11,6 +11,7 @@ Layout of an output directory:
   plans/*.json          one plan per (instance, method), as the planner wrote it
   results.csv           one row per (instance, method), appended as each one finishes
 """
+
 import concurrent.futures as cf
 import ctypes
 import datetime
@@ -28,7 +29,7 @@ from dataclasses import dataclass, field
 from tqdm import tqdm
 
 from ..scenario import fruit_map, generate
-from ..scenario.config import Row, Config, derived_config_text
+from ..scenario.config import Config, Row, derived_config_text
 from . import plan_file
 from .binaries import build_info
 from .results import ResultsFile, row_key
@@ -75,11 +76,11 @@ class Settings:
     methods: tuple = METHODS
     distribution: str = "uniform"
     n_left: int = generate.PAPER_LEFT_FRUITS
-    time_limit_s: float = None   # None: the planner's own default
-    fov_width_m: float = None    # None: the planner's own default
+    time_limit_s: float = None  # None: the planner's own default
+    fov_width_m: float = None  # None: the planner's own default
     jobs: int = 1
     stops_beyond_ends: bool = False  # False: the paper's candidate stops, over the row only
-    pick_cycle: bool = False         # False: the paper's costs (G one way, tau)
+    pick_cycle: bool = False  # False: the paper's costs (G one way, tau)
     progress: bool = True
     log: object = field(default=sys.stderr)
 
@@ -97,9 +98,15 @@ def _sha256(path):
 
 def _manifest(s):
     """What makes finished rows comparable with new ones: same config and planner options."""
-    return {"config_sha256": _sha256(s.config), "time_limit_s": s.time_limit_s,
-            "fov_width_m": s.fov_width_m, "n_left": s.n_left, "distribution": s.distribution,
-            "stops_beyond_ends": s.stops_beyond_ends, "pick_cycle": s.pick_cycle}
+    return {
+        "config_sha256": _sha256(s.config),
+        "time_limit_s": s.time_limit_s,
+        "fov_width_m": s.fov_width_m,
+        "n_left": s.n_left,
+        "distribution": s.distribution,
+        "stops_beyond_ends": s.stops_beyond_ends,
+        "pick_cycle": s.pick_cycle,
+    }
 
 
 def check_manifest(s):
@@ -110,15 +117,25 @@ def check_manifest(s):
             have = json.load(f)
         diff = [k for k in want if have.get(k) != want[k]]
         if diff:
-            raise RunError(f"{path}: this directory was started with different "
-                           f"{', '.join(diff)} ({', '.join(f'{k}={have.get(k)!r}' for k in diff)}): "
-                           "its rows would not be comparable; use another --out")
+            raise RunError(
+                f"{path}: this directory was started with different "
+                f"{', '.join(diff)} ({', '.join(f'{k}={have.get(k)!r}' for k in diff)}): "
+                "its rows would not be comparable; use another --out"
+            )
         return
     tmp = path + ".tmp"
     with open(tmp, "w", encoding="utf-8") as f:
         # Recorded for the report, not compared: where the planner came from and its build.
-        json.dump(dict(want, config=os.path.abspath(s.config), planner=s.planner,
-                       planner_build=build_info(s.planner)), f, indent=1)
+        json.dump(
+            dict(
+                want,
+                config=os.path.abspath(s.config),
+                planner=s.planner,
+                planner_build=build_info(s.planner),
+            ),
+            f,
+            indent=1,
+        )
     os.replace(tmp, path)
 
 
@@ -152,8 +169,10 @@ def ensure_tables(s, elbow_free=False, subdir="tables"):
 def planner_config(s):
     """OUT/planner.cfg: the run's config with the stops and the cost model the run asks for."""
     path = os.path.join(s.out_dir, "planner.cfg")
-    text = derived_config_text(s.config, {"row.stops_beyond_ends": int(s.stops_beyond_ends),
-                                          "plan.pick_cycle": int(s.pick_cycle)})
+    text = derived_config_text(
+        s.config,
+        {"row.stops_beyond_ends": int(s.stops_beyond_ends), "plan.pick_cycle": int(s.pick_cycle)},
+    )
     tmp = path + ".tmp"
     with open(tmp, "w", encoding="utf-8") as f:
         f.write(text)
@@ -243,8 +262,7 @@ class _Children:
             with self._lock:
                 if self.stopping:
                     raise KeyboardInterrupt
-                p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                     text=True)
+                p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
                 self._procs.add(p)
                 return p
         finally:
@@ -265,12 +283,17 @@ class _Children:
         if self.subreaper:
             left = reap_orphans()
             if left:
-                print(f"experiments: {left} process(es) left by the planners would not die",
-                      file=sys.stderr, flush=True)
+                print(
+                    f"experiments: {left} process(es) left by the planners would not die",
+                    file=sys.stderr,
+                    flush=True,
+                )
 
 
 def _hang_timeout(s):
-    return DEFAULT_HANG_S if s.time_limit_s is None else s.time_limit_s * HANG_FACTOR + HANG_MARGIN_S
+    return (
+        DEFAULT_HANG_S if s.time_limit_s is None else s.time_limit_s * HANG_FACTOR + HANG_MARGIN_S
+    )
 
 
 def run_one(s, children, planner_cfg, tables, inst, map_path, method):
@@ -281,20 +304,52 @@ def run_one(s, children, planner_cfg, tables, inst, map_path, method):
     # Per-runner temp name: a planner orphaned by a killed runner cannot clobber the plan a
     # resumed runner is writing for the same row.
     tmp = os.path.join(plans, f".{inst.name}_{method}.{os.getpid()}.part")
-    cmd = [s.planner, "--config", planner_cfg, "--left", tables["L"], "--right", tables["R"],
-           "--fruits", map_path, "--method", method, "--out", tmp, "--quiet"]
+    cmd = [
+        s.planner,
+        "--config",
+        planner_cfg,
+        "--left",
+        tables["L"],
+        "--right",
+        tables["R"],
+        "--fruits",
+        map_path,
+        "--method",
+        method,
+        "--out",
+        tmp,
+        "--quiet",
+    ]
     if s.time_limit_s is not None:
         cmd += ["--time-limit", f"{s.time_limit_s:g}"]
     if s.fov_width_m is not None:
         cmd += ["--fov-width", f"{s.fov_width_m:g}"]
     n_right = generate.right_count(inst.n_left, inst.alpha)
-    row = {"distribution": inst.distribution, "alpha": inst.alpha, "seed": inst.seed,
-           "method": method, "n_left": inst.n_left, "n_right": n_right,
-           "stops": None, "makespan_s": None, "throughput_fruit_per_s": None, "runtime_s": None,
-           "status": "error", "gap": None, "pick_time_s": None, "stop_time_s": None,
-           "travel_time_s": None, "idle_s": None,
-           "fruits_planned": None, "fruits_unreachable": None, "time_limit_s": s.time_limit_s,
-           "wall_s": None, "plan": "", "finished_utc": None, "error": ""}
+    row = {
+        "distribution": inst.distribution,
+        "alpha": inst.alpha,
+        "seed": inst.seed,
+        "method": method,
+        "n_left": inst.n_left,
+        "n_right": n_right,
+        "stops": None,
+        "makespan_s": None,
+        "throughput_fruit_per_s": None,
+        "runtime_s": None,
+        "status": "error",
+        "gap": None,
+        "pick_time_s": None,
+        "stop_time_s": None,
+        "travel_time_s": None,
+        "idle_s": None,
+        "fruits_planned": None,
+        "fruits_unreachable": None,
+        "time_limit_s": s.time_limit_s,
+        "wall_s": None,
+        "plan": "",
+        "finished_utc": None,
+        "error": "",
+    }
     t0 = time.monotonic()
     p = children.start(cmd)
     try:
@@ -313,7 +368,9 @@ def run_one(s, children, planner_cfg, tables, inst, map_path, method):
     if children.stopping or p.returncode == PLANNER_EXIT_INTERRUPTED:
         raise KeyboardInterrupt
     row["wall_s"] = round(time.monotonic() - t0, 3)
-    row["finished_utc"] = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")
+    row["finished_utc"] = datetime.datetime.now(datetime.timezone.utc).strftime(
+        "%Y-%m-%dT%H:%M:%SZ"
+    )
     if p.returncode != 0 or not os.path.isfile(tmp):
         lines = [ln for ln in (err or "").strip().splitlines() if ln.strip()]
         row["error"] = (f"exit {p.returncode}: " + (lines[-1] if lines else "no message"))[:300]
@@ -342,8 +399,11 @@ def run(s, retry_errors=False):
     if retry_errors:
         dropped = results.drop_errors()
         if dropped:
-            print(f"experiments: {dropped} failed row(s) removed, to be run again",
-                  file=s.log, flush=True)
+            print(
+                f"experiments: {dropped} failed row(s) removed, to be run again",
+                file=s.log,
+                flush=True,
+            )
     row_cfg = Row(Config.load(s.config))
     tables = ensure_tables(s)
     cfg = planner_config(s)
@@ -358,11 +418,22 @@ def run(s, retry_errors=False):
     total = len(keys)
     done_before = total - len(todo)
     if done_before:
-        print(f"experiments: resuming: {done_before} of {total} rows already in "
-              f"{results.path}, {len(todo)} to run", file=s.log, flush=True)
+        print(
+            f"experiments: resuming: {done_before} of {total} rows already in "
+            f"{results.path}, {len(todo)} to run",
+            file=s.log,
+            flush=True,
+        )
     children = _Children()
-    bar = tqdm(total=total, initial=done_before, desc="plans", unit="plan", file=s.log,
-               disable=not s.progress, dynamic_ncols=True)
+    bar = tqdm(
+        total=total,
+        initial=done_before,
+        desc="plans",
+        unit="plan",
+        file=s.log,
+        disable=not s.progress,
+        dynamic_ncols=True,
+    )
     errors = 0
 
     def record(row):
@@ -384,8 +455,10 @@ def run(s, retry_errors=False):
                 ran += 1
         else:
             with cf.ThreadPoolExecutor(max_workers=s.jobs) as pool:
-                futures = [pool.submit(run_one, s, children, cfg, tables, inst, mp, m)
-                           for inst, mp, m in todo]
+                futures = [
+                    pool.submit(run_one, s, children, cfg, tables, inst, mp, m)
+                    for inst, mp, m in todo
+                ]
                 try:
                     for fut in cf.as_completed(futures):
                         record(fut.result())
@@ -401,14 +474,21 @@ def run(s, retry_errors=False):
         # Count from the file itself: the interrupt may have come between a row's write and
         # the bookkeeping after it.
         saved = sum(1 for r in read_results(results.path) if row_key(r) in keys)
-        print(f"experiments: interrupted: {saved} of {total} rows are saved in "
-              f"{results.path}; run the same command again to resume", file=s.log, flush=True)
+        print(
+            f"experiments: interrupted: {saved} of {total} rows are saved in "
+            f"{results.path}; run the same command again to resume",
+            file=s.log,
+            flush=True,
+        )
         raise
     finally:
         if threading.current_thread() is threading.main_thread():
             signal.signal(signal.SIGTERM, previous)
     bar.close()
     if errors:
-        print(f"experiments: {errors} plan(s) failed: see the 'error' column of {results.path}",
-              file=s.log, flush=True)
+        print(
+            f"experiments: {errors} plan(s) failed: see the 'error' column of {results.path}",
+            file=s.log,
+            flush=True,
+        )
     return ran, total

@@ -5,6 +5,7 @@ the gain over FOV depends on it. The MILP does not depend on the width, so its p
 the main run's; only FOV is planned again, once per width, in OUT/fov_width/w<width>/ (a
 derived run: same instances, tables and cost model as the main run).
 """
+
 import json
 import os
 import statistics
@@ -70,15 +71,21 @@ def gain_by_width(main_rows, sweep):
         for k, ms in report.by_instance(sweep[w]).items():
             if k in milp and "fov" in ms:
                 fov = ms["fov"]
-                gains.append(milp[k]["throughput_fruit_per_s"] / fov["throughput_fruit_per_s"] - 1.0)
+                gains.append(
+                    milp[k]["throughput_fruit_per_s"] / fov["throughput_fruit_per_s"] - 1.0
+                )
                 stops.append(fov["stops"])
-        table.append({
-            "width_m": w, "n": len(gains),
-            "median_gain": statistics.median(gains) if gains else float("nan"),
-            "min_gain": min(gains, default=float("nan")),
-            "max_gain": max(gains, default=float("nan")),
-            "in_band": sum(report.PAPER_GAIN_LO <= g <= report.PAPER_GAIN_HI for g in gains),
-            "fov_stops": statistics.median(stops) if stops else float("nan")})
+        table.append(
+            {
+                "width_m": w,
+                "n": len(gains),
+                "median_gain": statistics.median(gains) if gains else float("nan"),
+                "min_gain": min(gains, default=float("nan")),
+                "max_gain": max(gains, default=float("nan")),
+                "in_band": sum(report.PAPER_GAIN_LO <= g <= report.PAPER_GAIN_HI for g in gains),
+                "fov_stops": statistics.median(stops) if stops else float("nan"),
+            }
+        )
     return table
 
 
@@ -90,15 +97,31 @@ def figure(tables, out_dir, default_width_m=None):
     if not tables:
         return []
     fig, ax = plt.subplots(figsize=(6.0, 3.4))
-    ax.axhspan(100 * report.PAPER_GAIN_LO, 100 * report.PAPER_GAIN_HI, color="#cccccc",
-               alpha=0.6, label="paper's band")
+    ax.axhspan(
+        100 * report.PAPER_GAIN_LO,
+        100 * report.PAPER_GAIN_HI,
+        color="#cccccc",
+        alpha=0.6,
+        label="paper's band",
+    )
     for pc, rows in sorted(tables.items()):
         color = METHOD_COLORS["milp" if pc else "serial"]
         w = [t["width_m"] for t in rows]
-        ax.fill_between(w, [100 * t["min_gain"] for t in rows],
-                        [100 * t["max_gain"] for t in rows], color=color, alpha=0.15)
-        ax.plot(w, [100 * t["median_gain"] for t in rows], "o-", color=color, ms=3,
-                label=f"median, plan.pick_cycle = {int(pc)} (shaded: range)")
+        ax.fill_between(
+            w,
+            [100 * t["min_gain"] for t in rows],
+            [100 * t["max_gain"] for t in rows],
+            color=color,
+            alpha=0.15,
+        )
+        ax.plot(
+            w,
+            [100 * t["median_gain"] for t in rows],
+            "o-",
+            color=color,
+            ms=3,
+            label=f"median, plan.pick_cycle = {int(pc)} (shaded: range)",
+        )
     if default_width_m is not None:
         ax.axvline(default_width_m, color="black", ls=":", lw=1, label="main run's width")
     ax.set_xlabel("FOV window width (m)")

@@ -5,6 +5,7 @@ Each derived run is a complete runner output directory of its own under the main
 (resumable, with its own run.json and results.csv). The main run's cost tables and fruit
 maps are linked into it, so every run plans exactly the same inputs and costgen runs once.
 """
+
 import dataclasses
 import os
 import shutil
@@ -16,8 +17,10 @@ from .runner import RunError, check_manifest
 def require_main(s):
     """The main run's typed rows; it must exist and have been made with these settings."""
     if not os.path.exists(os.path.join(s.out_dir, "run.json")):
-        raise RunError(f"{s.out_dir}: no main run yet: run 'experiments run --out {s.out_dir}' "
-                       "with the same options first")
+        raise RunError(
+            f"{s.out_dir}: no main run yet: run 'experiments run --out {s.out_dir}' "
+            "with the same options first"
+        )
     check_manifest(s)  # raises when the options differ from the main run's
     rows = results_mod.read(os.path.join(s.out_dir, "results.csv"))
     if not rows:

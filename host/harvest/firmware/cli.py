@@ -2,6 +2,7 @@
 simulator's bus, the plan uploaded over the bus, and a summary from the simulator's own
 record (scripts/demo.sh --target firmware). Run it inside a private network namespace
 (unshare -rn): QEMU's serial port and the multicast bus stay on its loopback."""
+
 import argparse
 import json
 import os
@@ -16,8 +17,8 @@ from . import rig
 def _image_makespans(image):
     """(planned, expected) makespan of a plan image (firmware/plan_image.h: header f64 17
     and 20 after the 12 leading bytes)."""
-    planned, = struct.unpack_from("<d", image, 12 + 8 * 17)
-    expected, = struct.unpack_from("<d", image, 12 + 8 * 20)
+    (planned,) = struct.unpack_from("<d", image, 12 + 8 * 17)
+    (expected,) = struct.unpack_from("<d", image, 12 + 8 * 20)
     return planned, expected
 
 
@@ -27,8 +28,9 @@ def summarize(record_path, plan, image, uart_log, icount=True):
     p = plan["params"]
     course_end = p["row_start_m"] + p["row_length_m"] + p["stop_margin_m"]
     moves = [e["t"] for e in events if e["event"] == "move" and e["accepted"]]
-    ends = [e["t"] for e in events if e["event"] == "arrived"
-            and abs(e["position"] - course_end) < 1e-3]
+    ends = [
+        e["t"] for e in events if e["event"] == "arrived" and abs(e["position"] - course_end) < 1e-3
+    ]
     planned_s, expected_s = _image_makespans(image)
     st = rig.last_status(uart_log)
     cycles = int(st.get("worst_step_cycles", 0))
@@ -53,6 +55,7 @@ def summarize(record_path, plan, image, uart_log, icount=True):
 def run(a):
     from harvest.canbus import plan_upload
     from harvest.canbus.buses import open_bus
+
     os.makedirs(a.out, exist_ok=True)
     with open(a.plan_image, "rb") as f:
         image = f.read()
@@ -67,16 +70,34 @@ def run(a):
     # carries every frame of the bus
     sim_log = open(os.path.join(a.out, "sim.log"), "w")
     sim = subprocess.Popen(
-        [sys.executable, "-m", "harvest", "sim", "--interface", "udp_multicast",
-         "--channel", rig.UDP_GROUP, "--time-scale", str(a.time_scale),
-         "--rate", str(a.rate or 50.0 / a.time_scale),
-         "--vehicle-start", str(p["row_start_m"] - p["stop_margin_m"]), "--record", record],
-        stdout=sim_log, stderr=subprocess.STDOUT)
+        [
+            sys.executable,
+            "-m",
+            "harvest",
+            "sim",
+            "--interface",
+            "udp_multicast",
+            "--channel",
+            rig.UDP_GROUP,
+            "--time-scale",
+            str(a.time_scale),
+            "--rate",
+            str(a.rate or 50.0 / a.time_scale),
+            "--vehicle-start",
+            str(p["row_start_m"] - p["stop_margin_m"]),
+            "--record",
+            record,
+        ],
+        stdout=sim_log,
+        stderr=subprocess.STDOUT,
+    )
     try:
         with open_bus("udp") as bus:
             state = plan_upload.upload(bus, image, timeout=60)
-        print(f"harvest firmware: plan image {len(image)} bytes uploaded, firmware {state[0]}",
-              flush=True)
+        print(
+            f"harvest firmware: plan image {len(image)} bytes uploaded, firmware {state[0]}",
+            flush=True,
+        )
         end = time.monotonic() + a.timeout
         while time.monotonic() < end:
             if rig.last_status(qemu.uart_log).get("phase") in ("row_done", "safe"):
@@ -104,14 +125,26 @@ def main(argv=None):
     r.add_argument("--image", required=True, help="harvest-fw.elf")
     r.add_argument("--plan", required=True, help="the plan file (for the fruit count)")
     r.add_argument("--plan-image", required=True, help="harvest-fw-plan's image of that plan")
-    r.add_argument("--time-scale", type=float, default=2.0,
-                   help="simulated s per wall s; must match the image's (2)")
+    r.add_argument(
+        "--time-scale",
+        type=float,
+        default=2.0,
+        help="simulated s per wall s; must match the image's (2)",
+    )
     r.add_argument("--timeout", type=float, default=1800.0, help="wall s for the row (1800)")
-    r.add_argument("--no-icount", dest="icount", action="store_false",
-                   help="QEMU's clock follows the host's; the worst step is then in host "
-                        "time, not instructions (default: -icount shift=5)")
-    r.add_argument("--rate", type=float, default=None,
-                   help="the simulator's frame rate, simulated Hz (default 50 / time scale)")
+    r.add_argument(
+        "--no-icount",
+        dest="icount",
+        action="store_false",
+        help="QEMU's clock follows the host's; the worst step is then in host "
+        "time, not instructions (default: -icount shift=5)",
+    )
+    r.add_argument(
+        "--rate",
+        type=float,
+        default=None,
+        help="the simulator's frame rate, simulated Hz (default 50 / time scale)",
+    )
     r.add_argument("--out", required=True, help="folder for the record, logs, firmware.json")
     a = ap.parse_args(argv)
     return run(a)

@@ -3,6 +3,7 @@ log), python-can's bridge from that serial line (slcan over a pyserial socket://
 the udp_multicast bus, and readers of the firmware's text lines. Callers run inside a
 private network namespace (harvest.canbus.netns), so the port and the multicast stay on
 its loopback."""
+
 import os
 import socket
 import subprocess
@@ -15,15 +16,26 @@ UDP_GROUP = "239.74.163.2"
 # SysTick (25 MHz) counts 0.8 per instruction and a step's cycles on the firmware's status
 # line are instructions x 0.8, independent of the host's speed.
 ICOUNT_SHIFT = 5
-CYCLES_PER_INSN = (2 ** ICOUNT_SHIFT) * 25e6 / 1e9
+CYCLES_PER_INSN = (2**ICOUNT_SHIFT) * 25e6 / 1e9
 
 
 def qemu_argv(image, port, uart_log, icount=False):
     """QEMU waits for the client before the firmware starts (wait=on): nothing is lost.
     Everything the firmware writes to UART0 is also kept in uart_log."""
-    argv = ["qemu-system-arm", "-M", "mps2-an386", "-nographic", "-monitor", "none",
-            "-chardev", f"socket,id=uart0,host=127.0.0.1,port={port},server=on,wait=on,"
-            f"logfile={uart_log}", "-serial", "chardev:uart0", "-kernel", image]
+    argv = [
+        "qemu-system-arm",
+        "-M",
+        "mps2-an386",
+        "-nographic",
+        "-monitor",
+        "none",
+        "-chardev",
+        f"socket,id=uart0,host=127.0.0.1,port={port},server=on,wait=on,logfile={uart_log}",
+        "-serial",
+        "chardev:uart0",
+        "-kernel",
+        image,
+    ]
     if icount:
         argv += ["-icount", f"shift={ICOUNT_SHIFT},align=off,sleep=on"]
     return argv
@@ -48,8 +60,9 @@ class Qemu:
         self.port = port
         self.log = open(os.path.join(workdir, "qemu.log"), "w")
         self.uart_log = os.path.join(workdir, "uart0.log")
-        self.proc = subprocess.Popen(qemu_argv(image, port, self.uart_log, icount),
-                                     stdout=self.log, stderr=subprocess.STDOUT)
+        self.proc = subprocess.Popen(
+            qemu_argv(image, port, self.uart_log, icount), stdout=self.log, stderr=subprocess.STDOUT
+        )
         self.sock = None
         self.buf = b""
 
@@ -95,8 +108,9 @@ class Qemu:
         while b"\r" not in self.buf:
             left = end - time.monotonic()
             if left <= 0:
-                raise TimeoutError(f"no line from the firmware within {timeout} s; "
-                                   f"have {self.buf!r}")
+                raise TimeoutError(
+                    f"no line from the firmware within {timeout} s; have {self.buf!r}"
+                )
             self.sock.settimeout(left)
             try:
                 chunk = self.sock.recv(4096)
@@ -131,10 +145,21 @@ class Bridge:
     def __init__(self, workdir, port, group=UDP_GROUP, env=None):
         """Start it once QEMU listens (Qemu.wait_listening)."""
         self.log = open(os.path.join(workdir, "bridge.log"), "w")
-        argv = [sys.executable, "-m", "can.bridge",
-                "--bus1-interface", "slcan", "--bus1-channel", f"socket://127.0.0.1:{port}",
-                "--bus2-interface", "udp_multicast", "--bus2-channel", group,
-                "--bus2-bus-kwargs", "hop_limit=0"]
+        argv = [
+            sys.executable,
+            "-m",
+            "can.bridge",
+            "--bus1-interface",
+            "slcan",
+            "--bus1-channel",
+            f"socket://127.0.0.1:{port}",
+            "--bus2-interface",
+            "udp_multicast",
+            "--bus2-channel",
+            group,
+            "--bus2-bus-kwargs",
+            "hop_limit=0",
+        ]
         self.proc = subprocess.Popen(argv, stdout=self.log, stderr=subprocess.STDOUT, env=env)
 
     def stop(self):

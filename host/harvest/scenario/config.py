@@ -4,6 +4,7 @@ The C parser (core/include/hv/config.h) is the authority on the whole file; this
 only needs the row, canopy, vehicle and grid keys, and fails with the file and key named
 when one is missing or malformed, so a renamed key cannot be silently replaced by a default.
 """
+
 import math
 import os
 import re
@@ -22,7 +23,7 @@ class Config:
     def __init__(self, path, values, lines):
         self.path = path
         self._values = values  # key -> raw text value
-        self._lines = lines    # key -> 1-based line number (for messages)
+        self._lines = lines  # key -> 1-based line number (for messages)
 
     @classmethod
     def load(cls, path):
@@ -57,13 +58,15 @@ class Config:
     def floats(self, key, count):
         parts = self.text(key).split()
         if len(parts) != count:
-            raise ConfigError(f"{self.path}:{self._lines[key]}: '{key}' needs {count} number(s), "
-                              f"got {len(parts)}")
+            raise ConfigError(
+                f"{self.path}:{self._lines[key]}: '{key}' needs {count} number(s), got {len(parts)}"
+            )
         try:
             out = [float(p) for p in parts]
         except ValueError:
-            raise ConfigError(f"{self.path}:{self._lines[key]}: '{key}' is not numeric: "
-                              f"{self.text(key)!r}") from None
+            raise ConfigError(
+                f"{self.path}:{self._lines[key]}: '{key}' is not numeric: {self.text(key)!r}"
+            ) from None
         if not all(math.isfinite(v) for v in out):
             raise ConfigError(f"{self.path}:{self._lines[key]}: '{key}' is not finite")
         return out

@@ -1,4 +1,5 @@
 """The planner's fruit-map CSV (`id,side,x,y,z,yaw`, m and rad, frames in docs/FRAMES.md)."""
+
 import csv
 import math
 import os
@@ -22,8 +23,7 @@ def check_id(fid):
         return f"{len(fid)} characters, more than {ID_MAX_CHARS}"
     for pos, ch in enumerate(fid, 1):
         if ch not in _ID_CHARS:
-            return (f"character {ch!r} at position {pos} not allowed "
-                    "(only A-Z a-z 0-9 _ . -)")
+            return f"character {ch!r} at position {pos} not allowed (only A-Z a-z 0-9 _ . -)"
     return None
 
 
@@ -34,11 +34,11 @@ class FruitMapError(ValueError):
 @dataclass(frozen=True)
 class Fruit:
     id: str
-    side: str     # "L" or "R"
-    x: float      # m, vehicle frame (negative on the left)
-    y: float      # m along the row
-    z: float      # m above the floor
-    yaw: float    # rad, relative to the side's inward normal
+    side: str  # "L" or "R"
+    x: float  # m, vehicle frame (negative on the left)
+    y: float  # m along the row
+    z: float  # m above the floor
+    yaw: float  # rad, relative to the side's inward normal
 
 
 def write(path, fruits):
@@ -89,7 +89,9 @@ def read(path):
                 except ValueError:
                     v = math.nan
                 if not math.isfinite(v):
-                    raise FruitMapError(f"{path}:{n}: field '{name}' is not a finite number: {text!r}")
+                    raise FruitMapError(
+                        f"{path}:{n}: field '{name}' is not a finite number: {text!r}"
+                    )
                 vals.append(v)
             seen.add(fid)
             fruits.append(Fruit(fid, side, *vals))

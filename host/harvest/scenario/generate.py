@@ -5,6 +5,7 @@ counts per side are exact (m^L left, round(alpha * m^L) right, as in the paper).
 are always inside the canopy box: |x| in [aisle/2, aisle/2 + depth], y in [0, length],
 z in [z_min, z_min + height], yaw in [-yaw_max, yaw_max].
 """
+
 import math
 
 import numpy as np
@@ -38,8 +39,12 @@ def right_count(n_left, alpha):
 def _make(side, xs, ys, zs, yaws):
     sign = -1.0 if side == "L" else 1.0
     order = np.argsort(ys, kind="stable")  # ids in driving order make plans easier to read
-    return [Fruit(f"{side}{k:03d}", side, sign * float(xs[i]), float(ys[i]), float(zs[i]),
-                  float(yaws[i])) for k, i in enumerate(order)]
+    return [
+        Fruit(
+            f"{side}{k:03d}", side, sign * float(xs[i]), float(ys[i]), float(zs[i]), float(yaws[i])
+        )
+        for k, i in enumerate(order)
+    ]
 
 
 def _uniform_side(row, side, n, rng, length_m):
@@ -53,8 +58,9 @@ def _uniform_side(row, side, n, rng, length_m):
 def uniform(row, n_left, alpha, rng, length_m=None):
     """The paper's data generation (§IV.A.1): uniform position and yaw on both sides."""
     length_m = row.length_m if length_m is None else length_m
-    return (_uniform_side(row, "L", n_left, rng, length_m)
-            + _uniform_side(row, "R", right_count(n_left, alpha), rng, length_m))
+    return _uniform_side(row, "L", n_left, rng, length_m) + _uniform_side(
+        row, "R", right_count(n_left, alpha), rng, length_m
+    )
 
 
 def _inside(lo, hi, draw):
@@ -63,7 +69,9 @@ def _inside(lo, hi, draw):
         v = draw()
         if lo <= v <= hi:
             return v
-    raise RuntimeError("cluster spread too wide for the canopy box")  # not reachable with the spreads above
+    raise RuntimeError(
+        "cluster spread too wide for the canopy box"
+    )  # not reachable with the spreads above
 
 
 def _clustered_side(row, side, n, rng, length_m):
@@ -77,18 +85,27 @@ def _clustered_side(row, side, n, rng, length_m):
         for _ in range(min(k, n - len(xs))):
             xs.append(_inside(row.x_near_m, row.x_far_m, lambda: rng.normal(cx, TRUSS_SIGMA_X_M)))
             ys.append(_inside(0.0, length_m, lambda: rng.normal(cy, TRUSS_SIGMA_Y_M)))
-            zs.append(_inside(row.canopy_z_min_m, row.z_max_m,
-                              lambda: cz - abs(rng.normal(0.0, TRUSS_DROP_SIGMA_M))))
-            yaws.append(_inside(-row.yaw_max_rad, row.yaw_max_rad,
-                                lambda: rng.normal(cyaw, TRUSS_SIGMA_YAW_RAD)))
+            zs.append(
+                _inside(
+                    row.canopy_z_min_m,
+                    row.z_max_m,
+                    lambda: cz - abs(rng.normal(0.0, TRUSS_DROP_SIGMA_M)),
+                )
+            )
+            yaws.append(
+                _inside(
+                    -row.yaw_max_rad, row.yaw_max_rad, lambda: rng.normal(cyaw, TRUSS_SIGMA_YAW_RAD)
+                )
+            )
     return _make(side, np.array(xs), np.array(ys), np.array(zs), np.array(yaws))
 
 
 def clustered(row, n_left, alpha, rng, length_m=None):
     """Fruits in trusses: a few fruits close together, hanging below a common point."""
     length_m = row.length_m if length_m is None else length_m
-    return (_clustered_side(row, "L", n_left, rng, length_m)
-            + _clustered_side(row, "R", right_count(n_left, alpha), rng, length_m))
+    return _clustered_side(row, "L", n_left, rng, length_m) + _clustered_side(
+        row, "R", right_count(n_left, alpha), rng, length_m
+    )
 
 
 def gradient_positions(rng, n, length_m, g):

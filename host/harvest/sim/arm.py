@@ -5,13 +5,14 @@ a setpoint outside a joint's range is refused with fault bit 11 and not echoed. 
 effector cuts or releases in a configurable (simulated) time, only while the arm stands.
 Injected faults (stall, joint fault, reject) are applied here, counted per arm.
 """
+
 from ..canbus.enums import EeAction, EeState, State, label, member
 from .node import Node
 from .profile import Profile
 
 # FaultBits of <Arm>Status (DBC comment)
-BIT_LIMIT = 0          # + joint index 0..3
-BIT_FOLLOWING = 4      # + joint index 0..3
+BIT_LIMIT = 0  # + joint index 0..3
+BIT_FOLLOWING = 4  # + joint index 0..3
 BIT_EE = 8
 BIT_COMM = 9
 BIT_ESTOP = 10
@@ -25,8 +26,17 @@ class ArmNode(Node):
     ESTOP_BIT = BIT_ESTOP
     COMM_BIT = BIT_COMM
 
-    def __init__(self, name, model, log, faults=(), start=None, cut_s=1.0, release_s=0.5,
-                 vehicle_position=lambda t: 0.0):
+    def __init__(
+        self,
+        name,
+        model,
+        log,
+        faults=(),
+        start=None,
+        cut_s=1.0,
+        release_s=0.5,
+        vehicle_position=lambda t: 0.0,
+    ):
         start = list(model.home if start is None else start)
         super().__init__(name, start, [(j.vmax, j.amax) for j in model.joints], log)
         self.model = model
@@ -40,12 +50,12 @@ class ArmNode(Node):
         self.cuts_received = 0
         self.homings = 0
         self.picks = 0
-        self.pick_times = []        # simulated time of each pick
+        self.pick_times = []  # simulated time of each pick
         self.ee_state, self.ee_action, self.ee_seq = EeState.IDLE, EeAction.NONE, 0
         self.ee_done_t = None
         self.fruit_held = False
         self.ee_changed = True
-        self.pending_fault = None   # (t, joint index, bits, why) of a scheduled joint fault
+        self.pending_fault = None  # (t, joint index, bits, why) of a scheduled joint fault
 
     # -- Node hooks ----------------------------------------------------------------------
     def home_targets(self):
@@ -72,8 +82,14 @@ class ArmNode(Node):
         if motion["kind"] == "setpoint":
             self.target_reached = True
             self.changed = True
-            self.log(t, "target_reached", seq=motion["seq"], positions=self.positions(t),
-                     elapsed=t - motion["t_start"], planned=max(motion["durations"]))
+            self.log(
+                t,
+                "target_reached",
+                seq=motion["seq"],
+                positions=self.positions(t),
+                elapsed=t - motion["t_start"],
+                planned=max(motion["durations"]),
+            )
 
     # -- inputs ----------------------------------------------------------------------------
     def on_setpoint(self, t, q, seq):
@@ -84,7 +100,10 @@ class ArmNode(Node):
         if self.state not in (State.IDLE, State.MOVING):
             reason = f"state {State(self.state).name}"
         elif injected is not None:
-            reason, bits = f"injected reject of setpoint #{self.setpoints_received}", 1 << BIT_REJECTED
+            reason, bits = (
+                f"injected reject of setpoint #{self.setpoints_received}",
+                1 << BIT_REJECTED,
+            )
         else:
             for j, (qj, lim) in enumerate(zip(q, self.model.joints)):
                 if not lim.contains(qj):
@@ -93,8 +112,15 @@ class ArmNode(Node):
                     break
         if reason:
             self.set_bits(bits)
-            self.log(t, "setpoint", seq=seq, positions=list(q), accepted=False, reason=reason,
-                     number=self.setpoints_received)
+            self.log(
+                t,
+                "setpoint",
+                seq=seq,
+                positions=list(q),
+                accepted=False,
+                reason=reason,
+                number=self.setpoints_received,
+            )
             return
         self.setpoints_accepted += 1
         self.clear_bits(1 << BIT_REJECTED)
@@ -114,9 +140,18 @@ class ArmNode(Node):
             self.pending_fault = (at, jf)
             fields["joint_fault_at"] = at
         self.set_state(t, State.MOVING, "setpoint")
-        self.log(t, "setpoint", seq=seq, positions=list(q), accepted=True, reason="",
-                 number=self.setpoints_received, durations=motion["durations"],
-                 duration=motion["t_end"] - t, **fields)
+        self.log(
+            t,
+            "setpoint",
+            seq=seq,
+            positions=list(q),
+            accepted=True,
+            reason="",
+            number=self.setpoints_received,
+            durations=motion["durations"],
+            duration=motion["t_end"] - t,
+            **fields,
+        )
 
     def _stall(self, t, stall, motion):
         """The joint stops part of the way: its profile ends short and the motion never ends."""
@@ -137,8 +172,14 @@ class ArmNode(Node):
             self.cuts_received += 1
             jf = self._fault_at("joint_fault", "pick", self.cuts_received)
             if jf is not None and self.state not in (State.FAULT, State.ESTOP):
-                self.log(t, "ee", action=name, seq=seq, accepted=False,
-                         reason=f"injected joint fault at pick #{self.cuts_received}")
+                self.log(
+                    t,
+                    "ee",
+                    action=name,
+                    seq=seq,
+                    accepted=False,
+                    reason=f"injected joint fault at pick #{self.cuts_received}",
+                )
                 self._joint_fault(t, jf)
                 self._set_ee(t, EeState.FAILED)
                 return
@@ -155,27 +196,32 @@ class ArmNode(Node):
         elif action == EeAction.CUT and self.fruit_held:
             reason = "already holding a fruit"
         if reason:
-            self._set_ee(t, EeState.FAULT if self.state in (State.FAULT, State.ESTOP)
-                         else EeState.FAILED)
+            self._set_ee(
+                t, EeState.FAULT if self.state in (State.FAULT, State.ESTOP) else EeState.FAILED
+            )
             self.log(t, "ee", action=name, seq=seq, accepted=False, reason=reason)
             return
         if action != EeAction.NONE:
             self.ee_done_t = t + (self.cut_s if action == EeAction.CUT else self.release_s)
             self._set_ee(t, EeState.BUSY)
-        self.log(t, "ee", action=name, seq=seq, accepted=True, reason="",
-                 done_at=self.ee_done_t)
+        self.log(t, "ee", action=name, seq=seq, accepted=True, reason="", done_at=self.ee_done_t)
 
     # -- faults and the end effector ----------------------------------------------------------
     def _fault_at(self, kind, trigger, count):
         """This arm's injected fault of `kind` whose `trigger` field is `count`, or None."""
-        return next((f for f in self.faults if f["type"] == kind and f.get(trigger) == count),
-                    None)
+        return next((f for f in self.faults if f["type"] == kind and f.get(trigger) == count), None)
 
     def _joint_fault(self, t, jf):
         j = jf["joint"] - 1
         bit = (BIT_FOLLOWING if jf["kind"] == "following" else BIT_LIMIT) + j
-        self.log(t, "fault_injected", fault="joint_fault", joint=jf["joint"], kind=jf["kind"],
-                 bits=1 << bit)
+        self.log(
+            t,
+            "fault_injected",
+            fault="joint_fault",
+            joint=jf["joint"],
+            kind=jf["kind"],
+            bits=1 << bit,
+        )
         self.fault(t, 1 << bit, f"injected {jf['kind']} fault on joint {jf['joint']}")
 
     def _set_ee(self, t, state):
@@ -187,8 +233,14 @@ class ArmNode(Node):
         if self.ee_state == EeState.BUSY:
             self.ee_done_t = None
             self._set_ee(t, EeState.FAILED)
-            self.log(t, "ee_done", action=EeAction(self.ee_action).name, seq=self.ee_seq,
-                     result="FAILED", reason=why)
+            self.log(
+                t,
+                "ee_done",
+                action=EeAction(self.ee_action).name,
+                seq=self.ee_seq,
+                result="FAILED",
+                reason=why,
+            )
 
     # -- time ------------------------------------------------------------------------------
     def update(self, t):
@@ -204,40 +256,71 @@ class ArmNode(Node):
                 self.fruit_held = True
                 self.picks += 1
                 self.pick_times.append(done)
-                self.log(done, "pick", pick=self.picks, seq=self.ee_seq, positions=q,
-                         vehicle_position=self.vehicle_position(done))
+                self.log(
+                    done,
+                    "pick",
+                    pick=self.picks,
+                    seq=self.ee_seq,
+                    positions=q,
+                    vehicle_position=self.vehicle_position(done),
+                )
             else:
                 self.log(done, "release", seq=self.ee_seq, fruit=self.fruit_held, positions=q)
                 self.fruit_held = False
             self._set_ee(done, EeState.DONE)
-            self.log(done, "ee_done", action=EeAction(self.ee_action).name, seq=self.ee_seq,
-                     result="DONE")
+            self.log(
+                done,
+                "ee_done",
+                action=EeAction(self.ee_action).name,
+                seq=self.ee_seq,
+                result="DONE",
+            )
             if self.ee_action == EeAction.CUT and self._fault_at("estop", "pick", self.picks):
                 # once the cut is done: the arm stops with the fruit held
                 self.log(done, "fault_injected", fault="estop", pick=self.picks)
                 self.estop(done, f"injected e-stop after pick #{self.picks}")
 
     def next_event(self):
-        times = [x for x in (super().next_event(), self.ee_done_t,
-                             self.pending_fault[0] if self.pending_fault else None)
-                 if x is not None]
+        times = [
+            x
+            for x in (
+                super().next_event(),
+                self.ee_done_t,
+                self.pending_fault[0] if self.pending_fault else None,
+            )
+            if x is not None
+        ]
         return min(times) if times else None
 
     # -- frames ----------------------------------------------------------------------------
     def status_signals(self):
-        return {"State": self.state, "TargetReached": int(self.target_reached),
-                "Homed": int(self.homed), "SetpointSeq": self.setpoint_seq,
-                "CommandSeq": self.command_seq, "FaultBits": self.fault_bits}
+        return {
+            "State": self.state,
+            "TargetReached": int(self.target_reached),
+            "Homed": int(self.homed),
+            "SetpointSeq": self.setpoint_seq,
+            "CommandSeq": self.command_seq,
+            "FaultBits": self.fault_bits,
+        }
 
     def joint_state_signals(self, t, counter):
         q = self.positions(t)
-        return {"Joint1Position": q[0], "Joint2Position": q[1], "Joint3Position": q[2],
-                "Joint4Position": q[3], "Counter": counter}
+        return {
+            "Joint1Position": q[0],
+            "Joint2Position": q[1],
+            "Joint3Position": q[2],
+            "Joint4Position": q[3],
+            "Counter": counter,
+        }
 
     def joint_velocity_signals(self, t):
         v = self.velocities(t)
         return {f"Joint{j + 1}Velocity": v[j] for j in range(4)}
 
     def ee_status_signals(self):
-        return {"State": self.ee_state, "Action": self.ee_action, "EeSeq": self.ee_seq,
-                "FruitHeld": int(self.fruit_held)}
+        return {
+            "State": self.ee_state,
+            "Action": self.ee_action,
+            "EeSeq": self.ee_seq,
+            "FruitHeld": int(self.fruit_held),
+        }

@@ -4,24 +4,27 @@ vehicle on LCM, camera_frame_t on HARVEST_CAMERA.
 The camera sees the row from camera.lead to camera.lead + camera.window ahead of the
 vehicle's position (config/harvest.cfg). Every `period_s` simulated seconds it sends the
 fruit that came into view since its last frame (each fruit once, in y order) and how far
-it has seen (while the vehicle stands and nothing is new, only every KEEPALIVE_S). With `bad` > 0 it also sends, spread over the row, `bad` detections of each
+it has seen (while the vehicle stands and nothing is new, only every KEEPALIVE_S). With
+`bad` > 0 it also sends, spread over the row, `bad` detections of each
 kind the planner must refuse: outside the row, a fruit seen again with another pose, and a
 new fruit behind the vehicle (late); each one is written to the record ("camera_bad").
 """
+
 import time
 
 CHANNEL = "HARVEST_CAMERA"
 BAD_KINDS = ("outside_row", "duplicate", "late")
-KEEPALIVE_S = 5.0    # simulated s between frames while the vehicle stands
+KEEPALIVE_S = 5.0  # simulated s between frames while the vehicle stands
 LATE_BEHIND_M = 1.5  # a late detection lies this far behind the vehicle: out of reach of
-                     # every stop not yet passed (the arms reach about 0.7 m ahead)
+# every stop not yet passed (the arms reach about 0.7 m ahead)
 
 
 class Camera:
-    def __init__(self, fruits, lead_m, window_m, row_length_m, url, log, period_s=0.5,
-                 bad=0):
+    def __init__(self, fruits, lead_m, window_m, row_length_m, url, log, period_s=0.5, bad=0):
         import lcm
+
         from harvest.telemetry import lcm_types
+
         try:
             types = lcm_types.load()
         except lcm_types.LcmTypesMissing as e:
@@ -55,18 +58,32 @@ class Camera:
             self._bad_at.pop(0)
             self._late_due += 1
             k = self.bad_sent["outside_row"]
-            out.append(("outside_row", self._detection(f"bad_out_{k}", "L", -0.5,
-                                                       self.length + 0.3, 0.5, 0.0)))
+            out.append(
+                (
+                    "outside_row",
+                    self._detection(f"bad_out_{k}", "L", -0.5, self.length + 0.3, 0.5, 0.0),
+                )
+            )
             if self.sent:
                 f = self.fruits[self.sent - 1]
-                out.append(("duplicate", self._detection(f.id, f.side, f.x, f.y + 0.2, f.z,
-                                                         f.yaw)))
+                out.append(("duplicate", self._detection(f.id, f.side, f.x, f.y + 0.2, f.z, f.yaw)))
         first = self.fruits[0] if self.fruits else None
         while self._late_due and first is not None and vehicle_m >= LATE_BEHIND_M:
             self._late_due -= 1
             k = self.bad_sent["late"]
-            out.append(("late", self._detection(f"bad_late_{k}", first.side, first.x,
-                                                vehicle_m - LATE_BEHIND_M, first.z, first.yaw)))
+            out.append(
+                (
+                    "late",
+                    self._detection(
+                        f"bad_late_{k}",
+                        first.side,
+                        first.x,
+                        vehicle_m - LATE_BEHIND_M,
+                        first.z,
+                        first.yaw,
+                    ),
+                )
+            )
         return out
 
     def step(self, t, vehicle_m):
@@ -87,8 +104,12 @@ class Camera:
             self.bad_sent[kind] += 1
             self.log(t, "camera_bad", kind=kind, fruit=d.fruit_id, y=d.y_m)
             dets.append(d)
-        if not dets and self._last_sent is not None and seen_to - self._last_sent < 0.005 \
-                and t - self._last_t < KEEPALIVE_S:
+        if (
+            not dets
+            and self._last_sent is not None
+            and seen_to - self._last_sent < 0.005
+            and t - self._last_t < KEEPALIVE_S
+        ):
             return  # the vehicle stands: nothing new to say
         self._last_sent, self._last_t = seen_to, t
         msg = self._frame_t()

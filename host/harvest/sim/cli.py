@@ -1,4 +1,5 @@
 """`python -m harvest sim`: the vehicle drive and both SCARA joint controllers on a CAN bus."""
+
 import argparse
 import signal
 import sys
@@ -83,60 +84,133 @@ def build_parser():
     p = argparse.ArgumentParser(
         prog="python -m harvest sim",
         description="Simulate the vehicle drive and the left and right SCARA joint controllers "
-                    "on a CAN bus (frames of executor/can/harvest.dbc), with a time scale, "
-                    "fault injection and a JSONL record of everything done.",
-        epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
+        "on a CAN bus (frames of executor/can/harvest.dbc), with a time scale, "
+        "fault injection and a JSONL record of everything done.",
+        epilog=EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
     bus = p.add_argument_group("bus")
-    bus.add_argument("--bus", metavar="SPEC",
-                     help="socketcan:IFNAME or udp[:GROUP[:PORT]] (the specs of hv-can-tool); "
-                          "overrides --interface/--channel")
-    bus.add_argument("--interface", default="socketcan",
-                     help="python-can interface: socketcan, udp_multicast, virtual (default socketcan)")
-    bus.add_argument("--channel", default="vcan0",
-                     help="channel: vcan0, a multicast group (239.74.163.2), a virtual name")
+    bus.add_argument(
+        "--bus",
+        metavar="SPEC",
+        help="socketcan:IFNAME or udp[:GROUP[:PORT]] (the specs of hv-can-tool); "
+        "overrides --interface/--channel",
+    )
+    bus.add_argument(
+        "--interface",
+        default="socketcan",
+        help="python-can interface: socketcan, udp_multicast, virtual (default socketcan)",
+    )
+    bus.add_argument(
+        "--channel",
+        default="vcan0",
+        help="channel: vcan0, a multicast group (239.74.163.2), a virtual name",
+    )
     bus.add_argument("--port", type=int, default=43113, help="udp_multicast port (43113)")
     sim = p.add_argument_group("simulation")
-    sim.add_argument("--time-scale", type=_scale, default=1.0,
-                     help="simulated seconds per wall second (default 1)")
-    sim.add_argument("--rate", type=_positive, default=50.0,
-                     help="joint state, velocity and status rate, simulated Hz (default 50)")
-    sim.add_argument("--heartbeat-period", type=_positive, default=None,
-                     help="simulated s between heartbeats (default: the DBC's cycle time)")
-    sim.add_argument("--exec-timeout", type=_non_negative, default=0.5,
-                     help="wall s without executor heartbeat before COMM_TIMEOUT, armed by the "
-                          "first heartbeat; 0 disables (default 0.5, the DBC's)")
-    sim.add_argument("--cut-time", type=_non_negative, default=None,
-                     help="CUT duration, s (default: pick.cut_time of the config)")
-    sim.add_argument("--release-time", type=_non_negative, default=None,
-                     help="RELEASE duration, s (default: pick.release_time of the config)")
-    sim.add_argument("--arm-start", type=float, nargs=4, metavar="Q",
-                     help="joint positions (m rad rad rad) of both arms at start (default: home)")
+    sim.add_argument(
+        "--time-scale",
+        type=_scale,
+        default=1.0,
+        help="simulated seconds per wall second (default 1)",
+    )
+    sim.add_argument(
+        "--rate",
+        type=_positive,
+        default=50.0,
+        help="joint state, velocity and status rate, simulated Hz (default 50)",
+    )
+    sim.add_argument(
+        "--heartbeat-period",
+        type=_positive,
+        default=None,
+        help="simulated s between heartbeats (default: the DBC's cycle time)",
+    )
+    sim.add_argument(
+        "--exec-timeout",
+        type=_non_negative,
+        default=0.5,
+        help="wall s without executor heartbeat before COMM_TIMEOUT, armed by the "
+        "first heartbeat; 0 disables (default 0.5, the DBC's)",
+    )
+    sim.add_argument(
+        "--cut-time",
+        type=_non_negative,
+        default=None,
+        help="CUT duration, s (default: pick.cut_time of the config)",
+    )
+    sim.add_argument(
+        "--release-time",
+        type=_non_negative,
+        default=None,
+        help="RELEASE duration, s (default: pick.release_time of the config)",
+    )
+    sim.add_argument(
+        "--arm-start",
+        type=float,
+        nargs=4,
+        metavar="Q",
+        help="joint positions (m rad rad rad) of both arms at start (default: home)",
+    )
     sim.add_argument("--vehicle-start", type=float, default=0.0, help="vehicle position, m (0)")
-    sim.add_argument("--travel", type=float, nargs=2, metavar=("MIN", "MAX"),
-                     help="vehicle travel limits, m; moves outside are refused (default: none)")
+    sim.add_argument(
+        "--travel",
+        type=float,
+        nargs=2,
+        metavar=("MIN", "MAX"),
+        help="vehicle travel limits, m; moves outside are refused (default: none)",
+    )
     sim.add_argument("--config", help="harvest.cfg (default: config/harvest.cfg of the tree)")
     sim.add_argument("--dbc", help="DBC file (default: executor/can/harvest.dbc)")
     cam = p.add_argument_group("online mode: the camera (DESIGN §5)")
-    cam.add_argument("--fruits", metavar="MAP.csv",
-                     help="reveal this fruit map ahead of the vehicle as the camera of the config "
-                          "sees it (camera.lead, camera.window): camera_frame_t on HARVEST_CAMERA")
-    cam.add_argument("--lcm-url", default="udpm://239.255.76.67:7667?ttl=0",
-                     help="LCM URL of the camera (default udpm://239.255.76.67:7667?ttl=0)")
-    cam.add_argument("--camera-period", type=_positive, default=0.5,
-                     help="simulated s between camera frames (0.5)")
-    cam.add_argument("--camera-bad", type=int, default=0, metavar="N",
-                     help="also send N detections of each bad kind (outside the row, a fruit "
-                          "seen twice, a fruit behind the vehicle), spread over the row (0)")
+    cam.add_argument(
+        "--fruits",
+        metavar="MAP.csv",
+        help="reveal this fruit map ahead of the vehicle as the camera of the config "
+        "sees it (camera.lead, camera.window): camera_frame_t on HARVEST_CAMERA",
+    )
+    cam.add_argument(
+        "--lcm-url",
+        default="udpm://239.255.76.67:7667?ttl=0",
+        help="LCM URL of the camera (default udpm://239.255.76.67:7667?ttl=0)",
+    )
+    cam.add_argument(
+        "--camera-period",
+        type=_positive,
+        default=0.5,
+        help="simulated s between camera frames (0.5)",
+    )
+    cam.add_argument(
+        "--camera-bad",
+        type=int,
+        default=0,
+        metavar="N",
+        help="also send N detections of each bad kind (outside the row, a fruit "
+        "seen twice, a fruit behind the vehicle), spread over the row (0)",
+    )
     f = p.add_argument_group("faults and record")
-    f.add_argument("--fault", action="append", default=[], metavar="TYPE:K=V,...",
-                   help="inject a fault (repeatable, see below)")
+    f.add_argument(
+        "--fault",
+        action="append",
+        default=[],
+        metavar="TYPE:K=V,...",
+        help="inject a fault (repeatable, see below)",
+    )
     f.add_argument("--scenario", help="JSON file of faults (and a seed)")
     f.add_argument("--seed", type=int, default=None, help="seed of the random drops (0)")
     f.add_argument("--record", help="write the JSONL record here")
-    f.add_argument("--duration", type=_non_negative, default=0.0,
-                   help="stop after this many wall seconds (default: run until SIGINT/SIGTERM)")
-    f.add_argument("--progress", type=_non_negative, default=0.0,
-                   help="print a progress line every this many wall s (default off)")
+    f.add_argument(
+        "--duration",
+        type=_non_negative,
+        default=0.0,
+        help="stop after this many wall seconds (default: run until SIGINT/SIGTERM)",
+    )
+    f.add_argument(
+        "--progress",
+        type=_non_negative,
+        default=0.0,
+        help="print a progress line every this many wall s (default off)",
+    )
     return p
 
 
@@ -156,14 +230,21 @@ def _options(args, model):
         raise ValueError(f"--travel: MIN {args.travel[0]} must be below MAX {args.travel[1]}")
     if args.travel and not args.travel[0] <= args.vehicle_start <= args.travel[1]:
         raise ValueError(f"--vehicle-start {args.vehicle_start} outside --travel")
-    return Options(time_scale=args.time_scale, rate_hz=args.rate, heartbeat_s=args.heartbeat_period,
-                   exec_timeout_s=args.exec_timeout,
-                   cut_s=model.cut_s if args.cut_time is None else args.cut_time,
-                   release_s=model.release_s if args.release_time is None else args.release_time,
-                   faults=faults, seed=seed or 0,
-                   arm_start=args.arm_start, vehicle_start_m=args.vehicle_start,
-                   travel=tuple(args.travel) if args.travel else None,
-                   progress_s=args.progress, camera=_camera(args))
+    return Options(
+        time_scale=args.time_scale,
+        rate_hz=args.rate,
+        heartbeat_s=args.heartbeat_period,
+        exec_timeout_s=args.exec_timeout,
+        cut_s=model.cut_s if args.cut_time is None else args.cut_time,
+        release_s=model.release_s if args.release_time is None else args.release_time,
+        faults=faults,
+        seed=seed or 0,
+        arm_start=args.arm_start,
+        vehicle_start_m=args.vehicle_start,
+        travel=tuple(args.travel) if args.travel else None,
+        progress_s=args.progress,
+        camera=_camera(args),
+    )
 
 
 def _camera(args):
@@ -173,8 +254,13 @@ def _camera(args):
     if args.camera_bad < 0:
         raise ValueError(f"--camera-bad {args.camera_bad}: must be >= 0")
     from harvest.scenario import fruit_map
-    return {"fruits": fruit_map.read(args.fruits), "url": args.lcm_url,
-            "period_s": args.camera_period, "bad": args.camera_bad}
+
+    return {
+        "fruits": fruit_map.read(args.fruits),
+        "url": args.lcm_url,
+        "period_s": args.camera_period,
+        "bad": args.camera_bad,
+    }
 
 
 def bus_spec(args):
@@ -187,8 +273,11 @@ def bus_spec(args):
     if args.interface == "udp_multicast":
         spec = f"udp:{args.channel}:{args.port}"
         return spec, spec, None
-    return f"{args.interface}:{args.channel}", None, {"interface": args.interface,
-                                                     "channel": args.channel}
+    return (
+        f"{args.interface}:{args.channel}",
+        None,
+        {"interface": args.interface, "channel": args.channel},
+    )
 
 
 def open_bus(args):
@@ -204,11 +293,14 @@ def main(argv=None, stop_event=None):
     """Run the simulator; `stop_event` (a threading.Event) stops it from another thread."""
     args = build_parser().parse_args(argv)
     from harvest.canbus import protocol
+
     try:
         proto = protocol.load(args.dbc) if args.dbc else protocol.load()
     except Exception as e:  # cantools raises parser-specific errors for a malformed file
-        print(f"harvest sim: {args.dbc or protocol.DBC_PATH}: cannot load the DBC: {e}",
-              file=sys.stderr)
+        print(
+            f"harvest sim: {args.dbc or protocol.DBC_PATH}: cannot load the DBC: {e}",
+            file=sys.stderr,
+        )
         return 2
     try:
         model = Model.load(args.config)
@@ -219,7 +311,7 @@ def main(argv=None, stop_event=None):
     where = bus_spec(args)[0]
     try:
         bus = open_bus(args)
-    except ValueError as e:   # a malformed --bus spec
+    except ValueError as e:  # a malformed --bus spec
         print(f"harvest sim: --bus: {e}", file=sys.stderr)
         return 2
     except Exception as e:  # python-can raises interface-specific errors
@@ -234,9 +326,17 @@ def main(argv=None, stop_event=None):
         return 1
     clock = ScaledClock(options.time_scale, time.monotonic)
     try:
-        sim = Simulator(bus, proto, model, options, record, clock, stop_event,
-                        out=sys.stderr if options.progress_s else None)
-    except ValueError as e:   # the DBC's enums disagree with the simulator's
+        sim = Simulator(
+            bus,
+            proto,
+            model,
+            options,
+            record,
+            clock,
+            stop_event,
+            out=sys.stderr if options.progress_s else None,
+        )
+    except ValueError as e:  # the DBC's enums disagree with the simulator's
         record.close()
         bus.shutdown()
         print(f"harvest sim: {e}", file=sys.stderr)
@@ -250,9 +350,13 @@ def main(argv=None, stop_event=None):
         timer = threading.Timer(args.duration, stop_event.set)
         timer.daemon = True
         timer.start()
-    print(f"harvest sim: {where} x{options.time_scale:g} "
-          f"rate {options.rate_hz:g} Hz, {len(options.faults)} fault(s)"
-          + (f", record {args.record}" if args.record else ""), file=sys.stderr, flush=True)
+    print(
+        f"harvest sim: {where} x{options.time_scale:g} "
+        f"rate {options.rate_hz:g} Hz, {len(options.faults)} fault(s)"
+        + (f", record {args.record}" if args.record else ""),
+        file=sys.stderr,
+        flush=True,
+    )
     try:
         sim.run()
     finally:
@@ -264,7 +368,10 @@ def main(argv=None, stop_event=None):
             signal.signal(sig, handler)
     s = sim.stats
     rejected = sum(s[f"rx_{r}"] for r in REJECT_REASONS)
-    print(f"harvest sim: stopped at t={clock.sim():.2f} s simulated: sent {s['tx']} received "
-          f"{s['rx']} dropped {s['tx_dropped']}+{s['rx_dropped']} rejected {rejected} picks "
-          f"{sum(a.picks for a in sim.arms.values())}", file=sys.stderr)
+    print(
+        f"harvest sim: stopped at t={clock.sim():.2f} s simulated: sent {s['tx']} received "
+        f"{s['rx']} dropped {s['tx_dropped']}+{s['rx_dropped']} rejected {rejected} picks "
+        f"{sum(a.picks for a in sim.arms.values())}",
+        file=sys.stderr,
+    )
     return 0

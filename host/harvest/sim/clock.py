@@ -1,5 +1,6 @@
 """Simulated time: wall time since start multiplied by the time scale, so a 20x simulator
 runs the physics and every period 20 times faster than real time."""
+
 import time
 
 

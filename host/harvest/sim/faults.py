@@ -27,6 +27,7 @@ flag and a file entry mean exactly the same thing. Times are simulated seconds.
 Flag form: `--fault TYPE:key=value,key=value`, e.g. `--fault drop:fraction=0.1,node=left_arm`.
 File form (JSON): {"seed": 7, "faults": [{"type": "drop", "fraction": 0.1}, ...]}.
 """
+
 import json
 
 NODES = ("vehicle", "left_arm", "right_arm")
@@ -38,8 +39,9 @@ class FaultError(ValueError):
     """A fault that cannot be understood; the message names the source and the field."""
 
 
-def _num(spec, key, where, default=None, lo=None, hi=None, lo_open=False, hi_open=False,
-         integer=False):
+def _num(
+    spec, key, where, default=None, lo=None, hi=None, lo_open=False, hi_open=False, integer=False
+):
     if key not in spec:
         if default is None:
             raise FaultError(f"{where}: missing field '{key}'")
@@ -59,9 +61,13 @@ def _num(spec, key, where, default=None, lo=None, hi=None, lo_open=False, hi_ope
     if value != value or value in (float("inf"), float("-inf")):
         raise FaultError(f"{where}: field '{key}' must be finite, got {raw!r}")
     if lo is not None and (value < lo or (lo_open and value == lo)):
-        raise FaultError(f"{where}: field '{key}' = {value} must be {'>' if lo_open else '>='} {lo}")
+        raise FaultError(
+            f"{where}: field '{key}' = {value} must be {'>' if lo_open else '>='} {lo}"
+        )
     if hi is not None and (value > hi or (hi_open and value == hi)):
-        raise FaultError(f"{where}: field '{key}' = {value} must be {'<' if hi_open else '<='} {hi}")
+        raise FaultError(
+            f"{where}: field '{key}' = {value} must be {'<' if hi_open else '<='} {hi}"
+        )
     return value
 
 
@@ -105,8 +111,10 @@ def validate(spec, where):
         raise FaultError(f"{where}: field 'type' = {kind!r} must be one of {', '.join(_FIELDS)}")
     unknown = sorted(set(spec) - _FIELDS[kind] - {"type"})
     if unknown:
-        raise FaultError(f"{where}: unknown field '{unknown[0]}' for a {kind} fault "
-                         f"(known: {', '.join(sorted(_FIELDS[kind]))})")
+        raise FaultError(
+            f"{where}: unknown field '{unknown[0]}' for a {kind} fault "
+            f"(known: {', '.join(sorted(_FIELDS[kind]))})"
+        )
     out = {"type": kind}
     if kind == "drop":
         out["fraction"] = _num(spec, "fraction", where, lo=0.0, hi=1.0, lo_open=True)

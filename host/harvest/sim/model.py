@@ -1,5 +1,6 @@
 """The numbers the simulated hardware needs from config/harvest.cfg: joint limits, the home
 pose and the vehicle drive. Read through harvest.scenario.config so no number is restated."""
+
 from harvest.scenario.config import Config, ConfigError, default_config_path  # noqa: F401
 
 JOINTS = 4
@@ -25,19 +26,23 @@ class Model:
             lo = cfg.float(f"joint{j}.min")
             hi = cfg.float(f"joint{j}.max")
             if hi <= lo:
-                raise ConfigError(f"{cfg.path}: 'joint{j}.max' ({hi}) must exceed 'joint{j}.min' ({lo})")
-            self.joints.append(JointLimit(lo, hi, cfg.positive(f"joint{j}.vmax"),
-                                          cfg.positive(f"joint{j}.amax")))
+                raise ConfigError(
+                    f"{cfg.path}: 'joint{j}.max' ({hi}) must exceed 'joint{j}.min' ({lo})"
+                )
+            self.joints.append(
+                JointLimit(lo, hi, cfg.positive(f"joint{j}.vmax"), cfg.positive(f"joint{j}.amax"))
+            )
         self.home = cfg.floats("arm.home", JOINTS)
         for j, (q, lim) in enumerate(zip(self.home, self.joints), 1):
             if not lim.contains(q):
-                raise ConfigError(f"{cfg.path}: 'arm.home' joint {j} = {q} outside "
-                                  f"[{lim.min}, {lim.max}]")
-        self.vehicle_speed = cfg.positive("vehicle.speed")   # m/s
-        self.vehicle_accel = cfg.positive("vehicle.accel")   # m/s^2
-        self.row_length = cfg.positive("row.length")         # m
-        self.cut_s = cfg.positive("pick.cut_time")             # s, the end effector's CUT
-        self.release_s = cfg.positive("pick.release_time")     # s, and its RELEASE
+                raise ConfigError(
+                    f"{cfg.path}: 'arm.home' joint {j} = {q} outside [{lim.min}, {lim.max}]"
+                )
+        self.vehicle_speed = cfg.positive("vehicle.speed")  # m/s
+        self.vehicle_accel = cfg.positive("vehicle.accel")  # m/s^2
+        self.row_length = cfg.positive("row.length")  # m
+        self.cut_s = cfg.positive("pick.cut_time")  # s, the end effector's CUT
+        self.release_s = cfg.positive("pick.release_time")  # s, and its RELEASE
         # online mode's camera: the row in view from lead to lead + window ahead (m)
         self.camera_lead = cfg.float("camera.lead")
         if self.camera_lead < 0:

@@ -6,6 +6,7 @@ or a bus, so the runner decides when things happen and tests can drive a node by
 States, commands and health values are the DBC's, read from it at import
 (harvest.canbus.enums); the runner checks that the DBC it loads has the same tables.
 """
+
 from ..canbus.enums import Command, Health, State, label
 from .profile import Profile
 
@@ -13,20 +14,20 @@ from .profile import Profile
 class Node:
     """Base state machine; subclasses say what homing and their fault bits are."""
 
-    ESTOP_BIT = 0     # fault bit latched by an e-stop (subclass)
-    COMM_BIT = 0      # fault bit of a lost executor heartbeat (subclass)
+    ESTOP_BIT = 0  # fault bit latched by an e-stop (subclass)
+    COMM_BIT = 0  # fault bit of a lost executor heartbeat (subclass)
 
     def __init__(self, name, positions, limits, log):
         self.name = name
-        self.limits = limits                      # [(vmax, amax)] per axis
+        self.limits = limits  # [(vmax, amax)] per axis
         self.axes = [Profile.hold(0.0, p) for p in positions]
         self.state = State.DISABLED
         self.fault_bits = 0
         self.homed = False
         self.command_seq = 0
-        self.motion = None                        # the running commanded motion, or None
-        self.changed = True                       # status must go out at once
-        self._log = log                           # log(t, event, **fields)
+        self.motion = None  # the running commanded motion, or None
+        self.changed = True  # status must go out at once
+        self._log = log  # log(t, event, **fields)
 
     # -- helpers ----------------------------------------------------------------------
     def log(self, t, event, **fields):
@@ -34,8 +35,9 @@ class Node:
 
     def set_state(self, t, state, why):
         if state != self.state:
-            self.log(t, "state", **{"from": State(self.state).name, "to": State(state).name,
-                                    "why": why})
+            self.log(
+                t, "state", **{"from": State(self.state).name, "to": State(state).name, "why": why}
+            )
             self.state = state
             self.changed = True
 
@@ -69,8 +71,14 @@ class Node:
             p, v = axis.state(t)
             self.axes[i] = Profile(t, p, v, target, vmax, amax)
             durations.append(self.axes[i].duration)
-        self.motion = {"kind": kind, "seq": seq, "t_start": t, "targets": list(targets),
-                       "durations": durations, "t_end": t + max(durations)}
+        self.motion = {
+            "kind": kind,
+            "seq": seq,
+            "t_start": t,
+            "targets": list(targets),
+            "durations": durations,
+            "t_end": t + max(durations),
+        }
         return self.motion
 
     def health(self):
@@ -108,8 +116,13 @@ class Node:
             pass
         elif command == Command.ENABLE:
             if self.state in (State.FAULT, State.ESTOP):
-                accepted, why = False, (f"latched {State(self.state).name}: "
-                                        f"{'CLEAR_ESTOP' if self.state == State.ESTOP else 'CLEAR_FAULT'} first")
+                accepted, why = (
+                    False,
+                    (
+                        f"latched {State(self.state).name}: "
+                        f"{'CLEAR_ESTOP' if self.state == State.ESTOP else 'CLEAR_FAULT'} first"
+                    ),
+                )
             elif self.state == State.DISABLED:
                 self.set_state(t, State.IDLE, "ENABLE")
         elif command == Command.DISABLE:
@@ -126,8 +139,9 @@ class Node:
                 self.on_new_motion(t)
                 self.on_homing(t)
                 self.set_state(t, State.HOMING, "HOME")
-                self.log(t, "homing", targets=self.motion["targets"],
-                         duration=self.motion["t_end"] - t)
+                self.log(
+                    t, "homing", targets=self.motion["targets"], duration=self.motion["t_end"] - t
+                )
         elif command == Command.ESTOP:
             self.estop(t, "ESTOP command")
         elif command == Command.CLEAR_FAULT:
@@ -148,8 +162,16 @@ class Node:
         if accepted and seq != self.command_seq:
             self.command_seq = seq
             self.changed = True
-        self.log(t, "command", command=name, seq=seq, accepted=accepted, reason=why,
-                 state_before=State(before).name, state_after=State(self.state).name)
+        self.log(
+            t,
+            "command",
+            command=name,
+            seq=seq,
+            accepted=accepted,
+            reason=why,
+            state_before=State(before).name,
+            state_after=State(self.state).name,
+        )
 
     def estop(self, t, why):
         if self.state != State.ESTOP:
@@ -177,8 +199,12 @@ class Node:
                 if m["kind"] == "home":
                     self.homed = True
                     self.changed = True
-                    self.log(m["t_end"], "homed", positions=self.positions(m["t_end"]),
-                             elapsed=m["t_end"] - m["t_start"])
+                    self.log(
+                        m["t_end"],
+                        "homed",
+                        positions=self.positions(m["t_end"]),
+                        elapsed=m["t_end"] - m["t_start"],
+                    )
                 self.set_state(m["t_end"], State.IDLE, f"{m['kind']} done")
             self.on_motion_done(m["t_end"], m)
 

@@ -5,6 +5,7 @@ at rest on the target, so the position at any simulated time is exact (no integr
 drift) and the end time is known in advance: the simulator stamps "target reached" at the
 profile's end, not at whatever tick noticed it.
 """
+
 import math
 
 

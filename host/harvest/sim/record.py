@@ -5,6 +5,7 @@ Every line carries `t` (simulated s of the event) and `wall` (s since start when
 a line is flushed as soon as it is written, so a killed simulator loses at most the line
 in flight.
 """
+
 import json
 import threading
 

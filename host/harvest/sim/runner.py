@@ -12,6 +12,7 @@ decoded once and delivered to each addressed node, each delivery subject to that
 faults. The executor's heartbeat watchdog runs in wall time: the DBC makes the executor's
 TimeScale informational, so its 100 ms heartbeat is not scaled.
 """
+
 import heapq
 import random
 import threading
@@ -26,10 +27,12 @@ from .vehicle import VehicleNode
 
 NODE_PREFIX = {"vehicle": "Vehicle", "left_arm": "LeftArm", "right_arm": "RightArm"}
 NODE_ORDER = ("vehicle", "left_arm", "right_arm")
-MAX_SLEEP_WALL_S = 0.05   # longest recv() wait, so a stop request is seen promptly
+MAX_SLEEP_WALL_S = 0.05  # longest recv() wait, so a stop request is seen promptly
 # Input the simulator cannot take is counted and dropped, never fatal; these name why.
 REJECT_REASONS = ("bad_datagram", "not_data_frame", "unknown_id", "wrong_length", "bad_value")
-MAX_REJECT_RECORDS = 100  # record lines per reason (a flood must not fill the disk); stats count all
+MAX_REJECT_RECORDS = (
+    100  # record lines per reason (a flood must not fill the disk); stats count all
+)
 
 
 class Options:
@@ -37,18 +40,18 @@ class Options:
 
     def __init__(self, **kw):
         self.time_scale = kw.pop("time_scale", 1.0)
-        self.rate_hz = kw.pop("rate_hz", 50.0)           # joint state and status, simulated Hz
-        self.heartbeat_s = kw.pop("heartbeat_s", None)   # None: the DBC's cycle time
+        self.rate_hz = kw.pop("rate_hz", 50.0)  # joint state and status, simulated Hz
+        self.heartbeat_s = kw.pop("heartbeat_s", None)  # None: the DBC's cycle time
         self.exec_timeout_s = kw.pop("exec_timeout_s", 0.5)  # wall s; 0 disables the watchdog
         self.cut_s = kw.pop("cut_s", 1.0)
         self.release_s = kw.pop("release_s", 0.5)
         self.faults = kw.pop("faults", [])
         self.seed = kw.pop("seed", 0)
-        self.arm_start = kw.pop("arm_start", None)       # joint positions, None: home pose
+        self.arm_start = kw.pop("arm_start", None)  # joint positions, None: home pose
         self.vehicle_start_m = kw.pop("vehicle_start_m", 0.0)
-        self.travel = kw.pop("travel", None)             # (min, max) m, None: unlimited
-        self.progress_s = kw.pop("progress_s", 0.0)      # wall s between progress lines, 0: off
-        self.camera = kw.pop("camera", None)             # {fruits, url, period_s, bad}: online
+        self.travel = kw.pop("travel", None)  # (min, max) m, None: unlimited
+        self.progress_s = kw.pop("progress_s", 0.0)  # wall s between progress lines, 0: off
+        self.camera = kw.pop("camera", None)  # {fruits, url, period_s, bad}: online
         if kw:
             raise TypeError(f"unknown options: {', '.join(sorted(kw))}")
 
@@ -60,27 +63,55 @@ class Simulator:
         self.stop_event = stop_event or threading.Event()
         self.out = out
         check_same(proto)  # the nodes use the value tables of the DBC read at import
-        self.stats = {"tx": 0, "rx": 0, "tx_dropped": 0, "rx_dropped": 0, "tx_delayed": 0,
-                      "rx_delayed": 0, "tx_silenced": 0, "tx_errors": 0, "ignored": 0,
-                      **{f"rx_{r}": 0 for r in REJECT_REASONS}}
-        self.vehicle = VehicleNode(model, self._logger("vehicle"), options.vehicle_start_m,
-                                   options.travel)
+        self.stats = {
+            "tx": 0,
+            "rx": 0,
+            "tx_dropped": 0,
+            "rx_dropped": 0,
+            "tx_delayed": 0,
+            "rx_delayed": 0,
+            "tx_silenced": 0,
+            "tx_errors": 0,
+            "ignored": 0,
+            **{f"rx_{r}": 0 for r in REJECT_REASONS},
+        }
+        self.vehicle = VehicleNode(
+            model, self._logger("vehicle"), options.vehicle_start_m, options.travel
+        )
         vpos = lambda t: self.vehicle.positions(t)[0]  # noqa: E731
-        self.arms = {name: ArmNode(name, model, self._logger(name), options.faults,
-                                   options.arm_start, options.cut_s, options.release_s, vpos)
-                     for name in ("left_arm", "right_arm")}
+        self.arms = {
+            name: ArmNode(
+                name,
+                model,
+                self._logger(name),
+                options.faults,
+                options.arm_start,
+                options.cut_s,
+                options.release_s,
+                vpos,
+            )
+            for name in ("left_arm", "right_arm")
+        }
         self.nodes = {"vehicle": self.vehicle, **self.arms}
         self.camera = None
         if options.camera:
             from .camera import Camera
+
             c = options.camera
-            self.camera = Camera(c["fruits"], model.camera_lead, model.camera_window,
-                                 model.row_length, c["url"], self._logger("camera"),
-                                 c.get("period_s", 0.5), c.get("bad", 0))
+            self.camera = Camera(
+                c["fruits"],
+                model.camera_lead,
+                model.camera_window,
+                model.row_length,
+                c["url"],
+                self._logger("camera"),
+                c.get("period_s", 0.5),
+                c.get("bad", 0),
+            )
         self._build_wire_faults()
         self._build_schedule()
-        self._tx_queue = []   # (release sim t, order, can.Message)
-        self._rx_queue = []   # (release sim t, order, node, name, signals)
+        self._tx_queue = []  # (release sim t, order, can.Message)
+        self._rx_queue = []  # (release sim t, order, node, name, signals)
         self._order = 0
         self._last_hb_wall = {n: None for n in self.nodes}  # executor heartbeat seen per node
         self._hb_tripped = {n: False for n in self.nodes}
@@ -90,11 +121,12 @@ class Simulator:
     def _logger(self, node):
         def log(t, event, **fields):
             self.record.write(t, self.clock.wall(), node, event, **fields)
+
         return log
 
     def _build_wire_faults(self):
         self._drops, self._delays, self._silent = [], [], []
-        self._timed_estops = []   # [(sim t, node)] still to trip, soonest first
+        self._timed_estops = []  # [(sim t, node)] still to trip, soonest first
         for i, f in enumerate(self.opt.faults):
             nodes = NODE_ORDER if f.get("node", "all") == "all" else (f["node"],)
             if f["type"] == "drop":
@@ -129,13 +161,26 @@ class Simulator:
             if "for_s" in f and t >= start + f["for_s"]:
                 if (i, node) not in self._silent_ended:
                     self._silent_ended.add((i, node))
-                    self.record.write(start + f["for_s"], self.clock.wall(), node,
-                                      "fault_ended", fault="silent", frames=f["frames"])
+                    self.record.write(
+                        start + f["for_s"],
+                        self.clock.wall(),
+                        node,
+                        "fault_ended",
+                        fault="silent",
+                        frames=f["frames"],
+                    )
                 continue
             if (i, node) not in self._silent_logged:
                 self._silent_logged.add((i, node))
-                self.record.write(start, self.clock.wall(), node, "fault_injected",
-                                  fault="silent", frames=f["frames"], for_s=f.get("for_s"))
+                self.record.write(
+                    start,
+                    self.clock.wall(),
+                    node,
+                    "fault_injected",
+                    fault="silent",
+                    frames=f["frames"],
+                    for_s=f.get("for_s"),
+                )
             return True
         return False
 
@@ -149,7 +194,7 @@ class Simulator:
 
     def _build_schedule(self):
         period = 1.0 / self.opt.rate_hz
-        self._periodic = []   # [next sim t, period, node, kind]
+        self._periodic = []  # [next sim t, period, node, kind]
         for name in NODE_ORDER:
             hb = self.opt.heartbeat_s
             if hb is None:
@@ -208,9 +253,17 @@ class Simulator:
 
     def _heartbeat(self, t, node):
         self._hb_counter[node] = (self._hb_counter[node] + 1) % 256
-        self.emit(t, node, "Heartbeat", {
-            "Counter": self._hb_counter[node], "Health": self.nodes[node].health(),
-            "TimeScale": round(self.opt.time_scale, 2), "ProtocolVersion": self._version()})
+        self.emit(
+            t,
+            node,
+            "Heartbeat",
+            {
+                "Counter": self._hb_counter[node],
+                "Health": self.nodes[node].health(),
+                "TimeScale": round(self.opt.time_scale, 2),
+                "ProtocolVersion": self._version(),
+            },
+        )
 
     def _version(self):
         return PROTOCOL_VERSION
@@ -245,8 +298,11 @@ class Simulator:
         except can.CanOperationError as e:
             if not buses.is_undecodable_datagram(e):
                 raise
-            self.reject(self.clock.sim(), "bad_datagram",
-                        error=f"{e}: {type(e.__cause__).__name__}: {e.__cause__}")
+            self.reject(
+                self.clock.sim(),
+                "bad_datagram",
+                error=f"{e}: {type(e.__cause__).__name__}: {e.__cause__}",
+            )
             return None
 
     def _check(self, msg, t):
@@ -255,20 +311,32 @@ class Simulator:
         have, a length other than the DBC's, a value the DBC does not decode or list."""
         data = bytes(msg.data)
         if msg.is_error_frame or msg.is_remote_frame:
-            self.reject(t, "not_data_frame", id=msg.arbitration_id,
-                        error_frame=msg.is_error_frame, remote_frame=msg.is_remote_frame)
+            self.reject(
+                t,
+                "not_data_frame",
+                id=msg.arbitration_id,
+                error_frame=msg.is_error_frame,
+                remote_frame=msg.is_remote_frame,
+            )
             return None
         m = None if msg.is_extended_id else self.proto.by_id(msg.arbitration_id)
         if m is None:
-            self.reject(t, "unknown_id", id=msg.arbitration_id, extended=msg.is_extended_id,
-                        data=data.hex())
+            self.reject(
+                t, "unknown_id", id=msg.arbitration_id, extended=msg.is_extended_id, data=data.hex()
+            )
             return None
         if "EXECUTOR" not in m.senders:
-            self.stats["ignored"] += 1   # the nodes' own frames: udp loops them back
+            self.stats["ignored"] += 1  # the nodes' own frames: udp loops them back
             return None
         if len(data) != m.length:
-            self.reject(t, "wrong_length", name=m.name, length=len(data), dbc_length=m.length,
-                        data=data.hex())
+            self.reject(
+                t,
+                "wrong_length",
+                name=m.name,
+                length=len(data),
+                dbc_length=m.length,
+                data=data.hex(),
+            )
             return None
         try:
             signals = m.decode(data, decode_choices=False)
@@ -277,8 +345,15 @@ class Simulator:
             return None
         unlisted = self.proto.unlisted_choice(m.name, signals)
         if unlisted is not None:
-            self.reject(t, "bad_value", name=m.name, data=data.hex(), signal=unlisted[0],
-                        value=unlisted[1], error="value not among the DBC's choices")
+            self.reject(
+                t,
+                "bad_value",
+                name=m.name,
+                data=data.hex(),
+                signal=unlisted[0],
+                value=unlisted[1],
+                error="value not among the DBC's choices",
+            )
             return None
         return m, signals
 
@@ -294,12 +369,15 @@ class Simulator:
         else:
             targets = [n for n, p in NODE_PREFIX.items() if m.name.startswith(p)]
         for node in targets:
-            if any(rng.random() < f["fraction"]
-                   for f, _, rng in self._wire_match(self._drops, node, "rx")):
+            if any(
+                rng.random() < f["fraction"]
+                for f, _, rng in self._wire_match(self._drops, node, "rx")
+            ):
                 self.stats["rx_dropped"] += 1
                 if m.name != "ExecutorHeartbeat":
-                    self.record.write(t, self.clock.wall(), node, "rx_dropped", name=m.name,
-                                      signals=signals)
+                    self.record.write(
+                        t, self.clock.wall(), node, "rx_dropped", name=m.name, signals=signals
+                    )
                 continue
             delay = sum(f["delay_s"] for f, _ in self._wire_match(self._delays, node, "rx"))
             if delay > 0:
@@ -311,12 +389,18 @@ class Simulator:
 
     def deliver(self, t, node, name, s):
         n = self.nodes[node]
-        kind = name[len(NODE_PREFIX[node]):] if name.startswith(NODE_PREFIX[node]) else name
+        kind = name[len(NODE_PREFIX[node]) :] if name.startswith(NODE_PREFIX[node]) else name
         if name == "ExecutorHeartbeat":
             self._executor_heartbeat(t, node, s)
         elif name == "Estop":
-            self.record.write(t, self.clock.wall(), node, "estop_frame",
-                              active=int(s["EstopActive"]), counter=int(s["Counter"]))
+            self.record.write(
+                t,
+                self.clock.wall(),
+                node,
+                "estop_frame",
+                active=int(s["EstopActive"]),
+                counter=int(s["Counter"]),
+            )
             if s["EstopActive"]:
                 n.estop(t, "Estop frame")
         elif kind == "Command":
@@ -333,12 +417,19 @@ class Simulator:
         if int(s["ProtocolVersion"]) != self._version():
             if "version" not in self._warned:
                 self._warned.add("version")
-                self.record.write(t, self.clock.wall(), node, "executor_version_mismatch",
-                                  got=int(s["ProtocolVersion"]), want=self._version())
+                self.record.write(
+                    t,
+                    self.clock.wall(),
+                    node,
+                    "executor_version_mismatch",
+                    got=int(s["ProtocolVersion"]),
+                    want=self._version(),
+                )
             return
         if self._last_hb_wall[node] is None:
-            self.record.write(t, self.clock.wall(), node, "executor_seen",
-                              time_scale=float(s["TimeScale"]))
+            self.record.write(
+                t, self.clock.wall(), node, "executor_seen", time_scale=float(s["TimeScale"])
+            )
         self._last_hb_wall[node] = self.clock.wall()
         self._hb_tripped[node] = False
 
@@ -396,13 +487,24 @@ class Simulator:
 
     def run(self):
         opt = self.opt
-        self.record.write(0.0, self.clock.wall(), None, "start", time_scale=opt.time_scale,
-                          rate_hz=opt.rate_hz, faults=opt.faults, seed=opt.seed,
-                          config=self.model.path, dbc=self.proto.path,
-                          channel=str(getattr(self.bus, "channel_info", "")),
-                          home=self.model.home, arm_start=opt.arm_start,
-                          vehicle_start=opt.vehicle_start_m, cut_s=opt.cut_s,
-                          release_s=opt.release_s)
+        self.record.write(
+            0.0,
+            self.clock.wall(),
+            None,
+            "start",
+            time_scale=opt.time_scale,
+            rate_hz=opt.rate_hz,
+            faults=opt.faults,
+            seed=opt.seed,
+            config=self.model.path,
+            dbc=self.proto.path,
+            channel=str(getattr(self.bus, "channel_info", "")),
+            home=self.model.home,
+            arm_start=opt.arm_start,
+            vehicle_start=opt.vehicle_start_m,
+            cut_s=opt.cut_s,
+            release_s=opt.release_s,
+        )
         next_progress = opt.progress_s
         reason = "stop requested"
         try:
@@ -428,15 +530,25 @@ class Simulator:
             reason = f"error: {type(e).__name__}: {e}"
             raise
         finally:
-            self.record.write(self.clock.sim(), self.clock.wall(), None, "stop", reason=reason,
-                              stats=self.stats, pending_tx=len(self._tx_queue),
-                              pending_rx=len(self._rx_queue),
-                              picks={n: a.picks for n, a in self.arms.items()},
-                              vehicle_position=self.vehicle.positions(self.clock.sim())[0])
+            self.record.write(
+                self.clock.sim(),
+                self.clock.wall(),
+                None,
+                "stop",
+                reason=reason,
+                stats=self.stats,
+                pending_tx=len(self._tx_queue),
+                pending_rx=len(self._rx_queue),
+                picks={n: a.picks for n, a in self.arms.items()},
+                vehicle_position=self.vehicle.positions(self.clock.sim())[0],
+            )
 
     def _progress(self):
         t = self.clock.sim()
         states = " ".join(f"{n}={State(self.nodes[n].state).name}" for n in NODE_ORDER)
-        print(f"sim t={t:.1f}s vehicle={self.vehicle.positions(t)[0]:.3f}m "
-              f"tx={self.stats['tx']} rx={self.stats['rx']} states[{states}]",
-              file=self.out, flush=True)
+        print(
+            f"sim t={t:.1f}s vehicle={self.vehicle.positions(t)[0]:.3f}m "
+            f"tx={self.stats['tx']} rx={self.stats['rx']} states[{states}]",
+            file=self.out,
+            flush=True,
+        )

@@ -1,5 +1,6 @@
 """The vehicle drive (DBC node VEHICLE): moves along the row to the commanded position at
 the config's speed and acceleration, reports its position and "arrived"."""
+
 from ..canbus.enums import State
 from .node import Node
 
@@ -21,7 +22,7 @@ class VehicleNode(Node):
     def __init__(self, model, log, start_m=0.0, travel=None, home_m=0.0):
         super().__init__("vehicle", [start_m], [(model.vehicle_speed, model.vehicle_accel)], log)
         self.model = model
-        self.travel = travel            # (min, max) position limits in m, or None
+        self.travel = travel  # (min, max) position limits in m, or None
         self.home_m = home_m
         self.arrived = False
         self.move_seq = 0
@@ -38,8 +39,14 @@ class VehicleNode(Node):
         if motion["kind"] == "move":
             self.arrived = True
             self.changed = True
-            self.log(t, "arrived", seq=motion["seq"], position=self.positions(t)[0],
-                     elapsed=t - motion["t_start"], planned=motion["durations"][0])
+            self.log(
+                t,
+                "arrived",
+                seq=motion["seq"],
+                position=self.positions(t)[0],
+                elapsed=t - motion["t_start"],
+                planned=motion["durations"][0],
+            )
 
     def on_move(self, t, target_m, max_speed, seq):
         """Handle VehicleMove: drive to target_m at max_speed (0: the configured speed)."""
@@ -51,12 +58,21 @@ class VehicleNode(Node):
             bits = 1 << BIT_POSITION_LIMIT
         if reason:
             self.set_bits(bits)
-            self.log(t, "move", seq=seq, target=target_m, max_speed=max_speed, accepted=False,
-                     reason=reason)
+            self.log(
+                t,
+                "move",
+                seq=seq,
+                target=target_m,
+                max_speed=max_speed,
+                accepted=False,
+                reason=reason,
+            )
             return
         self.clear_bits(1 << BIT_POSITION_LIMIT)
         # the configured speed is the drive's limit; a move may only ask for less
-        speed = self.model.vehicle_speed if max_speed <= 0 else min(max_speed, self.model.vehicle_speed)
+        speed = (
+            self.model.vehicle_speed if max_speed <= 0 else min(max_speed, self.model.vehicle_speed)
+        )
         self.limits = [(speed, self.model.vehicle_accel)]
         motion = self.start_motion(t, [target_m], "move", seq)
         self.limits = [(self.model.vehicle_speed, self.model.vehicle_accel)]
@@ -65,11 +81,27 @@ class VehicleNode(Node):
             self.move_seq = seq
             self.changed = True
         self.set_state(t, State.MOVING, "move")
-        self.log(t, "move", seq=seq, target=target_m, max_speed=speed, accepted=True, reason="",
-                 start=self.axes[0].p0, duration=motion["t_end"] - t)
+        self.log(
+            t,
+            "move",
+            seq=seq,
+            target=target_m,
+            max_speed=speed,
+            accepted=True,
+            reason="",
+            start=self.axes[0].p0,
+            duration=motion["t_end"] - t,
+        )
 
     def status_signals(self, t):
         p, v = self.axes[0].state(t)
-        return {"Position": p, "Velocity": v, "State": self.state, "Arrived": int(self.arrived),
-                "Homed": int(self.homed), "FaultBits": self.fault_bits, "MoveSeq": self.move_seq,
-                "CommandSeq": self.command_seq}
+        return {
+            "Position": p,
+            "Velocity": v,
+            "State": self.state,
+            "Arrived": int(self.arrived),
+            "Homed": int(self.homed),
+            "FaultBits": self.fault_bits,
+            "MoveSeq": self.move_seq,
+            "CommandSeq": self.command_seq,
+        }

@@ -1,6 +1,7 @@
 """`python -m harvest telemetry {log,gantt,summary,mcap}`: record the executor's LCM
 telemetry, turn a log into a Gantt timeline of both arms, planned against actual, or export
 it to MCAP."""
+
 import argparse
 import json
 import sys
@@ -12,37 +13,57 @@ def _parser():
     p = argparse.ArgumentParser(
         prog="python -m harvest telemetry",
         description="Record the executor's LCM telemetry (channels HARVEST_*) into an LCM log, "
-                    "and turn a log into a Gantt timeline (PNG/SVG) of both arms per stop, "
-                    "planned against actual.")
-    p.add_argument("--lcm-python", default=None,
-                   help="folder of the lcm-gen Python output (default: "
-                        "$HV_BUILD_DIR/lcm_types/python, else build/lcm_types/python)")
+        "and turn a log into a Gantt timeline (PNG/SVG) of both arms per stop, "
+        "planned against actual.",
+    )
+    p.add_argument(
+        "--lcm-python",
+        default=None,
+        help="folder of the lcm-gen Python output (default: "
+        "$HV_BUILD_DIR/lcm_types/python, else build/lcm_types/python)",
+    )
     sub = p.add_subparsers(dest="cmd", required=True)
     lg = sub.add_parser("log", help="record every message on an LCM URL into a log file")
-    lg.add_argument("--url", default="udpm://239.255.76.67:7667?ttl=0",
-                    help="LCM URL (default udpm://239.255.76.67:7667?ttl=0: never leaves the host)")
+    lg.add_argument(
+        "--url",
+        default="udpm://239.255.76.67:7667?ttl=0",
+        help="LCM URL (default udpm://239.255.76.67:7667?ttl=0: never leaves the host)",
+    )
     lg.add_argument("--out", required=True, help="LCM log file to write")
     lg.add_argument("--overwrite", action="store_true", help="replace an existing log")
     lg.add_argument("--duration", type=float, default=None, help="stop after this many s")
-    lg.add_argument("--until-done", action="store_true",
-                    help="stop once the executor reports row_done or safe (plus --grace)")
+    lg.add_argument(
+        "--until-done",
+        action="store_true",
+        help="stop once the executor reports row_done or safe (plus --grace)",
+    )
     lg.add_argument("--grace", type=float, default=1.0, help="s to keep logging after the end")
-    lg.add_argument("--ready-file", default=None,
-                    help="write this file once subscribed (for scripts that start the executor after)")
+    lg.add_argument(
+        "--ready-file",
+        default=None,
+        help="write this file once subscribed (for scripts that start the executor after)",
+    )
     g = sub.add_parser("gantt", help="plot a log as a Gantt timeline (PNG or SVG by extension)")
     g.add_argument("log", help="LCM log written by `telemetry log`")
-    g.add_argument("--out", required=True, action="append",
-                   help="output file, .png or .svg (repeat for both)")
+    g.add_argument(
+        "--out", required=True, action="append", help="output file, .png or .svg (repeat for both)"
+    )
     g.add_argument("--title", default=None)
     s = sub.add_parser("summary", help="print what a log says about the run, as JSON")
     s.add_argument("log")
-    m = sub.add_parser("mcap", help="export a log to MCAP (JSON messages, a JSON Schema per "
-                                    "channel from the .lcm definitions) for robotics viewers")
+    m = sub.add_parser(
+        "mcap",
+        help="export a log to MCAP (JSON messages, a JSON Schema per "
+        "channel from the .lcm definitions) for robotics viewers",
+    )
     m.add_argument("log", help="LCM log written by `telemetry log`")
     m.add_argument("--out", required=True, help="MCAP file to write")
-    m.add_argument("--lcm-defs", default=None,
-                   help="folder of the .lcm definitions (default: lcm_types/ of the tree; "
-                        "installed: share/harvest/lcm)")
+    m.add_argument(
+        "--lcm-defs",
+        default=None,
+        help="folder of the .lcm definitions (default: lcm_types/ of the tree; "
+        "installed: share/harvest/lcm)",
+    )
     return p
 
 
@@ -51,14 +72,19 @@ def main(argv=None):
     try:
         if args.cmd == "log":
             from . import logger
+
             return logger.run(args)
         if args.cmd == "mcap":
             from . import mcap_export
+
             counts = mcap_export.export(args.log, args.out, args.lcm_python, args.lcm_defs)
-            print(f"telemetry mcap: wrote {args.out}: " + ", ".join(
-                f"{ch} {n}" for ch, n in sorted(counts.items())))
+            print(
+                f"telemetry mcap: wrote {args.out}: "
+                + ", ".join(f"{ch} {n}" for ch, n in sorted(counts.items()))
+            )
             return 0
         from . import timeline
+
         tl = timeline.read(args.log, args.lcm_python)
         if tl.plan is None:
             print(f"telemetry: {args.log}: no HARVEST_PLAN message in the log", file=sys.stderr)
@@ -67,9 +93,12 @@ def main(argv=None):
             print(json.dumps(timeline.summary(tl), indent=2))
             return 0
         from . import gantt
+
         for out in args.out:
             if not out.endswith((".png", ".svg")):
-                print(f"telemetry gantt: --out {out}: expected a .png or .svg file", file=sys.stderr)
+                print(
+                    f"telemetry gantt: --out {out}: expected a .png or .svg file", file=sys.stderr
+                )
                 return 2
             gantt.plot(tl, out, args.title)
             print(f"telemetry gantt: wrote {out}")

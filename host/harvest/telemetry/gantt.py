@@ -5,6 +5,7 @@ one pick cycle (planned: the executor's expected cycle; actual: first approach -
 coloured by outcome). Shaded bands are the stops (planned above the axis labels, actual
 arrivals as dashed lines), numbered in driving order.
 """
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -14,24 +15,49 @@ COLORS = {"planned": "#9ecae1", "picked": "#31a354", "failed": "#de2d26", "skipp
 
 
 def plot(tl, out_path, title=None):
-    rows = [("left planned", 0, "planned"), ("left actual", 0, "actual"),
-            ("right planned", 1, "planned"), ("right actual", 1, "actual")]
+    rows = [
+        ("left planned", 0, "planned"),
+        ("left actual", 0, "actual"),
+        ("right planned", 1, "planned"),
+        ("right actual", 1, "actual"),
+    ]
     ypos = {(side, kind): len(rows) - 1 - i for i, (_, side, kind) in enumerate(rows)}
     fig, ax = plt.subplots(figsize=(14, 4.6))
     for p, arrive, leave in tl.planned_stops:
         ax.axvspan(arrive, leave, color="#f0f0f0", zorder=0)
-        ax.text((arrive + leave) / 2, len(rows) - 0.35, str(p + 1), ha="center", va="bottom",
-                fontsize=7, color="#636363")
+        ax.text(
+            (arrive + leave) / 2,
+            len(rows) - 0.35,
+            str(p + 1),
+            ha="center",
+            va="bottom",
+            fontsize=7,
+            color="#636363",
+        )
     for p, t in sorted(tl.actual_stops.items()):
         ax.axvline(t, color="#636363", lw=0.6, ls="--", zorder=1)
     for side, p, fid, start, end in tl.planned:
-        ax.barh(ypos[(side, "planned")], end - start, left=start, height=0.6,
-                color=COLORS["planned"], edgecolor="white", lw=0.4)
+        ax.barh(
+            ypos[(side, "planned")],
+            end - start,
+            left=start,
+            height=0.6,
+            color=COLORS["planned"],
+            edgecolor="white",
+            lw=0.4,
+        )
     for a in tl.actual.values():
         if a["start"] is None or a["end"] is None:
             continue
-        ax.barh(ypos[(a["side"], "actual")], max(a["end"] - a["start"], 0.05), left=a["start"],
-                height=0.6, color=COLORS.get(a["outcome"], "#fd8d3c"), edgecolor="white", lw=0.4)
+        ax.barh(
+            ypos[(a["side"], "actual")],
+            max(a["end"] - a["start"], 0.05),
+            left=a["start"],
+            height=0.6,
+            color=COLORS.get(a["outcome"], "#fd8d3c"),
+            edgecolor="white",
+            lw=0.4,
+        )
     for t, side, fid, reason in tl.faults:
         ax.plot([t], [ypos[(side, "actual")] + 0.38], marker="v", color="#de2d26", ms=4)
     ax.set_yticks([ypos[(s, k)] for _, s, k in rows])
@@ -41,8 +67,15 @@ def plot(tl, out_path, title=None):
     s = summary_line(tl)
     ax.set_title(title or s, fontsize=9)
     handles = [plt.Rectangle((0, 0), 1, 1, color=c) for c in COLORS.values()]
-    ax.legend(handles, list(COLORS.keys()), loc="upper center", bbox_to_anchor=(0.5, -0.16),
-              fontsize=7, ncol=4, frameon=False)
+    ax.legend(
+        handles,
+        list(COLORS.keys()),
+        loc="upper center",
+        bbox_to_anchor=(0.5, -0.16),
+        fontsize=7,
+        ncol=4,
+        frameon=False,
+    )
     fig.tight_layout()
     fig.savefig(out_path)
     plt.close(fig)

@@ -6,12 +6,19 @@ Only what lcm_types/ uses is understood: one `package`, `struct`s of primitive, 
 struct fields, fixed or variable array dimensions, `//` comments. Anything else raises
 ValueError naming the file and line.
 """
+
 import os
 import re
 
 _PRIMITIVE = {
-    "int8_t": "integer", "int16_t": "integer", "int32_t": "integer", "int64_t": "integer",
-    "byte": "integer", "float": "number", "double": "number", "string": "string",
+    "int8_t": "integer",
+    "int16_t": "integer",
+    "int32_t": "integer",
+    "int64_t": "integer",
+    "byte": "integer",
+    "float": "number",
+    "double": "number",
+    "string": "string",
     "boolean": "boolean",
 }
 _FIELD = re.compile(r"^(\w+)\s+(\w+)((?:\s*\[\s*\w+\s*\])*)\s*;$")
@@ -20,7 +27,8 @@ _STRUCT = re.compile(r"^struct\s+(\w+)\s*\{?$")
 
 def default_dir():
     src = os.environ.get("HV_SOURCE_DIR") or os.path.dirname(
-        os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+        os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    )
     return os.path.join(src, "lcm_types")
 
 
@@ -62,6 +70,7 @@ def load(folder=None):
 
 def json_schema(structs, name):
     """A JSON Schema (draft 2020-12) of struct `name`, nested structs inline."""
+
     def one(type_name):
         if type_name in _PRIMITIVE:
             return {"type": _PRIMITIVE[type_name]}
@@ -80,8 +89,7 @@ def json_schema(structs, name):
             if comment:
                 s["description"] = comment
             props[field] = s
-        return {"type": "object", "title": struct, "properties": props,
-                "required": list(props)}
+        return {"type": "object", "title": struct, "properties": props, "required": list(props)}
 
     schema = obj(name)
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"

@@ -4,13 +4,24 @@ as the C side. They are build outputs, not part of this installed package: `load
 the build's generated folder on the import path (named by --lcm-python or HV_BUILD_DIR),
 and says which folder it looked in when they are missing.
 """
+
 import glob
 import importlib
 import os
 import sys
 
-TYPES = ("plan_pick_t", "plan_stop_t", "plan_t", "exec_state_t", "arm_joint_state_t",
-         "fruit_event_t", "can_stats_t", "detection_t", "camera_frame_t", "plan_commit_t")
+TYPES = (
+    "plan_pick_t",
+    "plan_stop_t",
+    "plan_t",
+    "exec_state_t",
+    "arm_joint_state_t",
+    "fruit_event_t",
+    "can_stats_t",
+    "detection_t",
+    "camera_frame_t",
+    "plan_commit_t",
+)
 
 CHANNELS = {
     "HARVEST_PLAN": "plan_t",
@@ -30,7 +41,8 @@ class LcmTypesMissing(RuntimeError):
 
 def default_dir():
     src = os.environ.get("HV_SOURCE_DIR") or os.path.dirname(
-        os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+        os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    )
     build = os.environ.get("HV_BUILD_DIR") or os.path.join(src, "build")
     return os.path.join(build, "lcm_types", "python")
 
@@ -48,7 +60,8 @@ def load(python_dir=None):
     if missing:
         raise LcmTypesMissing(
             f"{folder}: generated LCM types missing ({', '.join(missing)}): build the project "
-            "(cmake --build <build>) with HV_WITH_LCM=ON, or pass --lcm-python / HV_BUILD_DIR")
+            "(cmake --build <build>) with HV_WITH_LCM=ON, or pass --lcm-python / HV_BUILD_DIR"
+        )
     if root not in sys.path:
         sys.path.append(root)
     for name in TYPES:

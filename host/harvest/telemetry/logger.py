@@ -5,6 +5,7 @@ The log is flushed per message by the LCM writer; a run's end is seen in the exe
 own state (phase row_done or safe), after which the logger waits `--grace` seconds for the
 last messages and stops. SIGINT/SIGTERM stop it cleanly too.
 """
+
 import os
 import signal
 import sys
@@ -68,8 +69,9 @@ def run(args):
 
     signal.signal(signal.SIGINT, on_signal)
     signal.signal(signal.SIGTERM, on_signal)
-    lg = Logger(args.url, args.out, overwrite=args.overwrite, stop_on_end=args.until_done,
-                types=types)
+    lg = Logger(
+        args.url, args.out, overwrite=args.overwrite, stop_on_end=args.until_done, types=types
+    )
     if args.ready_file:
         # tell a caller (demo, tests) that we listen, so no early message is lost
         with open(args.ready_file, "w") as f:
@@ -79,6 +81,8 @@ def run(args):
     finally:
         lg.close()
     per = ", ".join(f"{k} {v}" for k, v in sorted(lg.channels.items()))
-    print(f"telemetry log: {args.out}: {lg.count} messages ({per or 'none'})"
-          + (f"; executor ended in {lg.final_phase}" if lg.final_phase else ""))
+    print(
+        f"telemetry log: {args.out}: {lg.count} messages ({per or 'none'})"
+        + (f"; executor ended in {lg.final_phase}" if lg.final_phase else "")
+    )
     return 0

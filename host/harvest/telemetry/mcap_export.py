@@ -3,6 +3,7 @@ open: one channel per LCM channel, JSON messages, and per channel the JSON Schem
 LCM type (lcm_schema), so every field is typed and documented in the viewer. The log time
 of each message is the LCM log's receive time.
 """
+
 import json
 
 import lcm
@@ -25,21 +26,30 @@ def export(log_path, out_path, python_dir=None, lcm_defs=None):
         for ev in lcm.EventLog(log_path, "r"):
             type_name = lcm_types.CHANNELS.get(ev.channel)
             if type_name is None:
-                raise ValueError(f"{log_path}: channel {ev.channel!r} is not a telemetry channel "
-                                 f"({', '.join(sorted(lcm_types.CHANNELS))})")
+                raise ValueError(
+                    f"{log_path}: channel {ev.channel!r} is not a telemetry channel "
+                    f"({', '.join(sorted(lcm_types.CHANNELS))})"
+                )
             if type_name not in schema_ids:
                 schema = lcm_schema.json_schema(structs, type_name)
                 schema_ids[type_name] = writer.register_schema(
-                    name=f"harvest.{type_name}", encoding="jsonschema",
-                    data=json.dumps(schema).encode())
+                    name=f"harvest.{type_name}",
+                    encoding="jsonschema",
+                    data=json.dumps(schema).encode(),
+                )
             if ev.channel not in channel_ids:
                 channel_ids[ev.channel] = writer.register_channel(
-                    topic=ev.channel, message_encoding="json", schema_id=schema_ids[type_name])
+                    topic=ev.channel, message_encoding="json", schema_id=schema_ids[type_name]
+                )
             msg = types[type_name].decode(ev.data)
             t_ns = int(ev.timestamp) * 1000
-            writer.add_message(channel_ids[ev.channel], log_time=t_ns, publish_time=t_ns,
-                               data=json.dumps(lcm_schema.to_json(msg)).encode(),
-                               sequence=counts.get(ev.channel, 0))
+            writer.add_message(
+                channel_ids[ev.channel],
+                log_time=t_ns,
+                publish_time=t_ns,
+                data=json.dumps(lcm_schema.to_json(msg)).encode(),
+                sequence=counts.get(ev.channel, 0),
+            )
             counts[ev.channel] = counts.get(ev.channel, 0) + 1
         writer.finish()
     return counts

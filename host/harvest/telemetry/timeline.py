@@ -7,6 +7,7 @@ release); the stop lasts as long as its slower arm, then the next drive.
 Actual: fruit_event_t messages (approach of the first attempt -> outcome) and the
 executor's state changes (arrival at a stop = phase harvest with that stop).
 """
+
 import lcm
 
 from . import lcm_types
@@ -15,18 +16,21 @@ from . import lcm_types
 class Timeline:
     def __init__(self):
         self.plan = None
-        self.planned = []      # (side, stop, fruit_id, start, end)
+        self.planned = []  # (side, stop, fruit_id, start, end)
         self.planned_stops = []  # (stop, arrive, leave)
-        self.actual = {}       # (side, fruit_id) -> dict(start, end, outcome, reason, stop, attempts)
+        self.actual = {}  # (side, fruit_id) -> dict(start, end, outcome, reason, stop, attempts)
         self.actual_stops = {}  # stop -> arrival t_s
         self.states = []
-        self.faults = []       # (t, side, fruit_id, reason)
+        self.faults = []  # (t, side, fruit_id, reason)
         self.final = None
         self.can_stats = None
 
     def fruits(self, outcome=None):
-        return [a for a in self.actual.values()
-                if a.get("outcome") and (outcome is None or a["outcome"] == outcome)]
+        return [
+            a
+            for a in self.actual.values()
+            if a.get("outcome") and (outcome is None or a["outcome"] == outcome)
+        ]
 
 
 def planned_schedule(plan):
@@ -67,9 +71,19 @@ def read(path, python_dir=None):
                 tl.actual_stops[msg.stop] = msg.t_s
         elif ev.channel == "HARVEST_FRUIT":
             key = (msg.side, msg.fruit_id)
-            a = tl.actual.setdefault(key, {"side": msg.side, "fruit_id": msg.fruit_id,
-                                           "stop": msg.stop, "start": None, "end": None,
-                                           "outcome": None, "reason": None, "attempts": 0})
+            a = tl.actual.setdefault(
+                key,
+                {
+                    "side": msg.side,
+                    "fruit_id": msg.fruit_id,
+                    "stop": msg.stop,
+                    "start": None,
+                    "end": None,
+                    "outcome": None,
+                    "reason": None,
+                    "attempts": 0,
+                },
+            )
             if msg.event == "approach":
                 a["attempts"] = max(a["attempts"], msg.attempt)
                 if a["start"] is None:

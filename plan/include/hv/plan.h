@@ -18,10 +18,10 @@ extern "C" {
 #endif
 
 #define HV_PLAN_FORMAT_VERSION 2
-#define HV_PLAN_PATH_LEN 1024
-#define HV_PLAN_ID_LEN 32 /* same as HV_FRUIT_ID_LEN */
-#define HV_PLAN_NAME_LEN 16
-#define HV_PLAN_REASON_LEN 64
+#define HV_PLAN_PATH_LEN       1024
+#define HV_PLAN_ID_LEN         32 /* same as HV_FRUIT_ID_LEN */
+#define HV_PLAN_NAME_LEN       16
+#define HV_PLAN_REASON_LEN     64
 
 typedef struct hv_plan_pick {
     char id[HV_PLAN_ID_LEN];
@@ -34,7 +34,7 @@ typedef struct hv_plan_stop {
     uint32_t index; /* candidate stop index over the course:
                        y = row_start - stop_margin + index * step */
     double y_m;
-    int pass;       /* 0; 1 for Serial's second pass (right side) */
+    int pass; /* 0; 1 for Serial's second pass (right side) */
     double c_left_s, c_right_s, c_s, idle_left_s, idle_right_s;
     size_t n_left, n_right;
     hv_plan_pick_t *left, *right; /* in pick order */
@@ -47,10 +47,10 @@ typedef struct hv_plan_unreachable {
 } hv_plan_unreachable_t;
 
 typedef struct hv_plan_horizon {
-    int used;            /* 0: the row was planned in one window (the object is omitted) */
-    double window_m;     /* H */
-    double commit_m;     /* committed length per window */
-    uint32_t windows;    /* windows solved */
+    int used;         /* 0: the row was planned in one window (the object is omitted) */
+    double window_m;  /* H */
+    double commit_m;  /* committed length per window */
+    uint32_t windows; /* windows solved */
     uint32_t windows_optimal;
 } hv_plan_horizon_t;
 
@@ -60,14 +60,14 @@ typedef struct hv_plan {
         cost_table_right[HV_PLAN_PATH_LEN], config[HV_PLAN_PATH_LEN]; /* "" = none given */
 
     double stop_step_m, row_start_m, row_length_m, stop_penalty_s, vehicle_speed_mps,
-        travel_time_s; /* params: travel_time_s is one pass's T_travel */
-    double stop_margin_m; /* params: the course runs this far beyond both row ends */
+        travel_time_s;                /* params: travel_time_s is one pass's T_travel */
+    double stop_margin_m;             /* params: the course runs this far beyond both row ends */
     char pick_time[HV_PLAN_NAME_LEN]; /* params: "cycle" (a pick's cost_s is its whole
                                          cycle) or "one_way" (the paper's G) */
 
     char solver_status[HV_PLAN_NAME_LEN]; /* optimal feasible infeasible time_limit error
                                              heuristic */
-    double gap;          /* relative gap; < 0 = unknown (JSON null) */
+    double gap;                           /* relative gap; < 0 = unknown (JSON null) */
     long nodes;
     double runtime_s, time_limit_s;
 

@@ -12,11 +12,12 @@ extern "C" {
 #endif
 
 /* Macros of type hv_status_t, like every module's codes, so they return without casts. */
-#define HV_ERR_PLAN_NOMEM ((hv_status_t)-110)  /* malloc failed */
-#define HV_ERR_PLAN_JSON ((hv_status_t)-120)   /* not well-formed JSON */
-#define HV_ERR_PLAN_FORMAT ((hv_status_t)-121) /* JSON, but not the plan format (field missing/wrong) */
-#define HV_ERR_PLAN_ID ((hv_status_t)-122)     /* a fruit id outside the id set (hv/fruit_id.h) */
-#define HV_ERR_PLAN_ORDER ((hv_status_t)-123)  /* stops not by pass, then increasing y_m */
+#define HV_ERR_PLAN_NOMEM ((hv_status_t)-110) /* malloc failed */
+#define HV_ERR_PLAN_JSON  ((hv_status_t)-120) /* not well-formed JSON */
+#define HV_ERR_PLAN_FORMAT                                                                         \
+    ((hv_status_t)-121) /* JSON, but not the plan format (field missing/wrong) */
+#define HV_ERR_PLAN_ID    ((hv_status_t)-122) /* a fruit id outside the id set (hv/fruit_id.h) */
+#define HV_ERR_PLAN_ORDER ((hv_status_t)-123) /* stops not by pass, then increasing y_m */
 
 /* Name of a plan-file code ("HV_ERR_PLAN_JSON"), or of a core code. Never NULL. */
 const char *hv_plan_file_status_name(int status);

@@ -36,14 +36,13 @@ typedef struct hv_serial_result {
     double gap;               /* the larger of the two gaps */
     long nodes;
     double runtime_s;
-    double makespan_s;        /* both passes: sum C + tau * stops + 2 T_travel */
+    double makespan_s; /* both passes: sum C + tau * stops + 2 T_travel */
 } hv_serial_result_t;
 
 /* Serial plan: `out` gets each fruit's stop, `passes` (n_fruits entries) 0 for left fruit,
  * 1 for right fruit. HV_ERR_PLAN_NO_SOLUTION when a side's solve returned nothing. */
 hv_status_t hv_serial_solve(const hv_instance_t *inst, const hv_milp_options_t *opt,
-                            hv_assignment_t *out, unsigned char *passes,
-                            hv_serial_result_t *res);
+                            hv_assignment_t *out, unsigned char *passes, hv_serial_result_t *res);
 
 #ifdef __cplusplus
 }

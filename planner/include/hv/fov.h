@@ -26,10 +26,10 @@ extern "C" {
 #define HV_FOV_DEFAULT_WIDTH_M 0.25
 
 typedef struct hv_fov_stats {
-    size_t windows;          /* windows from the first to the last reachable fruit */
-    size_t stops;            /* used stops */
-    size_t moved;            /* fruits picked at another window's stop */
-    size_t extra_stops;      /* stops added for fruits no window stop reaches */
+    size_t windows;     /* windows from the first to the last reachable fruit */
+    size_t stops;       /* used stops */
+    size_t moved;       /* fruits picked at another window's stop */
+    size_t extra_stops; /* stops added for fruits no window stop reaches */
 } hv_fov_stats_t;
 
 /* FOV plan on `inst` into `out` (allocated by the caller for inst->n_fruits). `stats` may

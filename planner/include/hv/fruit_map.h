@@ -30,8 +30,8 @@ typedef struct hv_fruitmap_limits {
 } hv_fruitmap_limits_t;
 
 /* Grids from hv_config_grid(), y over [row_start_m, row_start_m + row_length_m]. */
-void hv_fruitmap_limits_from_config(const hv_config_t *cfg, double row_start_m,
-                                    double row_length_m, hv_fruitmap_limits_t *lim);
+void hv_fruitmap_limits_from_config(const hv_config_t *cfg, double row_start_m, double row_length_m,
+                                    hv_fruitmap_limits_t *lim);
 
 /* Parse `len` bytes of CSV. `name` names the source in messages. `lim` may be NULL (no
  * range check). Codes: HV_ERR_PLAN_MAP_* ; HV_ERR_PLAN_NOMEM. On error *map is empty. */
@@ -40,8 +40,8 @@ hv_status_t hv_fruitmap_parse(const char *text, size_t len, const char *name,
                               size_t errlen);
 
 /* Read and parse a file (HV_ERR_IO when it cannot be read). */
-hv_status_t hv_fruitmap_load(const char *path, const hv_fruitmap_limits_t *lim,
-                             hv_fruitmap_t *map, char *err, size_t errlen);
+hv_status_t hv_fruitmap_load(const char *path, const hv_fruitmap_limits_t *lim, hv_fruitmap_t *map,
+                             char *err, size_t errlen);
 
 void hv_fruitmap_free(hv_fruitmap_t *map);
 

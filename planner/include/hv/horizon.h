@@ -27,18 +27,18 @@ extern "C" {
 #define HV_HORIZON_DEFAULT_WINDOW_M 2.0
 
 typedef struct hv_horizon_options {
-    double window_m;           /* H > 0 */
-    double commit_m;           /* (0, H]; default H / 2 */
-    hv_milp_options_t milp;    /* per window */
-    FILE *progress;            /* one line per window when not NULL */
+    double window_m;        /* H > 0 */
+    double commit_m;        /* (0, H]; default H / 2 */
+    hv_milp_options_t milp; /* per window */
+    FILE *progress;         /* one line per window when not NULL */
 } hv_horizon_options_t;
 
 typedef struct hv_horizon_result {
-    unsigned windows;          /* windows solved (those with fruit in them) */
+    unsigned windows; /* windows solved (those with fruit in them) */
     unsigned windows_optimal;
-    double worst_gap;          /* largest gap of a window */
+    double worst_gap; /* largest gap of a window */
     long nodes;
-    double runtime_s;          /* solver time summed over windows */
+    double runtime_s; /* solver time summed over windows */
 } hv_horizon_result_t;
 
 void hv_horizon_options_default(hv_horizon_options_t *opt);

@@ -28,9 +28,8 @@ typedef struct hv_helper hv_helper_t;
  * sub-solves go through `sub`. Returns HV_OK, HV_ERR_PLAN_NOMEM, or HV_ERR_ARG when the
  * thread cannot start. */
 hv_status_t hv_helper_start(const hv_instance_t *inst, const hv_milp_options_t *opt,
-                            const hv_milp_subsolver_t *sub,
-                            const hv_assignment_t *plan, double t_s, double t_deadline_s,
-                            unsigned polish_kicks, hv_helper_t **out);
+                            const hv_milp_subsolver_t *sub, const hv_assignment_t *plan, double t_s,
+                            double t_deadline_s, unsigned polish_kicks, hv_helper_t **out);
 
 /* The search's better plan: the helper continues from it when it beats its own. */
 void hv_helper_offer(hv_helper_t *h, const hv_assignment_t *plan, double t_s);

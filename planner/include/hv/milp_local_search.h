@@ -20,9 +20,9 @@ extern "C" {
 #endif
 
 typedef struct hv_ls_options {
-    unsigned kicks;          /* iterated-local-search kicks after the first descent */
-    unsigned shift_max;      /* largest stop shift tried, in grid steps */
-    uint64_t seed;           /* kick choice (deterministic) */
+    unsigned kicks;     /* iterated-local-search kicks after the first descent */
+    unsigned shift_max; /* largest stop shift tried, in grid steps */
+    uint64_t seed;      /* kick choice (deterministic) */
 } hv_ls_options_t;
 
 void hv_ls_options_default(hv_ls_options_t *opt);

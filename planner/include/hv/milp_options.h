@@ -38,8 +38,7 @@ typedef struct hv_milp_options {
     int column_dive, window_width, helper_thread, rins_every, region_stops;
     int sr_cuts, sr_cuts_large, sr_purge, cover_rows;
     double sr_keep_gain;
-    int interval_branching, iv_pseudocost, tail_off_ms, tail_off_open, pseudocost,
-        binding_splits;
+    int interval_branching, iv_pseudocost, tail_off_ms, tail_off_open, pseudocost, binding_splits;
     int tree_threads, balance_workers, warm_transfer;
     int auto_smoothing, ascent_steps;
 
@@ -66,14 +65,14 @@ typedef struct hv_milp_result {
     double gap;         /* (objective - bound) / objective; <= rel_gap when OPTIMAL */
     long nodes;         /* branch-and-bound nodes (summed over sub-solves if any) */
     double runtime_s;
-    double incumbent_s;   /* T of the starting incumbent (given or heuristic), INFINITY if none */
-    int incumbent_taken;  /* 1 when GLPK accepted that incumbent through its callback */
-    double root_bound_s;  /* LP relaxation bound at the root (with the added rows) */
-    int components;       /* independent row segments solved (1 without decomposition) */
-    long cuts;            /* compact: stop-pattern cuts added; price: subset-row cuts kept
+    double incumbent_s;     /* T of the starting incumbent (given or heuristic), INFINITY if none */
+    int incumbent_taken;    /* 1 when GLPK accepted that incumbent through its callback */
+    double root_bound_s;    /* LP relaxation bound at the root (with the added rows) */
+    int components;         /* independent row segments solved (1 without decomposition) */
+    long cuts;              /* compact: stop-pattern cuts added; price: subset-row cuts kept
                              in the tree */
-    long columns;         /* stop-pattern columns generated (branch-and-price) */
-    long worker_nodes;    /* price: of `nodes`, those the second tree worker solved */
+    long columns;           /* stop-pattern columns generated (branch-and-price) */
+    long worker_nodes;      /* price: of `nodes`, those the second tree worker solved */
     long interval_branches; /* price: branches on the stop count of an interval shorter
                                than the row (interval_branching) */
     long tailed_nodes;      /* price: nodes branched on before their column generation
@@ -90,9 +89,9 @@ void hv_milp_options_default(hv_milp_options_t *opt);
  * constant (fixed when the solver is built, named as in planner/src/milp_tunables.h). */
 typedef struct hv_milp_param {
     const char *name;
-    int is_option;  /* 1: hv_milp_options_t.<name>; 0: a constant */
-    int is_integer; /* the value is a whole number (an option: an int field) */
-    double value;   /* the default (an option) or the value (a constant) */
+    int is_option;    /* 1: hv_milp_options_t.<name>; 0: a constant */
+    int is_integer;   /* the value is a whole number (an option: an int field) */
+    double value;     /* the default (an option) or the value (a constant) */
     const char *unit; /* "" for a count, a flag or a choice */
     double lo, hi;    /* the range the value may take (an option: hv_milp_option_set checks) */
     const char *doc;  /* one line */

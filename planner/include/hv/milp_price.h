@@ -29,9 +29,8 @@ extern "C" {
  * seconds). `inc` (may be NULL) is a feasible assignment costing inc_t seconds; it seeds
  * the columns and the incumbent. Fills `out` and `res` like hv_milp_solve. */
 hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *opt,
-                           const hv_milp_subsolver_t *sub, const hv_assignment_t *inc,
-                           double inc_t, double t_deadline_s,
-                           hv_assignment_t *out, hv_milp_result_t *res);
+                           const hv_milp_subsolver_t *sub, const hv_assignment_t *inc, double inc_t,
+                           double t_deadline_s, hv_assignment_t *out, hv_milp_result_t *res);
 
 /* A lower bound on the optimum of `inst` with some fruits optional: leaving fruit f
  * uncovered costs skip_ms[f] (INFINITY: f must be covered), and the value of a solution is
@@ -42,9 +41,8 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
  * (may be NULL, else n_fruits entries) receives the best solution's stop per fruit,
  * HV_NO_STOP for one left out. */
 hv_status_t hv_price_bound(const hv_instance_t *inst, const hv_milp_options_t *opt,
-                           const hv_milp_subsolver_t *sub, const double *skip_ms,
-                           double cutoff_ms, double t_deadline_s,
-                           uint32_t *plan, hv_price_bound_result_t *res);
+                           const hv_milp_subsolver_t *sub, const double *skip_ms, double cutoff_ms,
+                           double t_deadline_s, uint32_t *plan, hv_price_bound_result_t *res);
 
 #ifdef __cplusplus
 }

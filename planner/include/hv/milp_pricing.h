@@ -30,10 +30,10 @@ extern "C" {
 #endif
 
 typedef struct hv_price_item {
-    uint32_t fruit;  /* caller's fruit index, copied to the selection */
-    double w_ms;     /* pick time, > 0 */
-    double profit;   /* dual price, > 0 (items with profit <= 0 are never worth picking) */
-    uint64_t cuts;   /* bit c: the item is in subset-row cut c (pen[c]); 0 for none */
+    uint32_t fruit; /* caller's fruit index, copied to the selection */
+    double w_ms;    /* pick time, > 0 */
+    double profit;  /* dual price, > 0 (items with profit <= 0 are never worth picking) */
+    uint64_t cuts;  /* bit c: the item is in subset-row cut c (pen[c]); 0 for none */
 } hv_price_item_t;
 
 /* One frontier point: time, profit, and the item added to its parent point. */
@@ -68,22 +68,22 @@ typedef struct hv_pricer {
     size_t left_cap;
     double *pw; /* that frontier's times, profits and suffix minima of time - profit */
     size_t pw_cap;
-    size_t *parg;   /* per first-arm point: the point attaining the suffix minimum */
+    size_t *parg;         /* per first-arm point: the point attaining the suffix minimum */
     hv_front_ref_t *pref; /* first-arm points (arena index, cut states) that bound g */
     size_t parg_cap, pref_cap;
-    double rec_v;   /* the best whole pattern met while building the second arm ... */
+    double rec_v;         /* the best whole pattern met while building the second arm ... */
     int32_t rec_a, rec_b; /* ... its two arena points (-1: none) ... */
     double rec_pen;       /* ... and the cross-arm penalty that pair pays */
     unsigned long long calls, points; /* statistics: pricings, frontier points made */
-    hv_price_item_t *sorted; /* both sides' items, sorted by profit density */
+    hv_price_item_t *sorted;          /* both sides' items, sorted by profit density */
     size_t sorted_cap;
     double *brk; /* (breakpoint, slope change) pairs of the bound's weight (best_weight) */
     size_t brk_cap;
     hv_cross_scratch_t cross[2]; /* per arm, for the merge with cross-arm cuts */
-    double t_deadline_s; /* 0: none; else a call still building frontiers then (the clock,
+    double t_deadline_s;         /* 0: none; else a call still building frontiers then (the clock,
                             CLOCK_MONOTONIC s, is read every 4096 points) stops with
                             HV_ERR_MILP_DEADLINE: bad duals can make frontiers huge */
-    int timed_out;       /* scratch: the current call passed the deadline */
+    int timed_out;               /* scratch: the current call passed the deadline */
 } hv_pricer_t;
 
 void hv_pricer_init(hv_pricer_t *pr);

@@ -37,10 +37,10 @@ typedef struct hv_region_result {
  * s), with `opt`'s choices as sub->bound (hv_price_bound) takes them. `plan` (may be
  * NULL, else n_fruits entries) receives, when res->has_plan, the stop of every fruit the
  * stretch's best solution covers and HV_NO_STOP for the rest. */
-hv_status_t hv_region_rise(const hv_instance_t *inst, uint32_t s0, uint32_t s1,
-                           const double *pi_ms, const double *v_ms, double need_ms,
-                           const hv_milp_options_t *opt, const hv_milp_subsolver_t *sub,
-                           double t_deadline_s, uint32_t *plan, hv_region_result_t *res);
+hv_status_t hv_region_rise(const hv_instance_t *inst, uint32_t s0, uint32_t s1, const double *pi_ms,
+                           const double *v_ms, double need_ms, const hv_milp_options_t *opt,
+                           const hv_milp_subsolver_t *sub, double t_deadline_s, uint32_t *plan,
+                           hv_region_result_t *res);
 
 #ifdef __cplusplus
 }

@@ -27,10 +27,10 @@ typedef struct hv_src {
     size_t nf;
     uint32_t (*tri)[3]; /* the cuts' fruits, ascending */
     size_t n, cap;
-    size_t *fbeg;       /* per fruit: its cuts are fcut[fbeg[f] .. fbeg[f + 1]) */
+    size_t *fbeg; /* per fruit: its cuts are fcut[fbeg[f] .. fbeg[f + 1]) */
     uint32_t *fcut;
     size_t fcut_cap;
-    uint32_t *cnt;      /* per cut: scratch counter, 0 between calls */
+    uint32_t *cnt; /* per cut: scratch counter, 0 between calls */
 } hv_src_t;
 
 /* One master column with a positive value: its fruits (ascending) and that value. */

@@ -42,8 +42,7 @@ struct hv_milp_subsolver {
  * helper thread, the polish, which would not see opt->stop, and the neighbourhoods), nor
  * the regional bound, which starts solves of its own too: a sub-instance is small and its
  * plan near its optimum from the start. */
-void hv_milp_subsolve_options(const hv_milp_options_t *opt, double limit_s,
-                              hv_milp_options_t *out);
+void hv_milp_subsolve_options(const hv_milp_options_t *opt, double limit_s, hv_milp_options_t *out);
 
 #ifdef __cplusplus
 }

@@ -26,10 +26,10 @@ extern "C" {
 #endif
 
 typedef struct hv_window_stats {
-    long windows;   /* sub-problems solved */
-    long improved;  /* of which gave a better window */
-    long proven;    /* of which were solved to proven optimality */
-    long repeats;   /* windows not solved: the memo held them (hv_window_memo_t) */
+    long windows;  /* sub-problems solved */
+    long improved; /* of which gave a better window */
+    long proven;   /* of which were solved to proven optimality */
+    long repeats;  /* windows not solved: the memo held them (hv_window_memo_t) */
 } hv_window_stats_t;
 
 /* The windows already solved without gain, so that later passes skip them. A window is its
@@ -61,11 +61,10 @@ typedef void (*hv_window_better_fn)(void *ctx, const hv_assignment_t *plan, doub
  * Returns HV_OK, or the first error of a sub-solve (HV_ERR_PLAN_NOMEM, GLPK failure);
  * the plan is left valid either way. */
 hv_status_t hv_window_improve(const hv_instance_t *inst, const hv_milp_options_t *opt,
-                              const hv_milp_subsolver_t *sub, unsigned width,
-                              double window_limit_s, double t_deadline_s,
-                              hv_assignment_t *plan, double *t_s, hv_window_stats_t *stats,
-                              hv_window_memo_t *memo, hv_window_better_fn better,
-                              void *better_ctx);
+                              const hv_milp_subsolver_t *sub, unsigned width, double window_limit_s,
+                              double t_deadline_s, hv_assignment_t *plan, double *t_s,
+                              hv_window_stats_t *stats, hv_window_memo_t *memo,
+                              hv_window_better_fn better, void *better_ctx);
 
 #ifdef __cplusplus
 }

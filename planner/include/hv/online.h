@@ -64,14 +64,14 @@ typedef struct hv_online_step_result {
     size_t window_fruits;        /* fruits in the solved window */
     hv_solve_status_t status;    /* the window's solve; OPTIMAL when it had no fruit */
     double gap;
-    double solve_s;              /* the solver's runtime */
-    int kept_heuristic;          /* 1: the solve found nothing, the window's FOV plan was kept */
+    double solve_s;     /* the solver's runtime */
+    int kept_heuristic; /* 1: the solve found nothing, the window's FOV plan was kept */
 } hv_online_step_result_t;
 
 /* A committed stop with work: its fruits are fruit_of[first .. first + count) (indices
  * into hv_online_t.fruits), left before right, in y order per side. */
 typedef struct hv_online_stop {
-    uint32_t index;   /* candidate stop index over the course */
+    uint32_t index; /* candidate stop index over the course */
     double y_m;
     size_t first, count;
 } hv_online_stop_t;
@@ -81,20 +81,20 @@ typedef struct hv_online {
     const hv_pick_model_t *model;
     hv_online_options_t opt;
     size_t n_course_stops;
-    double reach_ahead_m;   /* largest fruit y - stop y any arm reaches */
-    double seen_to_m;       /* everything up to here has been in view */
-    size_t pos;             /* first candidate stop not committed */
-    int done;               /* every stop committed: the row is planned to its end */
+    double reach_ahead_m; /* largest fruit y - stop y any arm reaches */
+    double seen_to_m;     /* everything up to here has been in view */
+    size_t pos;           /* first candidate stop not committed */
+    int done;             /* every stop committed: the row is planned to its end */
 
     size_t n_fruits, cap_fruits;
-    hv_fruit_t *fruits;     /* accepted detections, in arrival order */
-    uint32_t *fruit_stop;   /* committed candidate stop, or HV_NO_STOP */
-    unsigned char *why;     /* 0, or why no stop reaches it (hv_instance_why_name) */
+    hv_fruit_t *fruits;   /* accepted detections, in arrival order */
+    uint32_t *fruit_stop; /* committed candidate stop, or HV_NO_STOP */
+    unsigned char *why;   /* 0, or why no stop reaches it (hv_instance_why_name) */
 
     size_t n_stops, cap_stops;
-    hv_online_stop_t *stops;  /* committed stops with work, in driving order */
+    hv_online_stop_t *stops; /* committed stops with work, in driving order */
     size_t n_order, cap_order;
-    uint32_t *fruit_of;       /* fruits of the committed stops, stop by stop */
+    uint32_t *fruit_of; /* fruits of the committed stops, stop by stop */
 
     unsigned counts[HV_DET_COUNT]; /* detections per verdict */
     unsigned steps;                /* windows solved */
@@ -109,8 +109,7 @@ void hv_online_free(hv_online_t *o);
 
 /* One detection; *verdict says what became of it. HV_OK unless out of memory or bad
  * arguments: refused input is a verdict, not an error. */
-hv_status_t hv_online_detect(hv_online_t *o, const hv_fruit_t *fruit,
-                             hv_online_verdict_t *verdict);
+hv_status_t hv_online_detect(hv_online_t *o, const hv_fruit_t *fruit, hv_online_verdict_t *verdict);
 
 /* The camera has seen the row up to y_m (monotone: a smaller value changes nothing). */
 void hv_online_seen(hv_online_t *o, double y_m);

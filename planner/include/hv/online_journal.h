@@ -28,11 +28,11 @@
 #include "hv/online.h"
 
 typedef struct hv_online_journal {
-    int fd;                 /* -1 when closed */
+    int fd; /* -1 when closed */
     char path[512];
-    unsigned detections;    /* D records replayed */
-    unsigned horizons;      /* H records replayed */
-    unsigned torn_bytes;    /* bytes cut off at the end */
+    unsigned detections; /* D records replayed */
+    unsigned horizons;   /* H records replayed */
+    unsigned torn_bytes; /* bytes cut off at the end */
 } hv_online_journal_t;
 
 /* Open (create when absent) the journal at `path` for the row `o` plans (just initialised);

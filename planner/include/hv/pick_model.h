@@ -19,8 +19,8 @@ typedef struct hv_pick_model {
     /* Cost (s) of picking `fruit` with its side's arm from the vehicle stopped at
      * stop_y_m: HV_OK with *cost_s, or an error status with *why (HV_PICK_HEIGHT, _DEPTH
      * or _YAW) saying why it cannot. */
-    hv_status_t (*cost)(const void *ctx, const hv_fruit_t *fruit, double stop_y_m,
-                        double *cost_s, hv_pick_why_t *why);
+    hv_status_t (*cost)(const void *ctx, const hv_fruit_t *fruit, double stop_y_m, double *cost_s,
+                        hv_pick_why_t *why);
     const void *ctx;
     /* Per side (hv_side_t): fruit y minus stop y (m) outside [y_rel_min, y_rel_max] is out
      * of reach; the builder and the checker try only stops inside. */
@@ -32,8 +32,8 @@ typedef struct hv_pick_model {
  * plan.pick_cycle; the paper's G = move_s (home -> fruit) without; rounded to whole ms
  * (the solver's proofs are to the ms). Must outlive `model`. */
 typedef struct hv_ik_model {
-    hv_arm_t arm[2];  /* [HV_SIDE_LEFT], [HV_SIDE_RIGHT] */
-    int cycle;        /* plan.pick_cycle */
+    hv_arm_t arm[2]; /* [HV_SIDE_LEFT], [HV_SIDE_RIGHT] */
+    int cycle;       /* plan.pick_cycle */
     double cut_s, release_s;
 } hv_ik_model_t;
 

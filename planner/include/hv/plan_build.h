@@ -12,13 +12,13 @@ extern "C" {
 
 /* What the plan says besides the assignment. Strings are copied. */
 typedef struct hv_plan_meta {
-    const char *method;           /* "milp", "fov", "serial" */
+    const char *method; /* "milp", "fov", "serial" */
     const char *fruit_map, *cost_table_left, *cost_table_right, *config; /* input paths */
-    hv_instance_params_t params;  /* the row the instance was built on */
-    const char *pick_time;        /* "cycle" or "one_way" (hv_pick_model_name); NULL: one_way */
+    hv_instance_params_t params; /* the row the instance was built on */
+    const char *pick_time;       /* "cycle" or "one_way" (hv_pick_model_name); NULL: one_way */
     double vehicle_speed_mps;
-    const char *solver_status;    /* "optimal", "feasible", "heuristic", ... */
-    double gap;                   /* < 0 = unknown */
+    const char *solver_status; /* "optimal", "feasible", "heuristic", ... */
+    double gap;                /* < 0 = unknown */
     long nodes;
     double runtime_s, time_limit_s;
     hv_plan_horizon_t horizon;
@@ -31,8 +31,7 @@ typedef struct hv_plan_meta {
  * Picks of one arm at one stop are ordered by y, then id. The assignment must be valid
  * (hv_assignment_eval); errors HV_ERR_PLAN_UNASSIGNED / _BAD_PAIR / _NOMEM / HV_ERR_ARG. */
 hv_status_t hv_plan_build(const hv_instance_t *inst, const hv_assignment_t *a,
-                          const unsigned char *passes, const hv_plan_meta_t *meta,
-                          hv_plan_t *plan);
+                          const unsigned char *passes, const hv_plan_meta_t *meta, hv_plan_t *plan);
 
 #ifdef __cplusplus
 }

@@ -34,9 +34,8 @@ extern "C" {
 #define HV_CHECK_TOL_S 1e-6
 
 /* Check `plan` against in-memory inputs. */
-hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg,
-                          const hv_fruit_t *fruits, size_t n_fruits,
-                          const hv_pick_model_t *model, char *err, size_t errlen);
+hv_status_t hv_plan_check(const hv_plan_t *plan, const hv_config_t *cfg, const hv_fruit_t *fruits,
+                          size_t n_fruits, const hv_pick_model_t *model, char *err, size_t errlen);
 
 /* Re-read the config and the fruit map (limits from the plan's row), then hv_plan_check()
  * with the exact-IK model of the config. Cost tables, when named (here or in the plan's

@@ -16,11 +16,11 @@ extern "C" {
 #endif
 
 typedef struct hv_eval {
-    double makespan_s;   /* T */
-    double pick_time_s;  /* sum_p C_p */
-    double stop_time_s;  /* tau * stops */
-    double travel_time_s;/* T_travel */
-    size_t stops;        /* used stops */
+    double makespan_s;    /* T */
+    double pick_time_s;   /* sum_p C_p */
+    double stop_time_s;   /* tau * stops */
+    double travel_time_s; /* T_travel */
+    size_t stops;         /* used stops */
     size_t fruits_planned;
 } hv_eval_t;
 
@@ -37,12 +37,11 @@ hv_status_t hv_instance_pair_cost(const hv_instance_t *inst, uint32_t fruit, uin
  * stops (else HV_ERR_PLAN_UNASSIGNED / HV_ERR_PLAN_BAD_PAIR), fruits without pairs must be
  * HV_NO_STOP. `work` holds 2 * inst->n_stops doubles (caller's scratch, no allocation):
  * on return work[p] = C^L_p and work[n_stops + p] = C^R_p. */
-hv_status_t hv_assignment_eval_ws(const hv_instance_t *inst, const hv_assignment_t *a,
-                                  double *work, hv_eval_t *ev);
+hv_status_t hv_assignment_eval_ws(const hv_instance_t *inst, const hv_assignment_t *a, double *work,
+                                  hv_eval_t *ev);
 
 /* Same, allocating its own scratch. */
-hv_status_t hv_assignment_eval(const hv_instance_t *inst, const hv_assignment_t *a,
-                               hv_eval_t *ev);
+hv_status_t hv_assignment_eval(const hv_instance_t *inst, const hv_assignment_t *a, hv_eval_t *ev);
 
 /* Shorthand: only T. */
 hv_status_t hv_assignment_makespan(const hv_instance_t *inst, const hv_assignment_t *a,

@@ -20,7 +20,7 @@
 extern "C" {
 #endif
 
-#define HV_NO_STOP UINT32_MAX
+#define HV_NO_STOP      UINT32_MAX
 #define HV_FRUIT_ID_LEN 32
 
 typedef struct hv_fruit {

@@ -32,7 +32,7 @@ typedef struct pattern {
     uint32_t stop;
     uint32_t first, n; /* fruits bp->pf[first .. first + n), ascending */
     double cost_ms;
-    int col; /* master column */
+    int col;             /* master column */
     unsigned char binds; /* the arms whose time is the pattern's max: bit hv_side_t */
 } pattern_t;
 
@@ -73,7 +73,7 @@ typedef struct basis {
 typedef struct count_row {
     uint32_t lo, hi;
     int row;
-    int art; /* artificial column: keeps an "at least" row feasible at every node */
+    int art;         /* artificial column: keeps an "at least" row feasible at every node */
     double min, max; /* -INFINITY / INFINITY: no restriction on that side */
 } count_row_t;
 
@@ -108,25 +108,25 @@ typedef struct bp_master {
     size_t n_pat, pat_cap;
     uint32_t *pf;
     size_t pf_len, pf_cap;
-    unsigned char *pat_open;   /* the column is open in the master (2: fixed at 1) */
+    unsigned char *pat_open; /* the column is open in the master (2: fixed at 1) */
     size_t open_cap, dead_cap;
-    unsigned char *pat_dead;  /* uses a pair removed by reduced-cost fixing */
-    int32_t *hslot; /* open-addressing hash of patterns, -1 = empty */
+    unsigned char *pat_dead; /* uses a pair removed by reduced-cost fixing */
+    int32_t *hslot;          /* open-addressing hash of patterns, -1 = empty */
     size_t hcap;
     hv_pricer_t pricer;
-    int lp_dual_next;   /* rows were added: the next master solve is a dual one */
+    int lp_dual_next; /* rows were added: the next master solve is a dual one */
     hv_price_item_t *itl, *itr;
     uint32_t *sel;
     double *pi_lp, *mu_lp, *sg_lp; /* the master's duals: fruit (+ cut), stop, count rows */
-    double *pi_c, *sg_c;          /* the duals of the best bound at this node (centre) */
-    double *pi_sep, *sg_sep;      /* the duals priced at */
-    double *cover;                /* per fruit: the patterns of the last pricing holding it */
-    double smooth;                /* this node's smoothing weight (auto_smoothing) */
+    double *pi_c, *sg_c;           /* the duals of the best bound at this node (centre) */
+    double *pi_sep, *sg_sep;       /* the duals priced at */
+    double *cover;                 /* per fruit: the patterns of the last pricing holding it */
+    double smooth;                 /* this node's smoothing weight (auto_smoothing) */
     size_t sg_cap, sgc_cap, sgs_cap;
     double *sigma_lp;
     double center_lag;
     int root_centre; /* center_lag / pi_c were set before the root: keep them */
-    cand_t *cand; /* per stop */
+    cand_t *cand;    /* per stop */
     uint32_t *cf;
     size_t cf_len, cf_cap;
     size_t *warm_pair; /* per stop (slots at stop_begin[p]): its last best pattern's pairs */
@@ -134,7 +134,7 @@ typedef struct bp_master {
     size_t *pair_at;   /* per fruit: its pair at the stop being priced */
     int *ind;
     double *val;
-    size_t iv_cap; /* entries of ind and val */
+    size_t iv_cap;  /* entries of ind and val */
     double *stop_v; /* per stop: its term of the Lagrangian bound at the duals last priced */
 } bp_master_t;
 
@@ -148,10 +148,10 @@ typedef struct bp_tree {
     int32_t cur_basis; /* what the current node's parent left it, -1 none */
     int32_t *heap;
     size_t heap_len, heap_cap;
-    uint32_t *lo, *hi; /* the current node's stop interval per fruit */
+    uint32_t *lo, *hi;    /* the current node's stop interval per fruit */
     double *stop_mass;    /* scratch of choose_count: prefix sums of the mass per stop */
     uint32_t *stop_empty; /* ... and the runs of stops without mass (2 ns) */
-    int inexact; /* a numerically doubtful node was closed: do not claim optimality */
+    int inexact;          /* a numerically doubtful node was closed: do not claim optimality */
     /* pseudocosts of fruit splits, [0] the child "<= stop", [1] "> stop": per fruit the sum
      * of (child bound - parent bound) / frac and the count, and over all fruits; with two
      * workers read from and added to the pool they share (milp_share.h) */
@@ -162,7 +162,7 @@ typedef struct bp_tree {
     hv_share_pc_t ivpc;
     size_t ivpc_w;
     /* two tree workers (milp_share.h): the main search holds the second in `worker` */
-    hv_share_t *share;   /* NULL while one worker searches */
+    hv_share_t *share;     /* NULL while one worker searches */
     struct worker *worker; /* the second worker, NULL none */
     int is_worker;         /* this is the second worker: no progress lines */
     long nodes_done;       /* the second worker's nodes */
@@ -177,15 +177,15 @@ typedef struct bp_tree {
 
 /* The subset-row cuts (milp_srcuts.h), separated at the root only. */
 typedef struct bp_cuts {
-    hv_src_t src;       /* subset-row cuts: their duals follow the fruits' in every pi */
-    int *src_row;       /* per cut: its master row */
-    uint32_t *src_hit;  /* scratch: the cuts a pattern meets (SR_MAX) */
-    int32_t *src_bit;   /* per cut: its bit in the stop being priced, -1 none */
-    double pen[64];     /* the penalties of those bits */
-    int sr_rounds;      /* separation rounds done at the root */
-    int sr_max;         /* ... and to do: opt->sr_cuts, or sr_cuts_large from CENTRE_MIN_PAIRS */
-    double sr_lb0;      /* the root's bound before the first cut */
-    long src_overflow;  /* stops priced with more than 64 cuts (the rest left out) */
+    hv_src_t src;      /* subset-row cuts: their duals follow the fruits' in every pi */
+    int *src_row;      /* per cut: its master row */
+    uint32_t *src_hit; /* scratch: the cuts a pattern meets (SR_MAX) */
+    int32_t *src_bit;  /* per cut: its bit in the stop being priced, -1 none */
+    double pen[64];    /* the penalties of those bits */
+    int sr_rounds;     /* separation rounds done at the root */
+    int sr_max;        /* ... and to do: opt->sr_cuts, or sr_cuts_large from CENTRE_MIN_PAIRS */
+    double sr_lb0;     /* the root's bound before the first cut */
+    long src_overflow; /* stops priced with more than 64 cuts (the rest left out) */
     long src_bits, src_stops; /* cut bits given to priced stops, and those stops */
     long sr_dropped;          /* cuts deleted after the root as not worth their cost */
 } bp_cuts_t;
@@ -229,14 +229,14 @@ typedef struct bp_stats {
     long dives;
     double t_window; /* time spent re-planning row windows (s) */
     long windows, windows_better;
-    rins_stats_t rins; /* the relaxation-induced neighbourhoods (both workers' at the end) */
-    int rins_wait; /* nodes solved since the last neighbourhoods */
+    rins_stats_t rins;    /* the relaxation-induced neighbourhoods (both workers' at the end) */
+    int rins_wait;        /* nodes solved since the last neighbourhoods */
     double t_lp, t_price; /* time in the master LP and in pricing (s) */
     long lp_restarts;     /* master bases rebuilt after a singular warm start */
     long lp_stalls;       /* primal simplex calls stopped as stalled, finished by the dual */
     long heur_runs, heur_wins;
-    long iv_branches;      /* branches on an interval's stop count (interval_branching) */
-    long tailed;           /* nodes branched on before their column generation converged */
+    long iv_branches; /* branches on an interval's stop count (interval_branching) */
+    long tailed;      /* nodes branched on before their column generation converged */
 } bp_stats_t;
 
 struct bp_plugin;
@@ -337,10 +337,8 @@ int bp_hash_rebuild(bp_t *b, size_t cap);
 int32_t bp_pattern_find(const bp_t *b, uint32_t stop, const uint32_t *f, uint32_t n);
 void bp_col_open(bp_t *b, size_t j, unsigned char open);
 void bp_stop_arms(const bp_t *b, const uint32_t *stop_of, double *arm, unsigned char *used);
-double bp_stop_cost_ms(const bp_t *b, const double *arm, const unsigned char *used,
-                           size_t p);
-int bp_pattern_times(const bp_t *b, uint32_t stop, const uint32_t *f, uint32_t n,
-                         double w[2]);
+double bp_stop_cost_ms(const bp_t *b, const double *arm, const unsigned char *used, size_t p);
+int bp_pattern_times(const bp_t *b, uint32_t stop, const uint32_t *f, uint32_t n, double w[2]);
 int bp_pattern_add(bp_t *b, uint32_t stop, uint32_t *f, uint32_t n, double cost_ms);
 int bp_add_assignment_columns(bp_t *b, const uint32_t *stop_of);
 int bp_add_start_columns(bp_t *b);
@@ -349,8 +347,8 @@ int bp_add_start_columns(bp_t *b);
 void bp_free(bp_t *b);
 hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_options_t *opt);
 size_t bp_n_pi(const bp_t *b);
-int32_t bp_basis_keep(bp_t *b, int nr, int nc, unsigned char *stat, double *duals,
-                          size_t n_pi, size_t n_sg, double lag);
+int32_t bp_basis_keep(bp_t *b, int nr, int nc, unsigned char *stat, double *duals, size_t n_pi,
+                      size_t n_sg, double lag);
 int32_t bp_basis_save(bp_t *b);
 count_row_t *bp_crow_get(bp_t *b, uint32_t lo, uint32_t hi);
 int bp_skippable(const bp_t *b, size_t f);
@@ -360,11 +358,9 @@ int bp_duals_read(bp_t *b);
 hv_status_t bp_lp_solve(bp_t *b, int first);
 
 /* pricing.c */
-void bp_stop_items(bp_t *b, size_t p, const double *pi, int node_only, size_t *nl,
-                       size_t *nr);
+void bp_stop_items(bp_t *b, size_t p, const double *pi, int node_only, size_t *nl, size_t *nr);
 const double *bp_cut_bits(bp_t *b, const double *pi, size_t nl, size_t nr, int *overflow);
-hv_status_t bp_price_at(bp_t *b, const double *pi, const double *sg, double *lag_ms,
-                            int *added);
+hv_status_t bp_price_at(bp_t *b, const double *pi, const double *sg, double *lag_ms, int *added);
 
 /* incumbent.c */
 void bp_set_incumbent(bp_t *b, const hv_assignment_t *a, double t_s);
@@ -389,8 +385,8 @@ hv_status_t bp_node_process(bp_t *b, int32_t k, node_end_t *end, split_t *sp);
 /* tree.c */
 int bp_must_stop(const bp_t *b);
 int bp_prunable(const bp_t *b, double lb_ms);
-int bp_node_new(bp_t *b, int32_t parent, node_kind_t kind, uint32_t fruit, uint32_t lo,
-                    uint32_t hi, int32_t rhs, double lb);
+int bp_node_new(bp_t *b, int32_t parent, node_kind_t kind, uint32_t fruit, uint32_t lo, uint32_t hi,
+                int32_t rhs, double lb);
 int bp_heap_push(bp_t *b, int32_t k);
 int32_t bp_heap_pop(bp_t *b);
 void bp_region_floor(bp_t *b);

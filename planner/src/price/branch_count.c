@@ -43,8 +43,16 @@ static void bp_choose_count(bp_t *b, const double *x, split_t *best)
         m[p + 1] += m[p];
     }
     double tot = m[b->ns], ft = tot - floor(tot), sc = fmin(ft, 1.0 - ft);
-    *best = (split_t){KIND_COUNT_LE, 0, 0, 0, (uint32_t)(b->ns - 1), (int32_t)floor(tot),
-                      sc > LAMBDA_EPS ? sc : 0.0, ft >= 0.5, 0.0, 0.0};
+    *best = (split_t){KIND_COUNT_LE,
+                      0,
+                      0,
+                      0,
+                      (uint32_t)(b->ns - 1),
+                      (int32_t)floor(tot),
+                      sc > LAMBDA_EPS ? sc : 0.0,
+                      ft >= 0.5,
+                      0.0,
+                      0.0};
     if (best->score >= COUNT_MIN_SCORE || b->opt->interval_branching <= 0) {
         return;
     }

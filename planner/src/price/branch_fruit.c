@@ -94,8 +94,8 @@ static hv_status_t bp_choose_split(bp_t *b, const double *x, split_t *best)
                 score = w_binds * fmax((tot - cum) * pc_lo, 1e-6) * fmax(cum * pc_hi, 1e-6);
             }
             if (s > LAMBDA_EPS && score > best->score) {
-                *best = (split_t){KIND_FRUIT, m[i].fruit, m[k - 1].stop, 0, 0, 0, score,
-                                  cum < 0.5 * tot, tot - cum, cum};
+                *best = (split_t){KIND_FRUIT, m[i].fruit, m[k - 1].stop,   0,         0,
+                                  0,          score,      cum < 0.5 * tot, tot - cum, cum};
             }
         }
         i = e;

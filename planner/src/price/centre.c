@@ -36,9 +36,8 @@ void bp_compact_centre(bp_t *b, double limit_s)
     if (glp_simplex(m.lp, &sp) == 0 && glp_get_status(m.lp) == GLP_OPT) {
         /* the model's first rows are the assignment rows, in fruit order */
         for (size_t f = 0; f < b->nf; ++f) {
-            b->m.pi_c[f] = b->m.row_of_fruit[f]
-                             ? 1000.0 * glp_get_row_dual(m.lp, b->m.row_of_fruit[f])
-                             : 0.0;
+            b->m.pi_c[f] =
+                b->m.row_of_fruit[f] ? 1000.0 * glp_get_row_dual(m.lp, b->m.row_of_fruit[f]) : 0.0;
         }
         double lag;
         int added;
@@ -67,9 +66,8 @@ hv_status_t bp_ascent_centre(bp_t *b, int steps)
     size_t nf = b->nf;
     double *pi = calloc(nf + 1, sizeof *pi), *g = malloc((nf + 1) * sizeof *g),
            *d = calloc(nf + 1, sizeof *d), *pi_best = calloc(nf + 1, sizeof *pi_best);
-    hv_status_t st = pi != NULL && g != NULL && d != NULL && pi_best != NULL
-                         ? HV_OK
-                         : HV_ERR_PLAN_NOMEM;
+    hv_status_t st =
+        pi != NULL && g != NULL && d != NULL && pi_best != NULL ? HV_OK : HV_ERR_PLAN_NOMEM;
     double best = -INFINITY, theta = 1.0, t0 = hv_milp_now_s();
     int since = 0, it = 0;
     long added = 0;

@@ -22,8 +22,8 @@ hv_status_t bp_fix_pairs(bp_t *b)
     const hv_instance_t *in = b->inst;
     const double *pi = b->fix.root_pi;
     const double big = 1e7; /* forces an item into the pattern */
-    double slack = b->inc.ub_ms - b->fix.root_lag - (b->whole_ms ? 1.0 : b->opt->rel_gap *
-                                                     b->inc.ub_ms);
+    double slack =
+        b->inc.ub_ms - b->fix.root_lag - (b->whole_ms ? 1.0 : b->opt->rel_gap * b->inc.ub_ms);
     double t0 = hv_milp_now_s();
     int stopped = 0;
     for (size_t p = 0; p < b->ns; ++p) {
@@ -44,8 +44,7 @@ hv_status_t bp_fix_pairs(bp_t *b)
         double vp, time;
         size_t n_sel;
         hv_status_t st = hv_pricer_best(&b->m.pricer, b->m.itl, nl, b->m.itr, nr, b->tau_ms, pen,
-                                        0.0,
-                                        &vp, b->m.sel, &n_sel, &time);
+                                        0.0, &vp, b->m.sel, &n_sel, &time);
         if (st == HV_ERR_MILP_DEADLINE) {
             stopped = 1;
             break;

@@ -46,8 +46,7 @@ static hv_status_t polish_exec(bp_t *b, const bp_plugin_t *self, bp_call_t *call
 {
     (void)self;
     (void)call;
-    if (b->inc.ub_ms - b->fix.root_lag > PRIMAL_ROOT_GAP * b->inc.ub_ms &&
-        b->inc.helper == NULL) {
+    if (b->inc.ub_ms - b->fix.root_lag > PRIMAL_ROOT_GAP * b->inc.ub_ms && b->inc.helper == NULL) {
         return bp_polish_incumbent(b);
     }
     return HV_OK;

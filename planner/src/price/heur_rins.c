@@ -79,8 +79,8 @@ static hv_status_t bp_rins_at(bp_t *b, const double *x, int ncol)
             continue; /* x does not hold it: its pairs stay closed */
         }
         for (uint32_t q = 0; q < b->m.pat[k].n; ++q) {
-            size_t pk = hv_instance_pair_index(b->inst, b->m.pf[b->m.pat[k].first + q],
-                                               b->m.pat[k].stop);
+            size_t pk =
+                hv_instance_pair_index(b->inst, b->m.pf[b->m.pat[k].first + q], b->m.pat[k].stop);
             if (pk != SIZE_MAX) {
                 open[pk] = 1;
             }

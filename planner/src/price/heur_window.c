@@ -27,9 +27,9 @@ static hv_status_t bp_window_reopt(bp_t *b)
     memcpy(a.fruit_stop, b->inc.best, b->nf * sizeof *b->inc.best);
     double t = b->inc.ub_ms / 1000.0;
     hv_window_stats_t ws;
-    hv_status_t st = hv_window_improve(b->inst, b->opt, b->sub, (unsigned)b->opt->window_width,
-                                       WINDOW_LIMIT_S, t0 + WINDOW_SHARE * (b->t_deadline - t0),
-                                       &a, &t, &ws, NULL, NULL, NULL);
+    hv_status_t st =
+        hv_window_improve(b->inst, b->opt, b->sub, (unsigned)b->opt->window_width, WINDOW_LIMIT_S,
+                          t0 + WINDOW_SHARE * (b->t_deadline - t0), &a, &t, &ws, NULL, NULL, NULL);
     if (st == HV_OK) {
         st = bp_offer_plan(b, &a, t);
     }
@@ -48,8 +48,8 @@ static hv_status_t window_start_exec(bp_t *b, const bp_plugin_t *self, bp_call_t
     (void)call;
     if (b->opt->window_width > 0 && b->opt->helper_thread && isfinite(b->inc.ub_ms)) {
         hv_assignment_t a = {b->nf, b->inc.best};
-        return hv_helper_start(b->inst, b->opt, b->sub, &a, b->inc.ub_ms / 1000.0,
-                               b->t_deadline, bp_polish_kicks(b), &b->inc.helper);
+        return hv_helper_start(b->inst, b->opt, b->sub, &a, b->inc.ub_ms / 1000.0, b->t_deadline,
+                               bp_polish_kicks(b), &b->inc.helper);
     }
     return HV_OK;
 }
@@ -71,6 +71,5 @@ static hv_status_t window_exec(bp_t *b, const bp_plugin_t *self, bp_call_t *call
     return HV_OK;
 }
 
-const bp_plugin_t bp_heur_window_start = {"windows-helper", BP_AT_START, 100, 0,
-                                          window_start_exec};
+const bp_plugin_t bp_heur_window_start = {"windows-helper", BP_AT_START, 100, 0, window_start_exec};
 const bp_plugin_t bp_heur_window = {"windows", BP_AFTER_ROOT, 100, 0, window_exec};

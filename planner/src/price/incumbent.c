@@ -160,8 +160,8 @@ hv_status_t bp_take_plan(bp_t *b, int from_helper)
     /* the helper's plans reach the root at times its thread sets: as columns they made the
      * root's column generation take 275-620 rounds at alpha 4 seed 8 instead of 376
      * (SOLVER.md's history), so they wait until the root is solved */
-    hv_status_t st = got ? bp_offer_plan_cols(b, &a, t, from_helper && !isfinite(b->fix.root_lag))
-                         : HV_OK;
+    hv_status_t st =
+        got ? bp_offer_plan_cols(b, &a, t, from_helper && !isfinite(b->fix.root_lag)) : HV_OK;
     hv_assignment_free(&a);
     bp_region_floor(b);
     return st;

@@ -144,21 +144,18 @@ hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_options_t 
     b->region.region_s0 = SIZE_MAX;
     if (b->m.stop_v == NULL || b->region.region_pi == NULL || b->region.region_v == NULL ||
         b->m.stop_begin == NULL || b->m.stop_pair == NULL || b->m.row_of_fruit == NULL ||
-        b->m.row_of_stop == NULL || b->m.fixed_pat == NULL || b->tree.lo == NULL || b->tree.hi ==
-        NULL ||
-        b->m.itl == NULL || b->m.itr == NULL || b->m.sel == NULL || b->m.pi_lp == NULL ||
-        b->m.pi_c == NULL ||
-        b->m.pi_sep == NULL || b->m.cover == NULL || b->m.mu_lp == NULL || b->m.sigma_lp == NULL ||
-        b->tree.stop_mass == NULL || b->tree.stop_empty == NULL || b->m.cand == NULL ||
-        b->m.warm_pair == NULL || b->m.warm_n == NULL || b->m.pair_at == NULL ||
-        b->fix.pair_dead == NULL || b->fix.root_pi == NULL || b->cuts.src_row == NULL ||
-        b->cuts.src_hit == NULL || b->cuts.src_bit == NULL || hv_src_init(&b->cuts.src, nf) !=
-        HV_OK ||
+        b->m.row_of_stop == NULL || b->m.fixed_pat == NULL || b->tree.lo == NULL ||
+        b->tree.hi == NULL || b->m.itl == NULL || b->m.itr == NULL || b->m.sel == NULL ||
+        b->m.pi_lp == NULL || b->m.pi_c == NULL || b->m.pi_sep == NULL || b->m.cover == NULL ||
+        b->m.mu_lp == NULL || b->m.sigma_lp == NULL || b->tree.stop_mass == NULL ||
+        b->tree.stop_empty == NULL || b->m.cand == NULL || b->m.warm_pair == NULL ||
+        b->m.warm_n == NULL || b->m.pair_at == NULL || b->fix.pair_dead == NULL ||
+        b->fix.root_pi == NULL || b->cuts.src_row == NULL || b->cuts.src_hit == NULL ||
+        b->cuts.src_bit == NULL || hv_src_init(&b->cuts.src, nf) != HV_OK ||
         b->tree.pc.sum[0] == NULL || b->tree.pc.sum[1] == NULL || b->tree.pc.n[0] == NULL ||
-        b->tree.pc.n[1] == NULL ||
-        b->tree.ivpc.sum[0] == NULL || b->tree.ivpc.sum[1] == NULL || b->tree.ivpc.n[0] == NULL ||
-        b->tree.ivpc.n[1] == NULL ||
-        b->m.ind == NULL || b->m.val == NULL || b->inc.best == NULL || b->m.sigma_stop == NULL ||
+        b->tree.pc.n[1] == NULL || b->tree.ivpc.sum[0] == NULL || b->tree.ivpc.sum[1] == NULL ||
+        b->tree.ivpc.n[0] == NULL || b->tree.ivpc.n[1] == NULL || b->m.ind == NULL ||
+        b->m.val == NULL || b->inc.best == NULL || b->m.sigma_stop == NULL ||
         !bp_hash_rebuild(b, 1024)) {
         return HV_ERR_PLAN_NOMEM;
     }
@@ -192,8 +189,7 @@ hv_status_t bp_init(bp_t *b, const hv_instance_t *inst, const hv_milp_options_t 
 
     /* master: a row per reachable fruit (>= 1 or = 1: opt->cover_rows), a row per usable
      * stop (<= 1), and an artificial column per fruit row */
-    int cover = opt->cover_rows == 1 ||
-                (opt->cover_rows == 2 && inst->n_pairs >= CENTRE_MIN_PAIRS);
+    int cover = opt->cover_rows == 1 || (opt->cover_rows == 2 && inst->n_pairs >= CENTRE_MIN_PAIRS);
     b->cuts.sr_max = inst->n_pairs >= CENTRE_MIN_PAIRS ? opt->sr_cuts_large : opt->sr_cuts;
     b->m.lp = glp_create_prob();
     glp_set_obj_dir(b->m.lp, GLP_MIN);
@@ -236,8 +232,8 @@ size_t bp_n_pi(const bp_t *b)
 /* A basis of nr rows and nc columns (statuses `stat`, rows first) with its centre (`duals`:
  * n_pi fruit and cut duals, then n_sg count-row duals; bound lag) joins b->tree.bases, which
  * takes both arrays: returns its index, or -1 (both freed) past the memory cap. */
-int32_t bp_basis_keep(bp_t *b, int nr, int nc, unsigned char *stat, double *duals,
-                      size_t n_pi, size_t n_sg, double lag)
+int32_t bp_basis_keep(bp_t *b, int nr, int nc, unsigned char *stat, double *duals, size_t n_pi,
+                      size_t n_sg, double lag)
 {
     size_t bytes = (size_t)nr + (size_t)nc + (n_pi + n_sg) * sizeof(double);
     if (b->tree.bases_bytes + bytes > ((size_t)256 << 20) ||
@@ -305,8 +301,8 @@ count_row_t *bp_crow_get(bp_t *b, uint32_t lo, uint32_t hi)
         return NULL;
     }
     count_row_t *c = &b->m.crow[b->m.n_crow++];
-    *c = (count_row_t){lo, hi, glp_add_rows(b->m.lp, 1), glp_add_cols(b->m.lp, 1), -INFINITY,
-                       INFINITY};
+    *c = (count_row_t){lo,        hi,      glp_add_rows(b->m.lp, 1), glp_add_cols(b->m.lp, 1),
+                       -INFINITY, INFINITY};
     int len = 0;
     for (size_t j = 0; j < b->m.n_pat; ++j) {
         if (lo <= b->m.pat[j].stop && b->m.pat[j].stop <= hi) {
@@ -405,10 +401,10 @@ hv_status_t bp_node_apply(bp_t *b, int32_t k, int *infeasible)
         bp_col_open(b, j, fx == (int32_t)j ? 2 : (ok && fx < 0 && !b->m.pat_dead[j]));
     }
     for (size_t f = 0; b->skip_ms != NULL && f < b->nf; ++f) {
-        if (bp_skippable(b, f) && b->m.row_of_fruit[f] !=
-            0) { /* the artificial stays: feasibility */
-            glp_set_obj_coef(b->m.lp, b->m.row_of_fruit[f], bp_skip_open(b, f) ? b->skip_ms[f] :
-                             BIG_MS);
+        if (bp_skippable(b, f) &&
+            b->m.row_of_fruit[f] != 0) { /* the artificial stays: feasibility */
+            glp_set_obj_coef(b->m.lp, b->m.row_of_fruit[f],
+                             bp_skip_open(b, f) ? b->skip_ms[f] : BIG_MS);
         }
     }
     b->tree.cur_basis = b->tree.nodes[k].basis;
@@ -427,8 +423,8 @@ int bp_duals_read(bp_t *b)
         return 0;
     }
     for (size_t f = 0; f < b->nf; ++f) {
-        b->m.pi_lp[f] = b->m.row_of_fruit[f] ? glp_get_row_dual(b->m.lp, b->m.row_of_fruit[f]) :
-            0.0;
+        b->m.pi_lp[f] =
+            b->m.row_of_fruit[f] ? glp_get_row_dual(b->m.lp, b->m.row_of_fruit[f]) : 0.0;
     }
     for (size_t c = 0; c < b->cuts.src.n; ++c) { /* "<= 1" rows: a dual above 0 is round-off */
         b->m.pi_lp[b->nf + c] = fmin(0.0, glp_get_row_dual(b->m.lp, b->cuts.src_row[c]));

@@ -12,9 +12,9 @@
 #include "plugins.h"
 
 static const bp_plugin_t *const all[] = {
-    &bp_heur_window_start, &bp_pricer,     &bp_region_capture_plugin, &bp_sep_subset_row,
-    &bp_heur_polish,       &bp_branch_count, &bp_branch_fruit,        &bp_heur_round,
-    &bp_heur_rins,         &bp_heur_dive,    &bp_heur_window,         &bp_region,
+    &bp_heur_window_start, &bp_pricer,       &bp_region_capture_plugin, &bp_sep_subset_row,
+    &bp_heur_polish,       &bp_branch_count, &bp_branch_fruit,          &bp_heur_round,
+    &bp_heur_rins,         &bp_heur_dive,    &bp_heur_window,           &bp_region,
 };
 
 const bp_plugin_t *const *bp_plugins_all(size_t *n)

@@ -120,16 +120,14 @@ void bp_stop_arms(const bp_t *b, const uint32_t *stop_of, double *arm, unsigned 
 }
 
 /* Stop p's cost (ms) from stop_arms' arrays: tau + its slower arm's time, 0 when unused. */
-double bp_stop_cost_ms(const bp_t *b, const double *arm, const unsigned char *used,
-                       size_t p)
+double bp_stop_cost_ms(const bp_t *b, const double *arm, const unsigned char *used, size_t p)
 {
     return used[p] ? b->tau_ms + fmax(arm[2 * p], arm[2 * p + 1]) : 0.0;
 }
 
 /* The arms' pick times (ms, indexed by hv_side_t) of the pattern of fruits f[0 .. n) at
  * `stop` into w. Returns 0 when one of the fruits is not reachable from there. */
-int bp_pattern_times(const bp_t *b, uint32_t stop, const uint32_t *f, uint32_t n,
-                     double w[2])
+int bp_pattern_times(const bp_t *b, uint32_t stop, const uint32_t *f, uint32_t n, double w[2])
 {
     w[0] = w[1] = 0.0;
     for (uint32_t q = 0; q < n; ++q) {
@@ -170,8 +168,8 @@ int bp_pattern_add(bp_t *b, uint32_t stop, uint32_t *f, uint32_t n, double cost_
         return -1;
     }
     b->m.pat_dead[b->m.n_pat] = 0;
-    b->m.pat[b->m.n_pat] = (pattern_t){stop, (uint32_t)b->m.pf_len, n, cost_ms, 0,
-                                   bp_pattern_binds(b, stop, f, n)};
+    b->m.pat[b->m.n_pat] =
+        (pattern_t){stop, (uint32_t)b->m.pf_len, n, cost_ms, 0, bp_pattern_binds(b, stop, f, n)};
     memcpy(b->m.pf + b->m.pf_len, f, n * sizeof *f);
     b->m.pf_len += n;
     b->m.pat_open[b->m.n_pat] = 1;

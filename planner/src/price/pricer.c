@@ -31,7 +31,7 @@ static void bp_smooth_adapt(bp_t *b, double alpha)
         dot += g * (b->m.pi_lp[f] - b->m.pi_c[f]);
     }
     b->m.smooth = dot > 0.0 ? fmax(0.0, alpha - SMOOTH_STEP)
-                          : fmin(SMOOTH_MAX, alpha + SMOOTH_STEP * (1.0 - alpha));
+                            : fmin(SMOOTH_MAX, alpha + SMOOTH_STEP * (1.0 - alpha));
 }
 
 /* One pricing round with Wentges smoothing: price at alpha * (the duals of the best bound
@@ -41,8 +41,8 @@ static void bp_smooth_adapt(bp_t *b, double alpha)
 static hv_status_t bp_price_round(bp_t *b, int fresh_node, double *lag_ms, int *added)
 {
     size_t ncr = b->m.n_crow;
-    if (!bp_duals_read(b) || !hv_grow((void **)&b->m.sg_c, &b->m.sgc_cap, ncr + 1,
-                                      sizeof *b->m.sg_c) ||
+    if (!bp_duals_read(b) ||
+        !hv_grow((void **)&b->m.sg_c, &b->m.sgc_cap, ncr + 1, sizeof *b->m.sg_c) ||
         !hv_grow((void **)&b->m.sg_sep, &b->m.sgs_cap, ncr + 1, sizeof *b->m.sg_sep)) {
         return HV_ERR_PLAN_NOMEM;
     }

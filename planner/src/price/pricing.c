@@ -30,8 +30,7 @@ static void bp_sigma_per_stop(const bp_t *b, const double *sg, double *out)
 /* The pricing items of stop p at duals pi into itl / itr: its reachable fruits with a
  * positive dual and a pair not fixed out, and when node_only those the current node allows
  * there. Records each fruit's pair at p in pair_at. */
-void bp_stop_items(bp_t *b, size_t p, const double *pi, int node_only, size_t *nl,
-                   size_t *nr)
+void bp_stop_items(bp_t *b, size_t p, const double *pi, int node_only, size_t *nl, size_t *nr)
 {
     const hv_instance_t *in = b->inst;
     *nl = *nr = 0;
@@ -39,8 +38,8 @@ void bp_stop_items(bp_t *b, size_t p, const double *pi, int node_only, size_t *n
         size_t k = b->m.stop_pair[q];
         uint32_t f = in->pairs[k].fruit;
         b->m.pair_at[f] = k;
-        if (pi[f] <= 1e-9 || b->fix.pair_dead[k] || (node_only && (b->tree.lo[f] > p ||
-                b->tree.hi[f] < p))) {
+        if (pi[f] <= 1e-9 || b->fix.pair_dead[k] ||
+            (node_only && (b->tree.lo[f] > p || b->tree.hi[f] < p))) {
             continue;
         }
         hv_price_item_t it = {f, 1000.0 * in->pairs[k].cost_s, pi[f], 0};
@@ -116,8 +115,7 @@ const double *bp_cut_bits(bp_t *b, const double *pi, size_t nl, size_t nr, int *
  * and any sg of the right signs. Each stop's best pattern is
  * added to the master when its reduced cost at the master's own duals (pi_lp, mu_lp,
  * sg_lp) is negative. */
-hv_status_t bp_price_at(bp_t *b, const double *pi, const double *sg, double *lag_ms,
-                        int *added)
+hv_status_t bp_price_at(bp_t *b, const double *pi, const double *sg, double *lag_ms, int *added)
 {
     const hv_instance_t *in = b->inst;
     double sum = b->travel_ms;
@@ -175,7 +173,7 @@ hv_status_t bp_price_at(bp_t *b, const double *pi, const double *sg, double *lag
             for (size_t q = 0; q < b->m.warm_n[p] && ok; ++q) {
                 const hv_pair_t *pa = &in->pairs[warm[q]];
                 ok = b->tree.lo[pa->fruit] <= p && p <= b->tree.hi[pa->fruit] &&
-                    !b->fix.pair_dead[warm[q]];
+                     !b->fix.pair_dead[warm[q]];
                 *(in->fruits[pa->fruit].side == HV_SIDE_LEFT ? &wl : &wr) += 1000.0 * pa->cost_s;
                 prof += pi[pa->fruit];
                 b->m.sel[q] = pa->fruit;
@@ -214,7 +212,7 @@ hv_status_t bp_price_at(bp_t *b, const double *pi, const double *sg, double *lag
             b->m.cover[b->m.sel[q]] += 1.0;
         }
         double cost = b->tau_ms + time, rc = cost - b->m.mu_lp[p] - b->m.sigma_lp[p] +
-                                              bp_cut_penalty(b, b->m.sel, n_sel, b->m.pi_lp);
+                                             bp_cut_penalty(b, b->m.sel, n_sel, b->m.pi_lp);
         for (size_t q = 0; q < n_sel; ++q) {
             rc -= b->m.pi_lp[b->m.sel[q]];
         }

@@ -82,11 +82,11 @@ static hv_status_t bp_region_plan(bp_t *b, const uint32_t *plan, size_t s0, size
         return HV_ERR_PLAN_NOMEM;
     }
     for (size_t f = 0; f < b->nf; ++f) {
-        a.fruit_stop[f] = plan[f] != HV_NO_STOP ? plan[f]
-                          : (b->inc.best[f] != HV_NO_STOP && (b->inc.best[f] < s0 ||
-                                  b->inc.best[f] > s1))
-                              ? b->inc.best[f]
-                              : HV_NO_STOP;
+        a.fruit_stop[f] =
+            plan[f] != HV_NO_STOP ? plan[f]
+            : (b->inc.best[f] != HV_NO_STOP && (b->inc.best[f] < s0 || b->inc.best[f] > s1))
+                ? b->inc.best[f]
+                : HV_NO_STOP;
     }
     bp_stop_arms(b, a.fruit_stop, arm, used);
     for (size_t f = 0; f < b->nf; ++f) {
@@ -98,8 +98,7 @@ static hv_status_t bp_region_plan(bp_t *b, const uint32_t *plan, size_t s0, size
         for (size_t k = in->fruit_begin[f]; k < in->fruit_begin[f + 1]; ++k) {
             uint32_t p = in->pairs[k].stop;
             double t = arm[2 * p + side] + 1000.0 * in->pairs[k].cost_s;
-            double add = used[p] ? fmax(0.0, t - fmax(arm[2 * p], arm[2 * p + 1]))
-                                 : b->tau_ms + t;
+            double add = used[p] ? fmax(0.0, t - fmax(arm[2 * p], arm[2 * p + 1])) : b->tau_ms + t;
             if (add < best_add) {
                 best_add = add;
                 best = k;
@@ -127,8 +126,8 @@ static void bp_region_grow(const bp_t *b, size_t *s0, size_t *s1)
 /* What the regional bound must prove for the incumbent to be optimal, above region_lag0. */
 static double bp_region_need(const bp_t *b)
 {
-    double target = b->whole_ms ? b->inc.ub_ms - 1.0 + 1e-6 : b->inc.ub_ms * (1.0 -
-            b->opt->rel_gap);
+    double target =
+        b->whole_ms ? b->inc.ub_ms - 1.0 + 1e-6 : b->inc.ub_ms * (1.0 - b->opt->rel_gap);
     return target - b->region.region_lag0 + REGION_EPS_MS;
 }
 
@@ -184,8 +183,8 @@ static hv_status_t bp_region_try(bp_t *b)
     if (!bp_region_stretch(b, bp_region_need(b), &s0, &s1)) {
         return HV_OK;
     }
-    if (b->region.region_s0 <= s0 && s1 <=
-        b->region.region_s1) { /* inside one whose exact rise is known */
+    if (b->region.region_s0 <= s0 &&
+        s1 <= b->region.region_s1) { /* inside one whose exact rise is known */
         s0 = b->region.region_s0;
         s1 = b->region.region_s1;
         bp_region_grow(b, &s0, &s1);
@@ -197,14 +196,13 @@ static hv_status_t bp_region_try(bp_t *b)
     hv_status_t st = HV_OK;
     double last_rise = -INFINITY;
     while (st == HV_OK && s1 - s0 + 1 <= (size_t)b->opt->region_stops &&
-           !(s0 == b->region.region_s0 && s1 == b->region.region_s1) && !bp_prunable(b,
-                   b->region.region_lb)) {
+           !(s0 == b->region.region_s0 && s1 == b->region.region_s1) &&
+           !bp_prunable(b, b->region.region_lb)) {
         double t0 = hv_milp_now_s(), need = bp_region_need(b);
         hv_region_result_t rr;
         st = hv_region_rise(b->inst, (uint32_t)s0, (uint32_t)s1, b->region.region_pi,
-                            b->region.region_v,
-                            need, b->opt, b->sub, t0 + REGION_SHARE * (b->t_deadline - t0), plan,
-                            &rr);
+                            b->region.region_v, need, b->opt, b->sub,
+                            t0 + REGION_SHARE * (b->t_deadline - t0), plan, &rr);
         if (st != HV_OK) {
             break;
         }
@@ -216,10 +214,11 @@ static hv_status_t bp_region_try(bp_t *b)
             hv_share_floor(b->tree.share, b->region.region_lb);
         }
         if (b->opt->verbose >= 1) {
-            fprintf(stderr, "price: regional bound over stops %zu-%zu: %.3f of the %.3f ms "
-                    "needed above %.3f s (%.3f at its root), %ld nodes in %.2f s%s\n", s0, s1,
-                    rr.rise_ms, need, b->region.region_lag0 / 1000.0, rr.root_rise_ms, rr.nodes,
-                    hv_milp_now_s() - t0, rr.finished ? "" : ", stopped");
+            fprintf(stderr,
+                    "price: regional bound over stops %zu-%zu: %.3f of the %.3f ms "
+                    "needed above %.3f s (%.3f at its root), %ld nodes in %.2f s%s\n",
+                    s0, s1, rr.rise_ms, need, b->region.region_lag0 / 1000.0, rr.root_rise_ms,
+                    rr.nodes, hv_milp_now_s() - t0, rr.finished ? "" : ", stopped");
         }
         if (rr.has_plan && (st = bp_region_plan(b, plan, s0, s1)) != HV_OK) {
             break;

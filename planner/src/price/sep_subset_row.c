@@ -185,10 +185,9 @@ static hv_status_t sep_exec(bp_t *b, const bp_plugin_t *self, bp_call_t *call)
             return st;
         }
         call->added = 1;
-            return HV_OK; /* the root keeps its bound; the master converges without them */
+        return HV_OK; /* the root keeps its bound; the master converges without them */
     }
-    if (b->cuts.src.n > 0 &&
-        b->opt->sr_purge) {
+    if (b->cuts.src.n > 0 && b->opt->sr_purge) {
         size_t n_dropped;
         if ((st = bp_purge_slack_cuts(b, &n_dropped)) != HV_OK) {
             return st;

@@ -30,9 +30,8 @@ static hv_status_t bp_start(bp_t *b, const hv_instance_t *inst, const hv_milp_op
 }
 
 hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *opt,
-                           const hv_milp_subsolver_t *sub, const hv_assignment_t *inc,
-                           double inc_t, double t_deadline_s,
-                           hv_assignment_t *out, hv_milp_result_t *res)
+                           const hv_milp_subsolver_t *sub, const hv_assignment_t *inc, double inc_t,
+                           double t_deadline_s, hv_assignment_t *out, hv_milp_result_t *res)
 {
     bp_t b;
     hv_status_t st = bp_start(&b, inst, opt, sub, t_deadline_s);
@@ -83,23 +82,24 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
                     "nodes branched tailing off, second tree worker %ld nodes (%ld "
                     "nodes passed between the workers, %ld with a warm start)\n",
                     b.stats.cg_iters, b.stats.t_lp, glp_get_it_cnt(b.m.lp), b.stats.lp_restarts,
-                    b.stats.lp_stalls,
-                    b.stats.t_price, b.m.pricer.calls,
+                    b.stats.lp_stalls, b.stats.t_price, b.m.pricer.calls,
                     (double)b.m.pricer.points / (double)(b.m.pricer.calls ? b.m.pricer.calls : 1),
                     b.stats.heur_runs, b.stats.heur_wins, b.stats.t_heur, b.stats.dives,
-                    b.stats.t_dive, b.stats.windows,
-                    b.stats.windows_better, b.stats.t_window, b.inc.helper_plans, b.fix.pairs_fixed,
-                    inst->n_pairs, b.stats.t_fix, b.cuts.src.n, b.cuts.sr_rounds, b.cuts.sr_dropped,
+                    b.stats.t_dive, b.stats.windows, b.stats.windows_better, b.stats.t_window,
+                    b.inc.helper_plans, b.fix.pairs_fixed, inst->n_pairs, b.stats.t_fix,
+                    b.cuts.src.n, b.cuts.sr_rounds, b.cuts.sr_dropped,
                     (double)b.cuts.src_bits / (double)(b.cuts.src_stops ? b.cuts.src_stops : 1),
                     b.cuts.src_overflow, b.stats.iv_branches, b.stats.tailed, b.tree.nodes_done,
                     b.tree.given, b.tree.taken_warm);
         }
         if (opt->verbose >= 1) {
-            fprintf(stderr, "price: %ld relaxation-induced neighbourhoods (%ld better, %.1f "
+            fprintf(stderr,
+                    "price: %ld relaxation-induced neighbourhoods (%ld better, %.1f "
                     "fruits freed each) in %.2f s; %ld regional bounds (%ld proofs, %ld nodes) "
-                    "in %.2f s\n", b.stats.rins.calls, b.stats.rins.better,
-                    (double)b.stats.rins.freed / (double)(b.stats.rins.calls ?
-                                                          b.stats.rins.calls : 1),
+                    "in %.2f s\n",
+                    b.stats.rins.calls, b.stats.rins.better,
+                    (double)b.stats.rins.freed /
+                        (double)(b.stats.rins.calls ? b.stats.rins.calls : 1),
                     b.stats.rins.t_s, b.region.region_tries, b.region.region_proofs,
                     b.region.region_nodes, b.region.t_region);
         }
@@ -120,7 +120,7 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
             res->bound_s = fmin(lb, b.inc.ub_ms) / 1000.0;
             res->gap = (res->objective_s - res->bound_s) / fmax(res->objective_s, DBL_EPSILON);
             res->status = n_main == 0 && n_open == 0 && !b.tree.inexact ? HV_SOLVE_OPTIMAL
-                                                                   : HV_SOLVE_FEASIBLE;
+                                                                        : HV_SOLVE_FEASIBLE;
             if (res->status == HV_SOLVE_OPTIMAL) {
                 res->bound_s = res->objective_s; /* every open node was pruned */
                 res->gap = 0.0;
@@ -132,9 +132,8 @@ hv_status_t hv_price_solve(const hv_instance_t *inst, const hv_milp_options_t *o
 }
 
 hv_status_t hv_price_bound(const hv_instance_t *inst, const hv_milp_options_t *opt,
-                           const hv_milp_subsolver_t *sub, const double *skip_ms,
-                           double cutoff_ms, double t_deadline_s,
-                           uint32_t *plan, hv_price_bound_result_t *res)
+                           const hv_milp_subsolver_t *sub, const double *skip_ms, double cutoff_ms,
+                           double t_deadline_s, uint32_t *plan, hv_price_bound_result_t *res)
 {
     hv_milp_options_t o; /* what the virtual stops and the cutoff allow */
     hv_milp_subsolve_options(opt, t_deadline_s - hv_milp_now_s(), &o);
@@ -144,7 +143,7 @@ hv_status_t hv_price_bound(const hv_instance_t *inst, const hv_milp_options_t *o
     bp_t b;
     hv_status_t st = bp_start(&b, inst, &o, sub, t_deadline_s);
     b.skip_ms = skip_ms;
-    b.whole_ms = 0; /* the skip costs are duals, not whole ms */
+    b.whole_ms = 0;          /* the skip costs are duals, not whole ms */
     b.inc.ub_ms = cutoff_ms; /* no plan yet: b.inc.best is written by a better one only */
     *res = (hv_price_bound_result_t){-INFINITY, -INFINITY, 0, 0, 0};
     if (st == HV_OK && bp_add_start_columns(&b) < 0) {

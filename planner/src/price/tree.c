@@ -33,8 +33,8 @@ int bp_prunable(const bp_t *b, double lb_ms)
     return lb_ms >= b->inc.ub_ms - b->opt->rel_gap * b->inc.ub_ms - 1e-9;
 }
 
-int bp_node_new(bp_t *b, int32_t parent, node_kind_t kind, uint32_t fruit, uint32_t lo,
-                uint32_t hi, int32_t rhs, double lb)
+int bp_node_new(bp_t *b, int32_t parent, node_kind_t kind, uint32_t fruit, uint32_t lo, uint32_t hi,
+                int32_t rhs, double lb)
 {
     if (!hv_grow((void **)&b->tree.nodes, &b->tree.nodes_cap, b->tree.n_nodes + 1,
                  sizeof *b->tree.nodes)) {
@@ -152,8 +152,8 @@ double bp_open_bound(const bp_t *b, size_t *n)
 hv_status_t bp_search(bp_t *b, double *root_lb, long *nodes_done)
 {
     /* a centre set before the root is a proven bound already */
-    int32_t root = bp_node_new(b, -1, KIND_ROOT, 0, 0, 0, 0,
-                               b->m.root_centre ? b->m.center_lag : -INFINITY);
+    int32_t root =
+        bp_node_new(b, -1, KIND_ROOT, 0, 0, 0, 0, b->m.root_centre ? b->m.center_lag : -INFINITY);
     if (root != 0 || !bp_heap_push(b, root)) { /* node 0: the root of shared paths too */
         return HV_ERR_PLAN_NOMEM;
     }

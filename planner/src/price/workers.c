@@ -223,8 +223,8 @@ static hv_status_t bp_warm_unpack(bp_t *b, const hv_share_node_t *m, int32_t *bi
     if (!bp_warm_get(m, &at, &h, sizeof h)) {
         return HV_OK;
     }
-    size_t pat_at = at + (h.n_rows + h.n_art) * sizeof(warm_item_t) +
-                    h.n_crow * sizeof(warm_crow_t);
+    size_t pat_at =
+        at + (h.n_rows + h.n_art) * sizeof(warm_item_t) + h.n_crow * sizeof(warm_crow_t);
     size_t pi_len = h.n_pi * sizeof(double);
     if (pat_at + pi_len > m->warm_len || h.n_basic > m->warm_len) {
         return HV_OK;
@@ -267,8 +267,8 @@ static hv_status_t bp_warm_unpack(bp_t *b, const hv_share_node_t *m, int32_t *bi
  * restricts nothing) and its warm start. */
 hv_status_t bp_give_if_hungry(bp_t *b)
 {
-    while (b->tree.share != NULL && b->tree.heap_len > 0 && hv_share_hungry(b->tree.share,
-            bp_worker_id(b))) {
+    while (b->tree.share != NULL && b->tree.heap_len > 0 &&
+           hv_share_hungry(b->tree.share, bp_worker_id(b))) {
         int32_t k = bp_heap_pop(b);
         if (bp_prunable(b, b->tree.nodes[k].lb_ms)) {
             continue;
@@ -303,8 +303,7 @@ static int bp_import_shared(bp_t *b, int32_t *k)
     int32_t q = 0;
     for (size_t i = 0; i < m->n && q >= 0; ++i) {
         const hv_share_step_t *st = &m->path[i];
-        q = bp_node_new(b, q, (node_kind_t)st->kind, st->fruit, st->lo, st->hi, st->rhs,
-                        m->lb_ms);
+        q = bp_node_new(b, q, (node_kind_t)st->kind, st->fruit, st->lo, st->hi, st->rhs, m->lb_ms);
     }
     int32_t bi = -1;
     if (q < 0 || bp_warm_unpack(b, m, &bi) != HV_OK) {
@@ -399,8 +398,8 @@ static hv_status_t bp_clone(bp_t *w, const bp_t *b)
     w->fix.root_lag = b->fix.root_lag;
     w->fix.fixed_ub = b->fix.fixed_ub;
     memcpy(w->inc.best, b->inc.best, nf * sizeof *w->inc.best);
-    hv_share_pc_copy(&w->tree.ivpc, &b->tree.ivpc, b->ns *
-                     b->tree.ivpc_w); /* from here each its own */
+    hv_share_pc_copy(&w->tree.ivpc, &b->tree.ivpc,
+                     b->ns * b->tree.ivpc_w); /* from here each its own */
     w->inc.ub_ms = b->inc.ub_ms;
     memcpy(w->m.warm_pair, b->m.warm_pair, np * sizeof *w->m.warm_pair);
     memcpy(w->m.warm_n, b->m.warm_n, b->ns * sizeof *w->m.warm_n);
@@ -441,8 +440,8 @@ static void *bp_worker_main(void *arg)
     if (st == HV_OK) {
         st = bp_clone(&w, wk->main);
     }
-    if (st == HV_OK && bp_node_new(&w, -1, KIND_ROOT, 0, 0, 0, 0,
-                                   wk->main->tree.nodes[0].lb_ms) != 0) {
+    if (st == HV_OK &&
+        bp_node_new(&w, -1, KIND_ROOT, 0, 0, 0, 0, wk->main->tree.nodes[0].lb_ms) != 0) {
         st = HV_ERR_PLAN_NOMEM;
     }
     w.tree.share = wk->share;

@@ -87,8 +87,7 @@ double hv_test_value_ms(const hv_instance_t *in, const uint32_t *stop, const dou
     return v;
 }
 
-double hv_test_brute_force_ms(const hv_instance_t *in, const double *skip_ms,
-                              uint32_t *best_stop)
+double hv_test_brute_force_ms(const hv_instance_t *in, const double *skip_ms, uint32_t *best_stop)
 {
     size_t nf = in->n_fruits;
     size_t *idx = calloc(nf + 1, sizeof *idx);

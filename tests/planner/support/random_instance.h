@@ -26,7 +26,6 @@ double hv_test_value_ms(const hv_instance_t *in, const uint32_t *stop, const dou
 /* The optimum (ms) by enumeration: every reachable fruit at each of its stops, and left out
  * too where skip_ms (may be NULL: none) is finite; best_stop (may be NULL) receives the
  * first optimal choice. */
-double hv_test_brute_force_ms(const hv_instance_t *in, const double *skip_ms,
-                              uint32_t *best_stop);
+double hv_test_brute_force_ms(const hv_instance_t *in, const double *skip_ms, uint32_t *best_stop);
 
 #endif /* HV_TEST_RANDOM_INSTANCE_H */

@@ -14,8 +14,8 @@ typedef struct capped {
     tt_band_t band;
 } capped_t;
 
-static uint16_t capped_band(hv_side_t side, double y_rel, uint32_t ix, uint32_t iz,
-                            uint32_t iw, void *ctx)
+static uint16_t capped_band(hv_side_t side, double y_rel, uint32_t ix, uint32_t iz, uint32_t iw,
+                            void *ctx)
 {
     const double z_top_m = 0.75;
     capped_t *c = ctx;
@@ -47,8 +47,7 @@ int main(int argc, char **argv)
     }
     hv_grid_t g;
     hv_config_grid(&cfg, HV_SIDE_LEFT, &g);
-    capped_t ctx = {
-        g.axis[HV_AX_Z].origin, g.axis[HV_AX_Z].step, {reach, 2000, 15, 10}};
+    capped_t ctx = {g.axis[HV_AX_Z].origin, g.axis[HV_AX_Z].step, {reach, 2000, 15, 10}};
     for (int side = 0; side < 2; ++side) {
         uint8_t *buf = NULL;
         size_t len = 0;

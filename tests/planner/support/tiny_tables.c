@@ -42,8 +42,8 @@ static hv_status_t table_cost(const void *ctx, const hv_fruit_t *fr, double stop
 {
     const hv_costtab_t *tab = ctx;
     uint16_t ms = 0;
-    hv_status_t st = hv_costtab_lookup(&tab[fr->side], fr->x_m, fr->y_m - stop_y_m, fr->z_m,
-                                       fr->yaw_rad, &ms);
+    hv_status_t st =
+        hv_costtab_lookup(&tab[fr->side], fr->x_m, fr->y_m - stop_y_m, fr->z_m, fr->yaw_rad, &ms);
     *cost_s = ms / 1000.0;
     *why = st == HV_OK ? HV_PICK_OK : HV_PICK_DEPTH;
     return st;
@@ -60,8 +60,8 @@ void tt_table_model(const hv_costtab_t tab[2], hv_pick_model_t *model)
     }
 }
 
-int tt_make_table(const hv_config_t *cfg, hv_side_t side, tt_cost_fn fn, void *ctx,
-                  uint8_t **buf, size_t *len, hv_costtab_t *tab)
+int tt_make_table(const hv_config_t *cfg, hv_side_t side, tt_cost_fn fn, void *ctx, uint8_t **buf,
+                  size_t *len, hv_costtab_t *tab)
 {
     hv_grid_t g;
     hv_config_grid(cfg, side, &g);

@@ -29,8 +29,8 @@ int tt_load_config(hv_config_t *cfg);
 
 /* Build a table of `side` on the config's grid: *buf (malloc'd, free it) holds the file
  * bytes (*len), *tab is opened on it. 0 on success. */
-int tt_make_table(const hv_config_t *cfg, hv_side_t side, tt_cost_fn fn, void *ctx,
-                  uint8_t **buf, size_t *len, hv_costtab_t *tab);
+int tt_make_table(const hv_config_t *cfg, hv_side_t side, tt_cost_fn fn, void *ctx, uint8_t **buf,
+                  size_t *len, hv_costtab_t *tab);
 
 #include "hv/pick_model.h"
 /* A pick model whose costs are the tables' nearest cells (tab[HV_SIDE_LEFT], [RIGHT]; they

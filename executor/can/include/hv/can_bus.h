@@ -32,14 +32,14 @@
 extern "C" {
 #endif
 
-#define HV_CAN_MAX_DLC 8
+#define HV_CAN_MAX_DLC     8
 #define HV_CAN_MAX_FILTERS 16
-#define HV_CAN_SFF_MASK 0x7FFu      /* standard 11-bit id */
-#define HV_CAN_EFF_MASK 0x1FFFFFFFu /* extended 29-bit id */
+#define HV_CAN_SFF_MASK    0x7FFu      /* standard 11-bit id */
+#define HV_CAN_EFF_MASK    0x1FFFFFFFu /* extended 29-bit id */
 
 /* python-can's udp_multicast defaults (can/interfaces/udp_multicast/bus.py) */
 #define HV_CAN_UDP_DEFAULT_GROUP "239.74.163.2"
-#define HV_CAN_UDP_DEFAULT_PORT 43113
+#define HV_CAN_UDP_DEFAULT_PORT  43113
 
 /* hv_can_frame_t.flags */
 #define HV_CAN_FLAG_EXT 0x01u /* 29-bit id */
@@ -47,9 +47,9 @@ extern "C" {
 #define HV_CAN_FLAG_ERR 0x04u /* error frame: id holds the error class bits */
 
 typedef struct hv_can_frame {
-    uint32_t id;          /* 11-bit (or 29-bit with HV_CAN_FLAG_EXT), no flag bits in it */
-    uint8_t dlc;          /* payload length in bytes, 0..8 */
-    uint8_t flags;        /* HV_CAN_FLAG_* */
+    uint32_t id;   /* 11-bit (or 29-bit with HV_CAN_FLAG_EXT), no flag bits in it */
+    uint8_t dlc;   /* payload length in bytes, 0..8 */
+    uint8_t flags; /* HV_CAN_FLAG_* */
     uint8_t data[HV_CAN_MAX_DLC];
     int64_t timestamp_ns; /* receive: kernel receive time, ns since the Unix epoch
                              (CLOCK_REALTIME, same clock as python-can's timestamps);
@@ -65,18 +65,18 @@ typedef struct hv_can_filter {
 } hv_can_filter_t;
 
 typedef struct hv_can_stats {
-    uint64_t tx_frames;        /* frames handed to the kernel */
-    uint64_t rx_frames;        /* frames returned by hv_can_recv (after filtering) */
-    uint64_t rx_error_frames;  /* error frames seen (socketcan: CAN_ERR_FLAG; udp:
+    uint64_t tx_frames;       /* frames handed to the kernel */
+    uint64_t rx_frames;       /* frames returned by hv_can_recv (after filtering) */
+    uint64_t rx_error_frames; /* error frames seen (socketcan: CAN_ERR_FLAG; udp:
                                   is_error_frame); also returned, flagged HV_CAN_FLAG_ERR */
-    uint64_t rx_malformed;     /* datagrams/frames dropped because they do not parse
+    uint64_t rx_malformed;    /* datagrams/frames dropped because they do not parse
                                   (bad msgpack, missing or mistyped keys, dlc > 8, ...) */
-    uint64_t rx_unsupported;   /* well-formed but unusable here, dropped: CAN FD frames */
-    uint64_t rx_filtered;      /* dropped by the software filter (udp only: socketcan
+    uint64_t rx_unsupported;  /* well-formed but unusable here, dropped: CAN FD frames */
+    uint64_t rx_filtered;     /* dropped by the software filter (udp only: socketcan
                                   filters in the kernel, those never reach us) */
-    uint64_t rx_kernel_drops;  /* socketcan: frames the kernel dropped on a full receive
+    uint64_t rx_kernel_drops; /* socketcan: frames the kernel dropped on a full receive
                                   queue (SO_RXQ_OVFL), 0 where unknown */
-    uint64_t tx_failures;      /* sends that returned an error (incl. timeouts) */
+    uint64_t tx_failures;     /* sends that returned an error (incl. timeouts) */
 } hv_can_stats_t;
 
 typedef struct hv_can_bus hv_can_bus_t;
@@ -99,14 +99,14 @@ struct hv_can_bus {
     hv_can_stats_t stats;
     hv_can_filter_t filters[HV_CAN_MAX_FILTERS];
     size_t n_filters;
-    char name[64];           /* "socketcan:vcan0", "udp:239.74.163.2:43113" */
+    char name[64]; /* "socketcan:vcan0", "udp:239.74.163.2:43113" */
     /* udp only */
-    uint32_t group_be;       /* group address, network byte order */
-    uint16_t port;           /* host byte order */
-    uint16_t tx_port_be;     /* source port of our own datagrams (to drop them) */
-    uint32_t tx_addr_be;     /* source address of our own datagrams */
-    uint64_t impl[8];        /* transport state with no public meaning (msgpack zone) */
-    uint8_t rx_buf[2048];    /* one datagram; python-can frames are ~200 bytes */
+    uint32_t group_be;    /* group address, network byte order */
+    uint16_t port;        /* host byte order */
+    uint16_t tx_port_be;  /* source port of our own datagrams (to drop them) */
+    uint32_t tx_addr_be;  /* source address of our own datagrams */
+    uint64_t impl[8];     /* transport state with no public meaning (msgpack zone) */
+    uint8_t rx_buf[2048]; /* one datagram; python-can frames are ~200 bytes */
 };
 
 /* Opens raw CAN on `ifname` ("vcan0", "can0"), non-blocking, with the kernel receive
@@ -123,8 +123,7 @@ hv_status_t hv_can_socketcan_open(hv_can_bus_t *bus, const char *ifname,
  * HV_CAN_ERR_FILTERS, HV_CAN_ERR_SOCKET (e.g. no route to the group: run in a namespace
  * with `ip route add 224.0.0.0/4 dev lo`). */
 hv_status_t hv_can_udp_open(hv_can_bus_t *bus, const char *group, uint16_t port,
-                            const char *if_addr, const hv_can_filter_t *filters,
-                            size_t n_filters);
+                            const char *if_addr, const hv_can_filter_t *filters, size_t n_filters);
 
 /* Sends one frame. Waits up to timeout_ms for room when the send queue is full (0: do
  * not wait, negative: wait forever). Errors: HV_CAN_ERR_CLOSED, HV_CAN_ERR_FRAME,

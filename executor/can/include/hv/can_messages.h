@@ -18,9 +18,9 @@ extern "C" {
 #define HV_CAN_MAX_SIGNALS 16
 
 typedef struct hv_can_message_desc {
-    const char *name;         /* DBC message name, e.g. "LeftArmSetpoint" */
-    uint32_t id;              /* 11-bit frame id */
-    uint8_t length;           /* DLC the DBC gives */
+    const char *name; /* DBC message name, e.g. "LeftArmSetpoint" */
+    uint32_t id;      /* 11-bit frame id */
+    uint8_t length;   /* DLC the DBC gives */
     size_t n_signals;
     const char *const *signals; /* DBC signal names, in DBC order */
     const double *minimum;      /* DBC range of each signal, physical units */

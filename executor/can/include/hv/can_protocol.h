@@ -21,11 +21,11 @@ enum hv_can_node {
 
 /* command numbers (5 bits), the same meaning on every node that has them */
 enum hv_can_cmd {
-    HV_CAN_CMD_ESTOP = 0,      /* broadcast node only */
+    HV_CAN_CMD_ESTOP = 0, /* broadcast node only */
     HV_CAN_CMD_HEARTBEAT = 1,
-    HV_CAN_CMD_COMMAND = 2,    /* enable/disable/home/e-stop/clear fault/clear e-stop */
+    HV_CAN_CMD_COMMAND = 2, /* enable/disable/home/e-stop/clear fault/clear e-stop */
     HV_CAN_CMD_STATUS = 3,
-    HV_CAN_CMD_SETPOINT = 4,   /* arms: joint setpoint; vehicle: move */
+    HV_CAN_CMD_SETPOINT = 4, /* arms: joint setpoint; vehicle: move */
     HV_CAN_CMD_JOINT_STATE = 5,
     HV_CAN_CMD_JOINT_VELOCITY = 6,
     HV_CAN_CMD_EE_COMMAND = 7,
@@ -35,8 +35,8 @@ enum hv_can_cmd {
     HV_CAN_CMD_PLAN_STATUS = 11 /* executor: how the upload stands */
 };
 
-#define HV_CAN_ID(node, cmd) ((((unsigned)(node)) << 5) | ((unsigned)(cmd) & 0x1Fu))
-#define HV_CAN_ID_NODE(id) (((unsigned)(id) >> 5) & 0x3Fu)
-#define HV_CAN_ID_CMD(id) ((unsigned)(id) & 0x1Fu)
+#define HV_CAN_ID(node, cmd) ((((unsigned)(node)) << 5) | ((unsigned)(cmd)&0x1Fu))
+#define HV_CAN_ID_NODE(id)   (((unsigned)(id) >> 5) & 0x3Fu)
+#define HV_CAN_ID_CMD(id)    ((unsigned)(id)&0x1Fu)
 
 #endif /* HV_CAN_PROTOCOL_H */

@@ -25,8 +25,8 @@ struct msgpack_zone; /* msgpack-c's allocation arena (msgpack/zone.h) */
 /* Encodes `frame` as python-can does, with `timestamp_s` (Unix seconds) and channel nil.
  * Errors: HV_ERR_ARG, HV_CAN_ERR_FRAME (dlc > 8, id too wide for its kind, RTR with
  * the error flag), HV_CAN_ERR_NOSPACE (cap too small; *len untouched). */
-hv_status_t hv_can_udp_wire_encode(const hv_can_frame_t *frame, double timestamp_s,
-                                   uint8_t *buf, size_t cap, size_t *len);
+hv_status_t hv_can_udp_wire_encode(const hv_can_frame_t *frame, double timestamp_s, uint8_t *buf,
+                                   size_t cap, size_t *len);
 
 /* Decodes one datagram into `frame` (timestamp_ns from the datagram's timestamp).
  * `zone` is a msgpack_zone set up by the caller (msgpack_zone_init); it is cleared
