@@ -62,6 +62,38 @@ HARVEST_PLAN = os.path.join(BUILD, "planner", "harvest-plan")
 ONLINE_URL = "udpm://239.255.76.67:7667?ttl=0"
 
 
+def online_row_scenario(workdir, length_m, seed):
+    """A long row (8 fruits per m and side) and its config, made by `harvest scenario`:
+    (map path, config path, fruits in the map)."""
+    fruits, cfg = workdir / "fruits.csv", workdir / "harvest.cfg"
+    subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "harvest",
+            "scenario",
+            "--distribution",
+            "long",
+            "--length",
+            str(length_m),
+            "--left",
+            "40",
+            "--seed",
+            str(seed),
+            "--out",
+            str(fruits),
+            "--config-out",
+            str(cfg),
+        ],
+        check=True,
+        env=env(),
+        cwd=SOURCE,
+        capture_output=True,
+    )
+    with open(fruits) as f:
+        return fruits, cfg, len(f.read().splitlines()) - 1
+
+
 def enter_online_netns():
     """enter_udp_netns() for the online tests, which need the planner's programs too."""
     missing = [

@@ -39,33 +39,7 @@ class Row:
 
     def __init__(self, tmp_path):
         self.dir = tmp_path
-        self.fruits, self.cfg = tmp_path / "fruits.csv", tmp_path / "harvest.cfg"
-        subprocess.run(
-            [
-                sys.executable,
-                "-m",
-                "harvest",
-                "scenario",
-                "--distribution",
-                "long",
-                "--length",
-                str(LENGTH_M),
-                "--left",
-                "40",
-                "--seed",
-                "7",
-                "--out",
-                str(self.fruits),
-                "--config-out",
-                str(self.cfg),
-            ],
-            check=True,
-            env=H.env(),
-            cwd=H.SOURCE,
-            capture_output=True,
-        )
-        with open(self.fruits) as f:
-            self.n_map = len(f.read().splitlines()) - 1
+        self.fruits, self.cfg, self.n_map = H.online_row_scenario(tmp_path, LENGTH_M, seed=7)
         self.sim = H.Sim(
             str(tmp_path),
             SCALE,

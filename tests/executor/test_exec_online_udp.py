@@ -27,39 +27,8 @@ SCALE = 20.0
 LENGTH_M = 5.0
 
 
-def scenario(tmp_path):
-    """A 5 m row (8 fruits per m and side) and its config: (map, config, map lines)."""
-    fruits, cfg = tmp_path / "fruits.csv", tmp_path / "harvest.cfg"
-    subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "harvest",
-            "scenario",
-            "--distribution",
-            "long",
-            "--length",
-            str(LENGTH_M),
-            "--left",
-            "40",
-            "--seed",
-            "5",
-            "--out",
-            str(fruits),
-            "--config-out",
-            str(cfg),
-        ],
-        check=True,
-        env=H.env(),
-        cwd=H.SOURCE,
-        capture_output=True,
-    )
-    with open(fruits) as f:
-        return fruits, cfg, len(f.read().splitlines()) - 1
-
-
 def test_online_row_every_fruit_once(tmp_path):
-    fruits, cfg, n_map = scenario(tmp_path)
+    fruits, cfg, n_map = H.online_row_scenario(tmp_path, LENGTH_M, seed=5)
     sim = H.Sim(
         str(tmp_path),
         SCALE,
