@@ -26,6 +26,7 @@ void hv_exec_params_default(hv_exec_params_t *p)
     p->max_retries = 2;
     p->resend_s = 0.25; /* 5 status periods at time scale 1 (DBC: status every 50 ms) */
     p->clear_estop = 0; /* only an operator clears an e-stop */
+    p->online = 0;
 }
 
 double hv_exec_home_max_s(const hv_arm_t *arm)

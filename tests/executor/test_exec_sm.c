@@ -740,6 +740,22 @@ static void test_lost_frames_are_resent(void **state)
     free(fx);
 }
 
+/* The defaults set every field: a struct full of junk before them is accepted by init
+ * (a field the defaults forget is whatever the caller's stack held). */
+static void test_params_default_complete(void **state)
+{
+    (void)state;
+    fx_t *fx = new_fx(1, 1);
+    hv_exec_params_t p;
+    hv_exec_sm_t sm;
+    memset(&p, 0xA5, sizeof p);
+    hv_exec_params_default(&p);
+    assert_int_equal(hv_exec_init(&sm, &fx->plan, &p, NULL), HV_OK);
+    assert_int_equal(p.online, 0);
+    assert_int_equal(p.clear_estop, 0);
+    free(fx);
+}
+
 static void test_bad_input(void **state)
 {
     (void)state;
@@ -797,6 +813,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_whole_row),
+        cmocka_unit_test(test_params_default_complete),
         cmocka_unit_test(test_heartbeats_sent),
         cmocka_unit_test(test_nodes_absent),
         cmocka_unit_test(test_time_scale_mismatch),

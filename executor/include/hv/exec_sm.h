@@ -156,7 +156,7 @@ typedef struct hv_exec_params {
 
 /* Defaults: margin 0.5, slack 1 s, latency 0.3 s, heartbeat 0.5 s / 0.1 s, start-up 10 s,
  * command 1 s, cut 1 s, release 0.5 s, 0.1 m/s, 0.1 m/s^2, 2 retries, resend 0.25 s,
- * time scale 0, no e-stop clear; home_max_s is
+ * time scale 0, no e-stop clear, whole plan (not online); every field is set; home_max_s is
  * the arm's business: set it (hv_exec_home_max_s). */
 void hv_exec_params_default(hv_exec_params_t *p);
 
