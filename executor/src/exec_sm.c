@@ -10,6 +10,7 @@ static const int arm_node[2] = {HV_EXEC_LEFT, HV_EXEC_RIGHT}; /* by hv_side_t */
 
 void hv_exec_params_default(hv_exec_params_t *p)
 {
+    memset(p, 0, sizeof *p); /* a field added later is 0, not the caller's stack */
     p->time_scale = 0.0;
     p->margin = 0.5;
     p->slack_s = 1.0;
@@ -26,7 +27,6 @@ void hv_exec_params_default(hv_exec_params_t *p)
     p->max_retries = 2;
     p->resend_s = 0.25; /* 5 status periods at time scale 1 (DBC: status every 50 ms) */
     p->clear_estop = 0; /* only an operator clears an e-stop */
-    p->online = 0;
 }
 
 double hv_exec_home_max_s(const hv_arm_t *arm)
