@@ -13,11 +13,19 @@ static int side_of_node(int node)
     return node == HV_EXEC_LEFT ? HV_SIDE_LEFT : HV_SIDE_RIGHT;
 }
 
-#define DECODE_HB(MSG, NODE)                                                                       \
+/* A frame of exactly the DBC's length: a shorter one cannot be decoded, and a longer one
+ * comes from a node that speaks another layout (the generated unpack accepts it). */
+#define UNPACK(MSG, UP)                                                                            \
+    do {                                                                                           \
+        if (f->dlc != HARVEST_CAN_##UP##_LENGTH ||                                                 \
+            harvest_can_##MSG##_unpack(&m, f->data, f->dlc) != 0)                                  \
+            return HV_RX_MALFORMED;                                                                \
+    } while (0)
+
+#define DECODE_HB(MSG, UP, NODE)                                                                   \
     do {                                                                                           \
         struct harvest_can_##MSG##_t m;                                                            \
-        if (harvest_can_##MSG##_unpack(&m, f->data, f->dlc) != 0)                                  \
-            return HV_RX_MALFORMED;                                                                \
+        UNPACK(MSG, UP);                                                                           \
         ev->kind = HV_EV_HEARTBEAT;                                                                \
         ev->node = NODE;                                                                           \
         ev->u.hb.health = m.health;                                                                \
@@ -26,11 +34,10 @@ static int side_of_node(int node)
         return HV_RX_EVENT;                                                                        \
     } while (0)
 
-#define DECODE_ARM_STATUS(MSG, NODE)                                                               \
+#define DECODE_ARM_STATUS(MSG, UP, NODE)                                                           \
     do {                                                                                           \
         struct harvest_can_##MSG##_t m;                                                            \
-        if (harvest_can_##MSG##_unpack(&m, f->data, f->dlc) != 0)                                  \
-            return HV_RX_MALFORMED;                                                                \
+        UNPACK(MSG, UP);                                                                           \
         ev->kind = HV_EV_ARM_STATUS;                                                               \
         ev->node = NODE;                                                                           \
         ev->u.arm.state = m.state;                                                                 \
@@ -42,11 +49,10 @@ static int side_of_node(int node)
         return HV_RX_EVENT;                                                                        \
     } while (0)
 
-#define DECODE_EE_STATUS(MSG, NODE)                                                                \
+#define DECODE_EE_STATUS(MSG, UP, NODE)                                                            \
     do {                                                                                           \
         struct harvest_can_##MSG##_t m;                                                            \
-        if (harvest_can_##MSG##_unpack(&m, f->data, f->dlc) != 0)                                  \
-            return HV_RX_MALFORMED;                                                                \
+        UNPACK(MSG, UP);                                                                           \
         ev->kind = HV_EV_EE_STATUS;                                                                \
         ev->node = NODE;                                                                           \
         ev->u.ee.state = m.state;                                                                  \
@@ -56,11 +62,10 @@ static int side_of_node(int node)
         return HV_RX_EVENT;                                                                        \
     } while (0)
 
-#define DECODE_JOINTS(MSG, SIDE)                                                                   \
+#define DECODE_JOINTS(MSG, UP, SIDE)                                                               \
     do {                                                                                           \
         struct harvest_can_##MSG##_t m;                                                            \
-        if (harvest_can_##MSG##_unpack(&m, f->data, f->dlc) != 0)                                  \
-            return HV_RX_MALFORMED;                                                                \
+        UNPACK(MSG, UP);                                                                           \
         hv_exec_arm_sample_t *s = &samples[SIDE];                                                  \
         s->side = SIDE;                                                                            \
         ev->node = SIDE;                                                                           \
@@ -71,11 +76,10 @@ static int side_of_node(int node)
         return HV_RX_JOINTS;                                                                       \
     } while (0)
 
-#define DECODE_VELOCITIES(MSG, SIDE)                                                               \
+#define DECODE_VELOCITIES(MSG, UP, SIDE)                                                           \
     do {                                                                                           \
         struct harvest_can_##MSG##_t m;                                                            \
-        if (harvest_can_##MSG##_unpack(&m, f->data, f->dlc) != 0)                                  \
-            return HV_RX_MALFORMED;                                                                \
+        UNPACK(MSG, UP);                                                                           \
         hv_exec_arm_sample_t *s = &samples[SIDE];                                                  \
         s->side = SIDE;                                                                            \
         ev->node = SIDE;                                                                           \
@@ -93,13 +97,15 @@ hv_exec_rx_kind_t hv_exec_can_decode(const hv_can_frame_t *f, hv_exec_event_t *e
         return HV_RX_NONE;
     memset(ev, 0, sizeof *ev);
     switch (f->id) {
-    case HARVEST_CAN_VEHICLE_HEARTBEAT_FRAME_ID: DECODE_HB(vehicle_heartbeat, HV_EXEC_VEHICLE);
-    case HARVEST_CAN_LEFT_ARM_HEARTBEAT_FRAME_ID: DECODE_HB(left_arm_heartbeat, HV_EXEC_LEFT);
-    case HARVEST_CAN_RIGHT_ARM_HEARTBEAT_FRAME_ID: DECODE_HB(right_arm_heartbeat, HV_EXEC_RIGHT);
+    case HARVEST_CAN_VEHICLE_HEARTBEAT_FRAME_ID:
+        DECODE_HB(vehicle_heartbeat, VEHICLE_HEARTBEAT, HV_EXEC_VEHICLE);
+    case HARVEST_CAN_LEFT_ARM_HEARTBEAT_FRAME_ID:
+        DECODE_HB(left_arm_heartbeat, LEFT_ARM_HEARTBEAT, HV_EXEC_LEFT);
+    case HARVEST_CAN_RIGHT_ARM_HEARTBEAT_FRAME_ID:
+        DECODE_HB(right_arm_heartbeat, RIGHT_ARM_HEARTBEAT, HV_EXEC_RIGHT);
     case HARVEST_CAN_VEHICLE_STATUS_FRAME_ID: {
         struct harvest_can_vehicle_status_t m;
-        if (harvest_can_vehicle_status_unpack(&m, f->data, f->dlc) != 0)
-            return HV_RX_MALFORMED;
+        UNPACK(vehicle_status, VEHICLE_STATUS);
         ev->kind = HV_EV_VEHICLE_STATUS;
         ev->node = HV_EXEC_VEHICLE;
         ev->u.veh.position_m = harvest_can_vehicle_status_position_decode(m.position);
@@ -110,20 +116,22 @@ hv_exec_rx_kind_t hv_exec_can_decode(const hv_can_frame_t *f, hv_exec_event_t *e
         ev->u.veh.cmd_seq = m.command_seq;
         return HV_RX_EVENT;
     }
-    case HARVEST_CAN_LEFT_ARM_STATUS_FRAME_ID: DECODE_ARM_STATUS(left_arm_status, HV_EXEC_LEFT);
-    case HARVEST_CAN_RIGHT_ARM_STATUS_FRAME_ID: DECODE_ARM_STATUS(right_arm_status, HV_EXEC_RIGHT);
+    case HARVEST_CAN_LEFT_ARM_STATUS_FRAME_ID:
+        DECODE_ARM_STATUS(left_arm_status, LEFT_ARM_STATUS, HV_EXEC_LEFT);
+    case HARVEST_CAN_RIGHT_ARM_STATUS_FRAME_ID:
+        DECODE_ARM_STATUS(right_arm_status, RIGHT_ARM_STATUS, HV_EXEC_RIGHT);
     case HARVEST_CAN_LEFT_ARM_EE_STATUS_FRAME_ID:
-        DECODE_EE_STATUS(left_arm_ee_status, HV_EXEC_LEFT);
+        DECODE_EE_STATUS(left_arm_ee_status, LEFT_ARM_EE_STATUS, HV_EXEC_LEFT);
     case HARVEST_CAN_RIGHT_ARM_EE_STATUS_FRAME_ID:
-        DECODE_EE_STATUS(right_arm_ee_status, HV_EXEC_RIGHT);
+        DECODE_EE_STATUS(right_arm_ee_status, RIGHT_ARM_EE_STATUS, HV_EXEC_RIGHT);
     case HARVEST_CAN_LEFT_ARM_JOINT_STATE_FRAME_ID:
-        DECODE_JOINTS(left_arm_joint_state, HV_SIDE_LEFT);
+        DECODE_JOINTS(left_arm_joint_state, LEFT_ARM_JOINT_STATE, HV_SIDE_LEFT);
     case HARVEST_CAN_RIGHT_ARM_JOINT_STATE_FRAME_ID:
-        DECODE_JOINTS(right_arm_joint_state, HV_SIDE_RIGHT);
+        DECODE_JOINTS(right_arm_joint_state, RIGHT_ARM_JOINT_STATE, HV_SIDE_RIGHT);
     case HARVEST_CAN_LEFT_ARM_JOINT_VELOCITY_FRAME_ID:
-        DECODE_VELOCITIES(left_arm_joint_velocity, HV_SIDE_LEFT);
+        DECODE_VELOCITIES(left_arm_joint_velocity, LEFT_ARM_JOINT_VELOCITY, HV_SIDE_LEFT);
     case HARVEST_CAN_RIGHT_ARM_JOINT_VELOCITY_FRAME_ID:
-        DECODE_VELOCITIES(right_arm_joint_velocity, HV_SIDE_RIGHT);
+        DECODE_VELOCITIES(right_arm_joint_velocity, RIGHT_ARM_JOINT_VELOCITY, HV_SIDE_RIGHT);
     default: return HV_RX_NONE;
     }
 }

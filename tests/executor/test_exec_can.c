@@ -174,8 +174,14 @@ static void test_decode_statuses(void **state)
     assert_int_equal(ev.node, HV_SIDE_RIGHT);
     assert_float_equal(samples[1].q[2], 1.4, 1e-4);
 
-    /* a DBC id with a wrong length is malformed; others and our own frames are ignored */
+    /* a DBC id with a length other than the DBC's is malformed; others and our own frames are ignored */
     f.dlc = 3;
+    assert_int_equal(hv_exec_can_decode(&f, &ev, samples), HV_RX_MALFORMED);
+    /* longer than the DBC's length is malformed too: the ee status is 3 bytes long */
+    f.id = HARVEST_CAN_RIGHT_ARM_EE_STATUS_FRAME_ID;
+    f.dlc = (uint8_t)harvest_can_right_arm_ee_status_pack(f.data, &ee, sizeof f.data);
+    assert_int_equal(hv_exec_can_decode(&f, &ev, samples), HV_RX_EVENT);
+    f.dlc++;
     assert_int_equal(hv_exec_can_decode(&f, &ev, samples), HV_RX_MALFORMED);
     f.id = HARVEST_CAN_LEFT_ARM_SETPOINT_FRAME_ID;
     f.dlc = 8;

@@ -18,7 +18,7 @@ typedef enum hv_exec_rx_kind {
     HV_RX_EVENT,      /* *ev filled */
     HV_RX_JOINTS,     /* sample of arm `side` updated: positions (JointState) */
     HV_RX_VELOCITIES, /* sample updated: velocities (JointVelocity) */
-    HV_RX_MALFORMED   /* an id of the DBC with a wrong length */
+    HV_RX_MALFORMED   /* an id of the DBC with a length other than the DBC's */
 } hv_exec_rx_kind_t;
 
 /* Decode a received frame. `samples` (2, by side) receive joint state / velocity; then
