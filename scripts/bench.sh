@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Run the benchmarks and print their figures; each compares against a baseline measured in
-# the same run. Release build in build/. Usage: scripts/bench.sh [--help] [core|planner|can|executor|online ...]
-# (default: all five; online takes ~15 min). Timings depend on the machine's load: run it on a quiet machine.
+# the same run. Release build in build/. Usage: scripts/bench.sh [--help] [core|planner|can|executor|online|firmware ...]
+# (default: all six; online takes ~15 min, firmware ~6). Timings depend on the machine's load: run it on a quiet machine.
 set -euo pipefail
 if [[ "${1:-}" == "--help" || "${1:-}" == "-h" ]]; then
   sed -n '2,4p' "$0" | sed 's/^# \{0,1\}//'
@@ -10,7 +10,7 @@ fi
 root=$(cd "$(dirname "$0")/.." && pwd)
 build="$root/build"
 which=("$@")
-((${#which[@]})) || which=(core planner can executor online)
+((${#which[@]})) || which=(core planner can executor online firmware)
 
 "$root/scripts/setup.sh" >/dev/null
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
@@ -24,6 +24,7 @@ for b in "${which[@]}"; do
     can) "$root/.venv/bin/python" "$root/bench/can/bench_can.py" ;;
     executor) cmake --build "$build" --target bench_executor ;;
     online) "$build/bench/planner/bench_online" ;;
-    *) echo "bench: unknown benchmark '$b' (core, planner, can, executor, online)" >&2; exit 2 ;;
+    firmware) "$root/.venv/bin/python" "$root/bench/firmware/bench_fw_run.py" ;;
+    *) echo "bench: unknown benchmark '$b' (core, planner, can, executor, online, firmware)" >&2; exit 2 ;;
   esac
 done

@@ -22,15 +22,27 @@ def _image_makespans(image):
     return planned, expected
 
 
-def summarize(record_path, plan, image, uart_log, icount=True):
-    """The run judged by the simulator's record; the firmware's own figures beside."""
-    events = [json.loads(ln) for ln in open(record_path) if ln.strip()]
+def _events(record_path):
+    with open(record_path) as f:
+        return [json.loads(ln) for ln in f if ln.strip()]
+
+
+def executed_makespan(record_path, plan):
+    """The row's makespan in the simulator's record (s, simulated): its first accepted move
+    to the vehicle's arrival at the course end; None when it never got there."""
+    events = _events(record_path)
     p = plan["params"]
     course_end = p["row_start_m"] + p["row_length_m"] + p["stop_margin_m"]
     moves = [e["t"] for e in events if e["event"] == "move" and e["accepted"]]
     ends = [
         e["t"] for e in events if e["event"] == "arrived" and abs(e["position"] - course_end) < 1e-3
     ]
+    return (ends[-1] - moves[0]) if moves and ends else None
+
+
+def summarize(record_path, plan, image, uart_log, icount=True):
+    """The run judged by the simulator's record; the firmware's own figures beside."""
+    events = _events(record_path)
     planned_s, expected_s = _image_makespans(image)
     st = rig.last_status(uart_log)
     cycles = int(st.get("worst_step_cycles", 0))
@@ -43,7 +55,7 @@ def summarize(record_path, plan, image, uart_log, icount=True):
         "faults": sum(1 for e in events if e["event"] == "fault_injected"),
         "planned_makespan_s": planned_s,
         "expected_makespan_s": expected_s,
-        "executed_makespan_s": (ends[-1] - moves[0]) if moves and ends else None,
+        "executed_makespan_s": executed_makespan(record_path, plan),
         "steps": int(st.get("steps", 0)),
         "worst_step_cycles": cycles,
         "worst_step_instructions": round(cycles / rig.CYCLES_PER_INSN) if icount else None,
