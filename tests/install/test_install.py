@@ -17,6 +17,7 @@ PROGRAMS = [
     "harvest-plan-online",
     "harvest-exec",
     "hv-can-tool",
+    "harvest-fw-plan",
     "costgen",
     "mountopt",
 ]
