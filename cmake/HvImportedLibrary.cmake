@@ -1,7 +1,6 @@
 # hv_find_imported_library(<Pkg> HEADER <h> LIBRARY <name> TARGET <ns::name>)
 # The body of our Find<Pkg>.cmake modules for C libraries that Debian ships without a
-# usable CMake package or .pc file (GLPK has none; LCM's .pc requires glib's development
-# files, which nothing else here needs). Sets <Pkg>_FOUND, <Pkg>_INCLUDE_DIR,
+# usable CMake package or .pc file (GLPK has none). Sets <Pkg>_FOUND, <Pkg>_INCLUDE_DIR,
 # <Pkg>_LIBRARY and defines the imported target, so that exported harvest:: targets name
 # the target, never the build machine's absolute library path.
 include(FindPackageHandleStandardArgs)

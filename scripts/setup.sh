@@ -18,7 +18,7 @@ apt_pkgs=(
   clang-format                                   # tests/lint: the C/C++ format check
   libcmocka-dev                                  # C unit tests
   clang libclang-rt-14-dev                       # fuzz/: clang, its libFuzzer + ASan/UBSan runtimes (HV_FUZZ)
-  liblcm-dev liblcm-bin                          # telemetry: LCM library and lcm-gen
+  libglib2.0-dev                                 # telemetry: glib for liblcm.a (LCM itself: pip, requirements.txt)
   libmsgpack-dev                                 # CAN over UDP, python-can's udp_multicast format
   python3 python3-venv python3-dev               # host/ package and pytest
   iproute2 can-utils                             # network namespaces, vcan tools

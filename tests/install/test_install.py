@@ -1,6 +1,9 @@
 """`cmake --install` into a temporary prefix, then an out-of-tree consumer built against it
 twice: with CMake's find_package(harvest) and with pkg-config. The installed tree is then
 moved, and the pkg-config build repeated, so the .pc files must not keep the prefix.
+The programs carry LCM (linked statically) and the tree names no LCM path; a consumer of
+the telemetry sink brings LCM of the build's version itself (docs/INSTALL.md), here the
+prefix the build used.
 """
 
 import os
@@ -17,6 +20,7 @@ PROGRAMS = [
     "harvest-plan-online",
     "harvest-exec",
     "hv-can-tool",
+    "harvest-fw-plan",
     "costgen",
     "mountopt",
 ]
@@ -48,12 +52,18 @@ def prefix(tmp_path_factory):
     return root / "opt"
 
 
+def _lcm_root():
+    # the prefix of the build's LCM (cmake/HvLcm.cmake), as a consumer would name it
+    inc = _cache("LCM_INCLUDE_DIR")
+    return os.path.dirname(inc) if _cache("HV_WITH_LCM") == "ON" and inc else ""
+
+
 def _sanitize_flags():
     # a sanitized build installs sanitized libraries: their consumer needs the runtimes
     return ["-fsanitize=address,undefined"] if _cache("HV_SANITIZE") == "ON" else []
 
 
-def _check_output(out):
+def _check_output(out, telemetry=0):
     import cantools
 
     estop = cantools.database.load_file(
@@ -63,6 +73,7 @@ def _check_output(out):
     assert fields[0] == "stop_margin_m" and float(fields[1]) > 0.0
     assert fields[3] in ("cycle", "one_way")
     assert int(fields[5]) == estop.length and fields[7] == "HV_OK"
+    assert fields[8] == "telemetry" and int(fields[9]) == telemetry
 
 
 def test_install_tree_holds_what_a_vehicle_needs(prefix):
@@ -78,9 +89,17 @@ def test_install_tree_holds_what_a_vehicle_needs(prefix):
     assert "harvest::hv_exec_can" in targets and "harvest::hv_planner" in targets
     # dependencies are imported targets, resolved on the consumer's machine
     assert "libglpk" not in targets and "liblcm" not in targets and SOURCE_DIR not in targets
+    installed = "".join(p.read_text() for p in cmake_dir.glob("*.cmake"))
+    installed += "".join(p.read_text() for p in prefix.glob("lib*/pkgconfig/*.pc"))
+    assert not _lcm_root() or _lcm_root() not in installed
+    # the programs carry LCM: no liblcm to find at run time, none installed
+    for prog in ("harvest-exec", "harvest-plan-online"):
+        needed = _run(["readelf", "-d", str(prefix / "bin" / prog)])
+        assert "liblcm" not in needed and "RPATH" not in needed and "RUNPATH" not in needed
+    assert not list(prefix.rglob("liblcm*")) and not (prefix / "include" / "lcm").exists()
 
 
-def test_cmake_consumer(prefix, tmp_path):
+def _cmake_consumer(prefix, build, *extra):
     flags = " ".join(_sanitize_flags())
     _run(
         [
@@ -88,25 +107,47 @@ def test_cmake_consumer(prefix, tmp_path):
             "-S",
             CONSUMER,
             "-B",
-            str(tmp_path / "b"),
+            str(build),
             f"-DCMAKE_PREFIX_PATH={prefix}",
             f"-DCMAKE_C_FLAGS={flags}",
             f"-DCMAKE_EXE_LINKER_FLAGS={flags}",
+            *extra,
         ]
     )
-    _run(["cmake", "--build", str(tmp_path / "b")])
-    _check_output(
-        _run([str(tmp_path / "b" / "consumer"), str(prefix / "share" / "harvest" / "harvest.cfg")])
+    _run(["cmake", "--build", str(build)])
+    return _run([str(build / "consumer"), str(prefix / "share" / "harvest" / "harvest.cfg")])
+
+
+def test_cmake_consumer(prefix, tmp_path):
+    _check_output(_cmake_consumer(prefix, tmp_path / "b"))
+
+
+def test_cmake_consumer_of_telemetry(prefix, tmp_path):
+    if not _lcm_root():
+        pytest.skip("SKIPPED: the build has no LCM telemetry (HV_WITH_LCM=OFF)")
+    out = _cmake_consumer(
+        prefix, tmp_path / "b", "-DCONSUMER_TELEMETRY=ON", f"-DLCM_ROOT={_lcm_root()}"
     )
+    _check_output(out, telemetry=1)
 
 
-def _pkgconfig_build(prefix, out):
+def _lcm_flags():
+    # what docs/INSTALL.md tells a pkg-config consumer of the telemetry sink to add
+    root = _lcm_root()
+    glib = _run(["pkg-config", "--cflags", "--libs", "glib-2.0"]).split()
+    return ["-DCONSUMER_TELEMETRY", f"-I{root}/include", f"{root}/lib/liblcm.a", *glib, "-pthread"]
+
+
+def _pkgconfig_build(prefix, out, telemetry=False):
     env = dict(os.environ, PKG_CONFIG_PATH=str(next(prefix.glob("lib*/pkgconfig"))))
     pc = _run(
         ["pkg-config", "--cflags", "--libs", "harvest-planner", "harvest-executor"], env=env
     ).split()
-    _run(["cc", *_sanitize_flags(), "-o", str(out), os.path.join(CONSUMER, "consumer.c"), *pc])
-    _check_output(_run([str(out), str(prefix / "share" / "harvest" / "harvest.cfg")]))
+    src = os.path.join(CONSUMER, "consumer.c")
+    _run(["cc", *_sanitize_flags(), "-o", str(out), src, *pc, *(_lcm_flags() if telemetry else [])])
+    _check_output(
+        _run([str(out), str(prefix / "share" / "harvest" / "harvest.cfg")]), int(telemetry)
+    )
 
 
 def test_pkgconfig_consumer_after_moving_the_tree(prefix, tmp_path):
@@ -116,3 +157,5 @@ def test_pkgconfig_consumer_after_moving_the_tree(prefix, tmp_path):
     for pc in moved.glob("lib*/pkgconfig/*.pc"):
         assert str(prefix) not in pc.read_text(), pc.name
     _pkgconfig_build(moved, tmp_path / "consumer_moved")
+    if _lcm_root():
+        _pkgconfig_build(moved, tmp_path / "consumer_moved_telemetry", telemetry=True)
