@@ -1,9 +1,9 @@
 /* harvest-fw: the executor's state machine as firmware on mps2-an386 (firmware/README.md).
  * One loop around the port (fw_port.h): take the frames the UART brings, the plan upload
  * first (fw_upload.h), then step the state machine on each frame and every 10 ms and
- * carry out its actions through the port; idle in WFI when nothing came. Text lines for
- * people (banner, status once a second) start with "harvest-fw:" and end with CR like
- * SLCAN lines; python-can's slcan reader skips them. */
+ * carry out its actions through the port; sleep in its wait (WFI) when nothing came. Text
+ * lines for people (banner, status once a second) start with "harvest-fw:" and end with CR
+ * like SLCAN lines; python-can's slcan reader skips them. */
 #include <stdint.h>
 #include <string.h>
 
@@ -138,6 +138,18 @@ static void on_frame(hv_fw_t *fw, const hv_can_frame_t *f, uint64_t now)
         step(fw, &ev, now);
 }
 
+/* When the loop must run again without a frame: the next tick while a plan runs, the
+ * status line, the upload status while waiting for a plan. */
+static uint64_t next_deadline(const hv_fw_t *fw)
+{
+    uint64_t t = fw->next_report_ns;
+    if (fw->running && fw->next_tick_ns < t)
+        t = fw->next_tick_ns;
+    if (!fw->running && fw->board.open && fw->next_upload_status_ns < t)
+        t = fw->next_upload_status_ns;
+    return t;
+}
+
 void hv_fw_main(void)
 {
     /* the firmware's one instance: static storage (RAM the linker accounts for), reached
@@ -164,7 +176,7 @@ void hv_fw_main(void)
             report(&fw, now);
             fw.next_report_ns = now + REPORT_NS;
         }
-        if (!busy)
-            hv_fw_idle();
+        if (!busy) /* WFI (fw_port.c); it cannot fail */
+            (void)fw.port.wait(fw.port.ctx, next_deadline(&fw));
     }
 }

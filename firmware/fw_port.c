@@ -87,6 +87,16 @@ static hv_status_t fw_recv(void *ctx, hv_can_frame_t *f)
     }
 }
 
+/* WFI until the UART's RX interrupt or timer 0 (1 kHz): back within 1 ms, early as the
+ * port's contract allows */
+static hv_status_t fw_wait(void *ctx, uint64_t until_ns)
+{
+    hv_fw_port_t *P = ctx;
+    if (hv_fw_clock_ns(&P->clock) < until_ns)
+        hv_fw_idle();
+    return HV_OK;
+}
+
 static hv_status_t fw_journal(void *ctx, const hv_exec_action_t *record, double t_s)
 {
     hv_fw_port_t *P = ctx;
@@ -106,5 +116,6 @@ void hv_fw_port_init(hv_exec_port_t *port, hv_fw_port_t *ctx)
     port->now_ns = fw_now_ns;
     port->can_send = fw_send;
     port->can_recv = fw_recv;
+    port->wait = fw_wait;
     port->journal_append = fw_journal;
 }

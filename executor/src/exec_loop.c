@@ -3,20 +3,17 @@
 #include "hv/exec_loop.h"
 
 #include <errno.h>
-#include <poll.h>
 #include <string.h>
 #include <time.h>
 
-#include "hv/exec_port_linux.h"
 #include "hv/exec_status.h"
 
-uint64_t hv_exec_now_ns(void)
+static uint64_t now_ns(const hv_exec_loop_t *L)
 {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (uint64_t)ts.tv_sec * 1000000000ull + (uint64_t)ts.tv_nsec;
+    return L->port->now_ns(L->port->ctx);
 }
 
+/* telemetry's time stamps: wall clock, us (LCM's convention), not the port's clock */
 static int64_t wall_utime(void)
 {
     struct timespec ts;
@@ -78,7 +75,7 @@ static void report(hv_exec_loop_t *L, const hv_exec_action_t *a, uint64_t now)
         fprintf(L->progress,
                 "harvest-exec: [%8.2f s] e-stop of %s cleared by %s (journalled); "
                 "waiting for a heartbeat and a status of every node\n",
-                t, nodes, L->clear_by);
+                t, nodes, L->clear_by ? L->clear_by : "the operator");
     } else if (a->kind == HV_ACT_FRUIT_EVENT && a->u.fe.kind == HV_FE_FAULT) {
         const hv_exec_pick_t *pk = &sm->plan->picks[a->u.fe.pick];
         fprintf(L->progress, "harvest-exec: [%8.2f s] fault at fruit %s (%c): %s, recovering\n", t,
@@ -87,70 +84,53 @@ static void report(hv_exec_loop_t *L, const hv_exec_action_t *a, uint64_t now)
     fflush(L->progress);
 }
 
-static hv_status_t journal_action(hv_exec_loop_t *L, const hv_exec_action_t *a, double t)
+/* err: the errno the failed write left, 0 when it set none (a port without errno, a
+ * record refused before any write) */
+static void journal_failed(hv_exec_loop_t *L, const char *what, hv_status_t rc, int err,
+                           uint64_t now)
 {
-    if (!L->journal)
-        return HV_OK;
-    hv_status_t st = hv_exec_journal_action(L->journal, a, L->clear_by, t);
-    if (st == HV_OK)
-        L->st.journal_records++;
-    return st;
+    if (L->progress)
+        fprintf(L->progress, "harvest-exec: %s: journal write%s failed: %s%s%s%s\n",
+                L->journal ? L->journal->path : "journal", what, hv_exec_status_name(rc),
+                err ? " (" : "", err ? strerror(err) : "", err ? ")" : "");
+    hv_exec_event_t ev;
+    memset(&ev, 0, sizeof ev);
+    ev.kind = HV_EV_JOURNAL_FAILED;
+    step(L, &ev, now);
 }
 
-/* Carry out the actions in order. A journal record that cannot be written stops the
- * batch there: what comes after it must not happen without it. */
+/* The actions through the port, in order; then the telemetry and progress lines of those
+ * carried out (another channel than the bus, so after the step's frames). A journal record
+ * the port could not store stops the batch there: what comes after it must not happen
+ * without it. */
 static void carry_out(hv_exec_loop_t *L, const hv_exec_actions_t *out, uint64_t now)
 {
-    for (unsigned i = 0; i < out->n; i++) {
+    unsigned done = 0;
+    errno = 0; /* what a failed journal write leaves here is the message's */
+    hv_status_t rc = hv_exec_port_carry_out(L->port, &L->tx, out, hv_exec_executed_s(L->sm, now),
+                                            &L->st.io, &done);
+    int err = errno;
+    for (unsigned i = 0; i < done; i++) {
         const hv_exec_action_t *a = &out->a[i];
-        switch (a->kind) {
-        case HV_ACT_JOURNAL:
-            if (journal_action(L, a, hv_exec_executed_s(L->sm, now)) != HV_OK) {
-                if (L->progress)
-                    fprintf(L->progress, "harvest-exec: %s: journal write failed: %s\n",
-                            L->journal->path, strerror(errno));
-                hv_exec_event_t ev;
-                memset(&ev, 0, sizeof ev);
-                ev.kind = HV_EV_JOURNAL_FAILED;
-                step(L, &ev, now);
-                return;
-            }
-            report(L, a, now);
-            break;
-        case HV_ACT_FRUIT_EVENT:
+        if (a->kind == HV_ACT_FRUIT_EVENT)
             hv_exec_tm_fruit(L->tm, L->sm, a, now, wall_utime());
-            report(L, a, now);
-            break;
-        case HV_ACT_PHASE:
+        else if (a->kind == HV_ACT_PHASE)
             hv_exec_tm_state(L->tm, L->sm, now, wall_utime());
-            report(L, a, now);
-            break;
-        default: {
-            hv_can_frame_t f;
-            int has;
-            if (hv_exec_can_encode(a, &L->tx, &f, &has) != HV_OK) {
-                L->st.encode_errors++;
-                break;
-            }
-            if (!has)
-                break;
-            if (hv_can_send(L->bus, &f, 10) == HV_OK)
-                L->st.frames_tx++;
-            else
-                L->st.send_failures++;
-            break;
-        }
-        }
+        else if (a->kind != HV_ACT_JOURNAL)
+            continue;
+        report(L, a, now);
     }
+    if (rc != HV_OK)
+        journal_failed(L, "", rc, err, now);
 }
 
 static void step(hv_exec_loop_t *L, const hv_exec_event_t *ev, uint64_t now)
 {
     hv_exec_actions_t out;
     out.n = 0;
-    uint64_t t0 = hv_exec_now_ns();
+    uint64_t t0 = now_ns(L);
     hv_status_t st = hv_exec_step(L->sm, ev, now, &out);
-    uint64_t dt = hv_exec_now_ns() - t0;
+    uint64_t dt = now_ns(L) - t0;
     L->st.steps++;
     L->st.step_ns_total += dt;
     if (dt > L->st.step_ns_max)
@@ -168,7 +148,7 @@ static void periodic_telemetry(hv_exec_loop_t *L, uint64_t now)
         hv_exec_tm_state(L->tm, L->sm, now, wall_utime());
         L->next_state_pub_ns = now + 100000000ull; /* 10 Hz */
     }
-    if (now >= L->next_stats_pub_ns) {
+    if (L->bus && now >= L->next_stats_pub_ns) {
         hv_can_stats_t cs;
         hv_can_get_stats(L->bus, &cs);
         hv_exec_bus_stats_t s = {hv_can_name(L->bus), cs.tx_frames,       cs.rx_frames,
@@ -199,41 +179,43 @@ static void handle_frame(hv_exec_loop_t *L, const hv_can_frame_t *f, uint64_t no
     }
 }
 
-/* Online: what the planner committed meanwhile. The stops appended are journalled before
- * the state machine hears of them, so a restart rebuilds every stop it may have acted on;
- * a failed write stops the run like any journal failure. */
+/* Online: what the planner committed meanwhile. Called on every pass of the loop (the
+ * port's wait does not say what woke it), so it costs one non-blocking read when nothing
+ * came. Stops are appended only with a message that grows the plan; they are journalled
+ * before the state machine hears of them, so a restart rebuilds every stop it may have
+ * acted on; a failed write stops the run like any journal failure (and is tried again
+ * with the next message, not on every pass). */
 static void take_plan(hv_exec_loop_t *L)
 {
     hv_exec_event_t ev;
-    int grown = L->feed->take(L->feed->ctx, &ev);
-    uint64_t now = hv_exec_now_ns();
-    if (L->journal && L->journal->online && hv_exec_journal_stops(L->journal) != HV_OK) {
-        if (L->progress)
-            fprintf(L->progress,
-                    "harvest-exec: %s: journal write of the committed stops "
-                    "failed: %s\n",
-                    L->journal->path, strerror(errno));
-        memset(&ev, 0, sizeof ev);
-        ev.kind = HV_EV_JOURNAL_FAILED;
-        step(L, &ev, now);
+    if (!L->feed->take(L->feed->ctx, &ev))
         return;
+    uint64_t now = now_ns(L);
+    if (L->journal && L->journal->online) {
+        errno = 0;
+        hv_status_t rc = hv_exec_journal_stops(L->journal);
+        if (rc != HV_OK) {
+            journal_failed(L, " of the committed stops", rc, errno, now);
+            return;
+        }
     }
-    if (grown)
-        step(L, &ev, now);
+    step(L, &ev, now);
 }
 
 hv_status_t hv_exec_loop_run(hv_exec_loop_t *L)
 {
-    if (!L || !L->sm || !L->bus)
+    if (!L || !L->sm || !L->port || !L->port->now_ns || !L->port->can_send || !L->port->can_recv ||
+        !L->port->journal_append)
         return HV_ERR_ARG;
+    const hv_exec_port_t *port = L->port;
     if (L->tick_s <= 0.0)
         L->tick_s = 0.01;
     uint64_t tick_ns = (uint64_t)(L->tick_s * 1e9);
     uint64_t end_ns = 0;
-    uint64_t next_tick = hv_exec_now_ns();
+    uint64_t next_tick = now_ns(L);
     int stop_sent = 0;
     for (;;) {
-        uint64_t now = hv_exec_now_ns();
+        uint64_t now = now_ns(L);
         if (L->stop && *L->stop && !stop_sent) {
             hv_exec_event_t ev;
             memset(&ev, 0, sizeof ev);
@@ -247,25 +229,22 @@ hv_status_t hv_exec_loop_run(hv_exec_loop_t *L)
             else if (now >= end_ns)
                 break;
         }
-        int wait_ms = next_tick > now ? (int)((next_tick - now + 999999u) / 1000000u) : 0;
-        struct pollfd pfd[2] = {{hv_can_fd(L->bus), POLLIN, 0},
-                                {L->feed ? L->feed->fd : -1, POLLIN, 0}};
-        int pr = poll(pfd, L->feed ? 2 : 1, wait_ms);
-        if (pr < 0 && errno != EINTR)
-            return HV_ERR_IO;
-        if (pr > 0 && L->feed && (pfd[1].revents & POLLIN))
-            take_plan(L);
-        if (pr > 0 && (pfd[0].revents & POLLIN)) {
-            /* drain what is waiting; each frame is one event */
-            for (int k = 0; k < 256; k++) {
-                hv_can_frame_t f;
-                hv_status_t rs = hv_can_recv(L->bus, &f, 0);
-                if (rs != HV_OK)
-                    break;
-                handle_frame(L, &f, hv_exec_now_ns());
-            }
+        /* sleep until a frame or the next tick (a signal wakes it early: the stop above) */
+        if (port->wait) {
+            hv_status_t ws = port->wait(port->ctx, next_tick);
+            if (ws != HV_OK)
+                return ws;
         }
-        now = hv_exec_now_ns();
+        if (L->feed)
+            take_plan(L);
+        /* drain what is waiting; each frame is one event */
+        for (int k = 0; k < 256; k++) {
+            hv_can_frame_t f;
+            if (port->can_recv(port->ctx, &f) != HV_OK)
+                break;
+            handle_frame(L, &f, now_ns(L));
+        }
+        now = now_ns(L);
         if (now >= next_tick) {
             hv_exec_event_t tick;
             memset(&tick, 0, sizeof tick);
@@ -277,6 +256,6 @@ hv_status_t hv_exec_loop_run(hv_exec_loop_t *L)
                 next_tick = now + tick_ns;
         }
     }
-    hv_exec_tm_state(L->tm, L->sm, hv_exec_now_ns(), wall_utime());
+    hv_exec_tm_state(L->tm, L->sm, now_ns(L), wall_utime());
     return HV_OK;
 }

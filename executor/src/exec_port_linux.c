@@ -2,6 +2,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "hv/exec_port_linux.h"
 
+#include <errno.h>
+#include <poll.h>
 #include <time.h>
 
 hv_status_t hv_exec_journal_action(hv_exec_journal_t *j, const hv_exec_action_t *a,
@@ -40,6 +42,20 @@ static hv_status_t linux_recv(void *ctx, hv_can_frame_t *f)
     return hv_can_recv(L->bus, f, 0);
 }
 
+/* poll() on the bus and wake_fd; a signal (EINTR) returns early, so SIGTERM is seen at once */
+static hv_status_t linux_wait(void *ctx, uint64_t until_ns)
+{
+    hv_exec_port_linux_t *L = ctx;
+    uint64_t now = linux_now_ns(ctx);
+    uint64_t ms = until_ns > now ? (until_ns - now + 999999u) / 1000000u : 0;
+    struct pollfd pfd[2] = {{hv_can_fd(L->bus), POLLIN, 0}, {L->wake_fd, POLLIN, 0}};
+    if (ms > 1000)
+        ms = 1000; /* returning early is allowed; an int timeout is not unbounded */
+    if (poll(pfd, L->wake_fd >= 0 ? 2 : 1, (int)ms) < 0 && errno != EINTR)
+        return HV_ERR_IO;
+    return HV_OK;
+}
+
 static hv_status_t linux_journal(void *ctx, const hv_exec_action_t *a, double t_s)
 {
     hv_exec_port_linux_t *L = ctx;
@@ -54,5 +70,6 @@ void hv_exec_port_linux(hv_exec_port_t *port, hv_exec_port_linux_t *ctx)
     port->now_ns = linux_now_ns;
     port->can_send = linux_send;
     port->can_recv = linux_recv;
+    port->wait = linux_wait;
     port->journal_append = linux_journal;
 }

@@ -13,6 +13,7 @@
 #include "hv/exec_journal.h"
 #include "hv/exec_loop.h"
 #include "hv/exec_plan_json.h"
+#include "hv/exec_port_linux.h"
 #include "hv/exec_status.h"
 #include "hv/exec_telemetry.h"
 #include "hv/file_io.h"
@@ -278,6 +279,8 @@ typedef struct world {
     hv_exec_journal_t journal;
     hv_can_bus_t bus;
     hv_exec_telemetry_t tm;
+    hv_exec_port_linux_t linux_port;
+    hv_exec_port_t port; /* the loop's I/O: clock, bus, journal */
     hv_exec_loop_t loop;
     hv_exec_feed_t feed; /* online */
     hv_exec_feed_stats_t feed_stats;
@@ -290,7 +293,8 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
     const hv_exec_loop_stats_t *st = &w->loop.st;
     char buf[4096], latched[64];
     double wait_first = 0.0, wait_row = 0.0;
-    hv_exec_plan_wait_s(sm, hv_exec_now_ns(), &wait_first, &wait_row);
+    uint64_t now = w->port.now_ns(w->port.ctx);
+    hv_exec_plan_wait_s(sm, now, &wait_first, &wait_row);
     hv_exec_node_list(sm->latched, latched, sizeof latched);
     unsigned outcome[HV_OUT_COUNT] = {0, 0, 0};
     /* what the transport dropped (datagrams that do not parse, CAN FD), beside the DBC
@@ -323,17 +327,17 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
         (unsigned)w->plan.n_picks, outcome[HV_OUT_PICKED], outcome[HV_OUT_FAILED],
         outcome[HV_OUT_SKIPPED], hv_exec_remaining(sm), sm->picked, sm->failed, sm->skipped,
         sm->faults, w->plan.planned_makespan_s, w->plan.expected_makespan_s,
-        hv_exec_executed_s(sm, hv_exec_now_ns()), sm->time_scale, wall_s, cpu_s, peak_rss_kb,
+        hv_exec_executed_s(sm, now), sm->time_scale, wall_s, cpu_s, peak_rss_kb,
         (unsigned long long)st->steps,
         st->steps ? (double)st->step_ns_total / (double)st->steps : 0.0,
         (unsigned long long)st->step_ns_max, (unsigned long long)st->frames_rx,
-        (unsigned long long)st->frames_tx, (unsigned long long)st->send_failures,
+        (unsigned long long)st->io.frames_tx, (unsigned long long)st->io.send_failures,
         (unsigned long long)st->frames_rx_malformed, (unsigned long long)cs.rx_malformed,
-        (unsigned long long)cs.rx_unsupported, (unsigned long long)st->journal_records, o->journal,
-        hv_can_name(&w->bus), latched, sm->latched && sm->prm.clear_estop ? "true" : "false",
-        hv_exec_node_name(sm->safe_node), o->online ? "true" : "false", (unsigned)w->plan.n_stops,
-        sm->plan_final ? "true" : "false", wait_first, wait_row, sm->waits, w->feed_stats.messages,
-        w->feed_stats.refused);
+        (unsigned long long)cs.rx_unsupported, (unsigned long long)st->io.journal_records,
+        o->journal, hv_can_name(&w->bus), latched,
+        sm->latched && sm->prm.clear_estop ? "true" : "false", hv_exec_node_name(sm->safe_node),
+        o->online ? "true" : "false", (unsigned)w->plan.n_stops, sm->plan_final ? "true" : "false",
+        wait_first, wait_row, sm->waits, w->feed_stats.messages, w->feed_stats.refused);
     char err[256];
     if (n < 0 || (size_t)n >= sizeof buf ||
         hv_file_write_atomic(o->summary, buf, (size_t)n, err, sizeof err) != HV_OK)
@@ -560,7 +564,14 @@ int main(int argc, char **argv)
                 (unsigned)w->plan.n_stops, (unsigned)w->plan.n_picks, hv_can_name(&w->bus),
                 w->plan.expected_makespan_s, w->plan.planned_makespan_s);
 
+    w->linux_port.bus = &w->bus;
+    w->linux_port.journal = &w->journal;
+    w->linux_port.clear_by = o.clear_by;
+    w->linux_port.send_timeout_ms = 10;
+    w->linux_port.wake_fd = o.online ? w->feed.fd : -1;
+    hv_exec_port_linux(&w->port, &w->linux_port);
     w->loop.sm = &w->sm;
+    w->loop.port = &w->port;
     w->loop.bus = &w->bus;
     w->loop.journal = &w->journal;
     w->loop.tm = &w->tm;
@@ -569,9 +580,10 @@ int main(int argc, char **argv)
     w->loop.clear_by = o.clear_by;
     w->loop.tick_s = 0.01;
     w->loop.linger_s = 0.5; /* e-stops repeat meanwhile when safe */
-    uint64_t t0 = hv_exec_now_ns();
+    uint64_t t0 = w->port.now_ns(w->port.ctx);
     st = hv_exec_loop_run(&w->loop);
-    double wall_s = (double)(hv_exec_now_ns() - t0) * 1e-9;
+    uint64_t t_end = w->port.now_ns(w->port.ctx);
+    double wall_s = (double)(t_end - t0) * 1e-9;
     struct rusage ru;
     getrusage(RUSAGE_SELF, &ru);
     double cpu_s = (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec * 1e-6 +
@@ -594,7 +606,7 @@ int main(int argc, char **argv)
            hv_exec_phase_name(w->sm.phase), w->sm.phase == HV_PH_SAFE ? " " : "",
            w->sm.phase == HV_PH_SAFE ? hv_exec_safe_reason_name(w->sm.safe_reason) : "",
            w->sm.picked, w->sm.failed, w->sm.skipped, hv_exec_remaining(&w->sm), w->sm.faults,
-           hv_exec_executed_s(&w->sm, hv_exec_now_ns()), w->plan.expected_makespan_s, objective);
+           hv_exec_executed_s(&w->sm, t_end), w->plan.expected_makespan_s, objective);
     if (rc == EXIT_ESTOP_LATCHED) {
         char latched[64];
         hv_exec_node_list(w->sm.latched, latched, sizeof latched);

@@ -1,7 +1,8 @@
-/* The executor's event loop (DESIGN §7): CLOCK_MONOTONIC, a CAN bus, the journal and a
- * telemetry sink around the pure state machine. Frames and 10 ms timer ticks go in;
- * the actions come out in order: journal records are durable before the next action, CAN
- * frames are sent, telemetry is published. */
+/* The executor's event loop (DESIGN §7) around the pure state machine, on a port
+ * (hv/exec_port.h): its clock, its frames, its wait between them, its journal. Frames and
+ * 10 ms timer ticks go in; the actions come out in order through hv_exec_port_carry_out
+ * (a journal record durable before the next action, CAN frames sent); telemetry and the
+ * progress lines are the loop's own. harvest-exec runs it on hv_exec_port_linux. */
 #ifndef HV_EXEC_LOOP_H
 #define HV_EXEC_LOOP_H
 
@@ -13,6 +14,7 @@
 #include "hv/exec_can.h"
 #include "hv/exec_feed.h"
 #include "hv/exec_journal.h"
+#include "hv/exec_port.h"
 #include "hv/exec_sm.h"
 #include "hv/exec_telemetry.h"
 
@@ -22,22 +24,24 @@ extern "C" {
 
 typedef struct hv_exec_loop_stats {
     uint64_t steps;         /* calls of hv_exec_step */
-    uint64_t step_ns_total; /* time spent in hv_exec_step */
+    uint64_t step_ns_total; /* time spent in hv_exec_step (the port's clock) */
     uint64_t step_ns_max;
-    uint64_t frames_rx, frames_tx, frames_rx_malformed, send_failures;
-    uint64_t journal_records;
-    uint64_t encode_errors;
+    uint64_t frames_rx, frames_rx_malformed;
+    hv_exec_port_stats_t io; /* frames_tx, send_failures, encode_errors, journal_records */
 } hv_exec_loop_stats_t;
 
 typedef struct hv_exec_loop {
     hv_exec_sm_t *sm;
-    hv_can_bus_t *bus;
-    hv_exec_journal_t *journal;  /* may be NULL (no journal: tests only) */
+    const hv_exec_port_t *port;  /* time, frames, waiting, journal records: all I/O of a step */
+    hv_can_bus_t *bus;           /* the port's bus, for its counters in telemetry only
+                                    (can_stats_t), or NULL */
+    hv_exec_journal_t *journal;  /* the port's journal file, or NULL: the committed stops
+                                    online (hv_exec_journal_stops), its path in messages */
     hv_exec_telemetry_t *tm;     /* may be NULL */
     volatile sig_atomic_t *stop; /* set by a signal handler: stop safely */
     FILE *progress;              /* phase changes and outcomes, or NULL */
-    const char *clear_by;        /* the operator who cleared the e-stop (E record), or
-                                        NULL: an e-stop clear then fails like a journal write */
+    const char *clear_by;        /* the operator named in the progress line of an e-stop
+                                    clear (the port journals it), or NULL */
     double tick_s;               /* timer tick (s, real), default 0.01 */
     double linger_s;             /* keep running after the end (e-stop repeats), s */
     hv_exec_feed_t *feed;        /* online: the planner's stops, or NULL */
@@ -48,10 +52,9 @@ typedef struct hv_exec_loop {
     hv_exec_loop_stats_t st;
 } hv_exec_loop_t;
 
-/* Monotonic time, ns. */
-uint64_t hv_exec_now_ns(void);
-
-/* Run until the state machine finished (ROW_DONE or SAFE) and linger_s passed. */
+/* Run until the state machine finished (ROW_DONE or SAFE) and linger_s passed. Between
+ * frames and ticks it sleeps in port->wait (polls when that is NULL). HV_ERR_ARG without
+ * a state machine or a port's required member; the error of port->wait, which ends it. */
 hv_status_t hv_exec_loop_run(hv_exec_loop_t *L);
 
 #ifdef __cplusplus

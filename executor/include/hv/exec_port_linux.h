@@ -1,5 +1,5 @@
-/* The executor's port on Linux (see hv/exec_port.h): CLOCK_MONOTONIC, an hv_can_bus_t and
- * the journal file. */
+/* The executor's port on Linux (see hv/exec_port.h): CLOCK_MONOTONIC, an hv_can_bus_t, the
+ * journal file, and poll() on the bus (and one more descriptor) to wait. */
 #ifndef HV_EXEC_PORT_LINUX_H
 #define HV_EXEC_PORT_LINUX_H
 
@@ -17,9 +17,12 @@ typedef struct hv_exec_port_linux {
     const char *clear_by;       /* the operator named in an e-stop clear record, or NULL:
                                    such a record then fails like a write */
     int send_timeout_ms;        /* how long hv_can_send may wait for room (10) */
+    int wake_fd;                /* input on it ends a wait too (harvest-exec --online: the
+                                   planner feed's socket), or -1 */
 } hv_exec_port_linux_t;
 
-/* Fill `port` with the Linux functions on `ctx` (which must outlive it). */
+/* Fill `port` with the Linux functions on `ctx` (which must outlive it; every field set,
+ * wake_fd to -1 when there is none). */
 void hv_exec_port_linux(hv_exec_port_t *port, hv_exec_port_linux_t *ctx);
 
 /* One journal record (an HV_ACT_JOURNAL action) into the journal file, synced:
