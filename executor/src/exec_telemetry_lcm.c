@@ -1,6 +1,7 @@
 /* The LCM telemetry sink: executor state -> harvest_*_t messages (lcm_types/). */
 #include <lcm/lcm.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "harvest_lcm_arm_joint_state_t.h"
@@ -19,9 +20,15 @@ static lcm_t *lcm_of(hv_exec_telemetry_t *t)
 static int pub_plan(hv_exec_telemetry_t *t, const hv_exec_plan_t *plan, const char *path,
                     const hv_exec_params_t *prm, double time_scale, int64_t utime)
 {
-    /* static: the message arrays are sized for the largest plan; sent once at start */
-    static harvest_lcm_plan_stop_t stops[HV_EXEC_MAX_STOPS];
-    static harvest_lcm_plan_pick_t picks[HV_EXEC_MAX_PICKS];
+    /* sent once at the start (and as an online plan grows): arrays of this plan's size, on
+     * the heap for the call (the largest plan's would be ~0.5 MB of stack) */
+    harvest_lcm_plan_stop_t *stops = calloc(plan->n_stops ? plan->n_stops : 1u, sizeof *stops);
+    harvest_lcm_plan_pick_t *picks = calloc(plan->n_picks ? plan->n_picks : 1u, sizeof *picks);
+    if (!stops || !picks) {
+        free(stops);
+        free(picks);
+        return -1;
+    }
     harvest_lcm_plan_t m;
     memset(&m, 0, sizeof m);
     m.utime = utime;
@@ -61,7 +68,10 @@ static int pub_plan(hv_exec_telemetry_t *t, const hv_exec_plan_t *plan, const ch
         o->cycle_s = k->cycle_s;
         o->reachable = (int8_t)k->reachable;
     }
-    return harvest_lcm_plan_t_publish(lcm_of(t), HV_TM_CH_PLAN, &m);
+    int rc = harvest_lcm_plan_t_publish(lcm_of(t), HV_TM_CH_PLAN, &m);
+    free(stops);
+    free(picks);
+    return rc;
 }
 
 static int pub_state(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, uint64_t now_ns, int64_t utime)
