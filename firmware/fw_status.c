@@ -19,6 +19,10 @@ const char *hv_fw_status_name(int status)
     case HV_ERR_FW_UPLOAD_CRC: return "HV_ERR_FW_UPLOAD_CRC";
     case HV_ERR_FW_UPLOAD_BUSY: return "HV_ERR_FW_UPLOAD_BUSY";
     case HV_ERR_FW_UPLOAD_TRUNCATED: return "HV_ERR_FW_UPLOAD_TRUNCATED";
+    case HV_ERR_FW_JOURNAL_IO: return "HV_ERR_FW_JOURNAL_IO";
+    case HV_ERR_FW_JOURNAL_PLAN: return "HV_ERR_FW_JOURNAL_PLAN";
+    case HV_ERR_FW_JOURNAL_CORRUPT: return "HV_ERR_FW_JOURNAL_CORRUPT";
+    case HV_ERR_FW_JOURNAL_FORMAT: return "HV_ERR_FW_JOURNAL_FORMAT";
     default: return hv_status_name(status);
     }
 }
