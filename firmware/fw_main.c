@@ -122,10 +122,14 @@ static void report_journal(const hv_fw_t *fw)
 }
 
 /* A whole plan arrived: replay its journal and run it from there, or refuse it when the
- * journal (storage, another plan's, damage) or the state machine (parameters) does. */
+ * state machine (parameters) or the journal (storage, another plan's, damage) does. The
+ * parameters are checked first: a refused plan leaves a fresh journal without a header,
+ * so the corrected plan is not taken for another plan's. */
 static void start_plan(hv_fw_t *fw, uint64_t now)
 {
-    hv_status_t st = fw->board.store_status;
+    hv_status_t st = hv_exec_init(&fw->sm, &fw->plan, &fw->prm, NULL);
+    if (st == HV_OK)
+        st = fw->board.store_status;
     if (st == HV_OK)
         st = hv_fw_journal_open(&fw->board.journal, &fw->board.store, &fw->plan, fw->upload.rd.crc,
                                 &fw->progress);

@@ -28,7 +28,8 @@
 #define HV_ERR_FW_JOURNAL_FORMAT                                                                   \
     ((hv_status_t)(-433)) /* a record with a good CRC that the plan cannot have */
 
-/* "HV_ERR_SLCAN_HEX" etc., or hv_status_name() for the other codes. */
+/* "HV_ERR_SLCAN_HEX" etc., or hv_exec_status_name() for the other codes (the executor's,
+ * such as HV_ERR_EXEC_PARAMS for a plan refused for its parameters, then core's). */
 const char *hv_fw_status_name(int status);
 
 #endif /* HV_FW_STATUS_H */

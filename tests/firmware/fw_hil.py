@@ -34,7 +34,7 @@ def missing():
     return out
 
 
-def plan_image(workdir, plan_path, time_scale):
+def plan_image(workdir, plan_path, time_scale, heartbeat_timeout=H.HEARTBEAT_TIMEOUT_S):
     out = os.path.join(workdir, "plan.img")
     subprocess.run(
         [
@@ -48,7 +48,7 @@ def plan_image(workdir, plan_path, time_scale):
             "--time-scale",
             str(time_scale),
             "--heartbeat-timeout",
-            str(H.HEARTBEAT_TIMEOUT_S),
+            str(heartbeat_timeout),
         ],
         check=True,
         capture_output=True,

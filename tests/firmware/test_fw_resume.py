@@ -3,7 +3,8 @@ bus, QEMU killed (SIGKILL) in the middle of a short row just after a cut, starte
 on the same journal file (semihosting, the board's flash), the plan uploaded again, and
 the row finished. Judged by the simulator's record: every planned fruit cut once and
 released into the container by the arm that cut it, none lost, none cut twice. And a
-journal of another plan refused by its name."""
+journal of another plan refused by its name; a plan refused for its parameters writes
+nothing to the journal."""
 
 import collections
 import os
@@ -112,3 +113,26 @@ def test_a_journal_of_another_plan_is_refused_by_name(tmp_path, rig_factory):
     rig.start_firmware()
     assert upload(image_a)[0] == "RUNNING"
     assert fw_hil.wait_until(lambda: len(journal_lines(rig)) == 2, 10), journal_lines(rig)
+
+
+def test_a_plan_refused_for_its_parameters_leaves_the_journal_fresh(tmp_path, rig_factory):
+    """A plan the state machine refuses (here a heartbeat timeout of 0) writes nothing, so
+    the corrected plan that follows runs on the same journal instead of being taken for
+    another plan's."""
+    from harvest.canbus import plan_upload
+
+    H.make_plan(tmp_path / "plan.json", stops=2, per_arm=1, seed=8)
+    bad = fw_hil.plan_image(tmp_path, tmp_path / "plan.json", SCALE, heartbeat_timeout=0)
+    good = fw_hil.plan_image(tmp_path, tmp_path / "plan.json", SCALE)
+    rig = rig_factory(sim=False)
+    with pytest.raises(plan_upload.UploadError, match="refused"):
+        upload(bad, timeout=20.0)
+    errors = [ln for ln in fw_qemu.uart_lines(rig.qemu.uart_log) if "error" in ln]
+    assert any(ln.endswith("HV_ERR_EXEC_PARAMS") for ln in errors), errors
+    assert os.path.getsize(rig.qemu.journal) == 0
+    # after a reset (the firmware keeps announcing the refusal until then), the good plan
+    rig.kill_firmware()
+    rig.start_firmware()
+    assert upload(good)[0] == "RUNNING"
+    assert fw_hil.wait_until(lambda: len(journal_lines(rig)) == 1, 10), journal_lines(rig)
+    assert journal_lines(rig)[0]["records"] == "1"
