@@ -23,6 +23,7 @@ typedef struct hv_fw {
     hv_fw_port_t board;
     hv_exec_plan_t plan;
     hv_exec_params_t prm;
+    hv_exec_progress_t progress; /* replayed from the journal when the plan arrives */
     hv_fw_upload_t upload;
     hv_exec_sm_t sm;
     hv_exec_actions_t out;
@@ -106,15 +107,40 @@ static void send_upload_status(hv_fw_t *fw, uint64_t now)
     fw->next_upload_status_ns = now + REPORT_NS;
 }
 
-/* A whole plan arrived: run it, or refuse it when the state machine does (parameters). */
+/* What the journal brought back: records held, torn bytes ignored, fruits with an outcome. */
+static void report_journal(const hv_fw_t *fw)
+{
+    unsigned done = 0;
+    for (unsigned i = 0; i < fw->plan.n_picks; i++)
+        done += fw->progress.pick[i] == HV_PROG_DONE;
+    hv_fw_uart_puts("harvest-fw: journal");
+    put_field(" records=", fw->board.journal.records);
+    put_field(" torn_bytes=", fw->board.journal.torn_bytes);
+    put_field(" outcomes=", done);
+    put_field(" row_done=", (uint64_t)fw->progress.row_done);
+    hv_fw_uart_puts("\r");
+}
+
+/* A whole plan arrived: replay its journal and run it from there, or refuse it when the
+ * state machine (parameters) or the journal (storage, another plan's, damage) does. The
+ * parameters are checked first: a refused plan leaves a fresh journal without a header,
+ * so the corrected plan is not taken for another plan's. */
 static void start_plan(hv_fw_t *fw, uint64_t now)
 {
     hv_status_t st = hv_exec_init(&fw->sm, &fw->plan, &fw->prm, NULL);
+    if (st == HV_OK)
+        st = fw->board.store_status;
+    if (st == HV_OK)
+        st = hv_fw_journal_open(&fw->board.journal, &fw->board.store, &fw->plan, fw->upload.rd.crc,
+                                &fw->progress);
+    if (st == HV_OK)
+        st = hv_exec_init(&fw->sm, &fw->plan, &fw->prm, &fw->progress);
     if (st != HV_OK) {
         fw->upload.state = HV_UPLOAD_REFUSED;
         fw->upload.error = st;
         return;
     }
+    report_journal(fw);
     fw->upload.state = HV_UPLOAD_RUNNING;
     fw->running = 1;
     fw->next_tick_ns = now;
@@ -157,6 +183,8 @@ void hv_fw_main(void)
     static hv_fw_t fw;
     hv_fw_port_init(&fw.port, &fw.board);
     hv_fw_uart_puts("harvest-fw: mps2-an386 cortex-m4f, SLCAN on UART0, waiting for a plan\r");
+    if (fw.board.store_status != HV_OK)
+        hv_fw_port_report_error(fw.board.store_status); /* every upload is refused with it */
     for (;;) {
         uint64_t now = fw.port.now_ns(fw.port.ctx);
         hv_can_frame_t f;

@@ -100,10 +100,10 @@ static hv_status_t fw_wait(void *ctx, uint64_t until_ns)
 static hv_status_t fw_journal(void *ctx, const hv_exec_action_t *record, double t_s)
 {
     hv_fw_port_t *P = ctx;
-    (void)record;
-    (void)t_s;
-    P->journal_records++;
-    return HV_OK;
+    hv_status_t st = hv_fw_journal_append(&P->journal, record, t_s);
+    if (st == HV_OK)
+        P->journal_records++;
+    return st;
 }
 
 void hv_fw_port_init(hv_exec_port_t *port, hv_fw_port_t *ctx)
@@ -112,6 +112,7 @@ void hv_fw_port_init(hv_exec_port_t *port, hv_fw_port_t *ctx)
     hv_fw_uart_init();
     hv_fw_clock_init(&ctx->clock);
     hv_fw_wake_init();
+    ctx->store_status = hv_fw_semihost_open(&ctx->storage, &ctx->store);
     port->ctx = ctx;
     port->now_ns = fw_now_ns;
     port->can_send = fw_send;

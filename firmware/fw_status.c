@@ -1,6 +1,8 @@
 /* Names of the firmware's status codes (fw_status.h). */
 #include "fw_status.h"
 
+#include "hv/exec_status.h"
+
 /* the codes below -34 are cast to hv_status_t: it must hold them (status.h) */
 typedef char hv_fw_status_holds_int[sizeof(hv_status_t) == sizeof(int) ? 1 : -1];
 
@@ -19,6 +21,10 @@ const char *hv_fw_status_name(int status)
     case HV_ERR_FW_UPLOAD_CRC: return "HV_ERR_FW_UPLOAD_CRC";
     case HV_ERR_FW_UPLOAD_BUSY: return "HV_ERR_FW_UPLOAD_BUSY";
     case HV_ERR_FW_UPLOAD_TRUNCATED: return "HV_ERR_FW_UPLOAD_TRUNCATED";
-    default: return hv_status_name(status);
+    case HV_ERR_FW_JOURNAL_IO: return "HV_ERR_FW_JOURNAL_IO";
+    case HV_ERR_FW_JOURNAL_PLAN: return "HV_ERR_FW_JOURNAL_PLAN";
+    case HV_ERR_FW_JOURNAL_CORRUPT: return "HV_ERR_FW_JOURNAL_CORRUPT";
+    case HV_ERR_FW_JOURNAL_FORMAT: return "HV_ERR_FW_JOURNAL_FORMAT";
+    default: return hv_exec_status_name(status); /* the executor's, then core's */
     }
 }

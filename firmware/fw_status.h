@@ -20,8 +20,16 @@
 #define HV_ERR_FW_UPLOAD_BUSY   ((hv_status_t)(-424)) /* an upload while a plan runs */
 #define HV_ERR_FW_UPLOAD_TRUNCATED                                                                 \
     ((hv_status_t)(-425)) /* a new upload began before this one ended */
+#define HV_ERR_FW_JOURNAL_IO                                                                       \
+    ((hv_status_t)(-430)) /* the journal's storage failed to open, read or write */
+#define HV_ERR_FW_JOURNAL_PLAN ((hv_status_t)(-431)) /* the journal belongs to another plan */
+#define HV_ERR_FW_JOURNAL_CORRUPT                                                                  \
+    ((hv_status_t)(-432)) /* a record before the last fails its CRC (damage, not a torn write) */
+#define HV_ERR_FW_JOURNAL_FORMAT                                                                   \
+    ((hv_status_t)(-433)) /* a record with a good CRC that the plan cannot have */
 
-/* "HV_ERR_SLCAN_HEX" etc., or hv_status_name() for the other codes. */
+/* "HV_ERR_SLCAN_HEX" etc., or hv_exec_status_name() for the other codes (the executor's,
+ * such as HV_ERR_EXEC_PARAMS for a plan refused for its parameters, then core's). */
 const char *hv_fw_status_name(int status);
 
 #endif /* HV_FW_STATUS_H */

@@ -14,7 +14,8 @@
 #include <unistd.h>
 
 #include "hv/cost_table.h" /* hv_crc32 */
-#include "hv/exec_sm.h"    /* node indices and names */
+#include "hv/exec_progress.h"
+#include "hv/exec_sm.h" /* node indices and names */
 #include "hv/exec_status.h"
 #include "hv/fruit_id.h"
 #include "hv/record_line.h"
@@ -252,6 +253,7 @@ typedef struct replay {
     size_t group_off; /* where its P record starts */
     unsigned g_index, g_left, g_right, g_got;
     double g_y;
+    int outcome, reason; /* of the F record being applied */
 } replay_t;
 
 static hv_status_t bad(replay_t *r, hv_status_t code, const char *what)
@@ -331,6 +333,26 @@ static hv_status_t replay_plan_record(replay_t *r, char kind, const char *line)
     return HV_OK;
 }
 
+/* A parsed record into the progress through the mapping every journal shares
+ * (hv/exec_progress.h); `what` names a record it refuses as FORMAT. */
+static hv_status_t apply(replay_t *r, hv_exec_journal_kind_t kind, int stop, int pick,
+                         unsigned nodes, const char *what)
+{
+    hv_exec_action_t rec;
+    memset(&rec, 0, sizeof rec);
+    rec.kind = HV_ACT_JOURNAL;
+    rec.u.jr.kind = kind;
+    rec.u.jr.stop = stop;
+    rec.u.jr.pick = pick;
+    rec.u.jr.outcome = r->outcome;
+    rec.u.jr.reason = r->reason;
+    rec.u.jr.nodes = nodes;
+    hv_status_t st = hv_exec_progress_apply(r->prog, r->j->plan, &rec);
+    if (st == HV_ERR_EXEC_JOURNAL_UNKNOWN)
+        return bad(r, st, "fruit not in the plan");
+    return st == HV_OK ? HV_OK : bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, what);
+}
+
 /* One complete line (without its newline). */
 static hv_status_t replay_line(replay_t *r, char *line, size_t len)
 {
@@ -369,53 +391,39 @@ static hv_status_t replay_line(replay_t *r, char *line, size_t len)
     case 'Q': return replay_plan_record(r, kind[0], line);
     case 'S': {
         int stop;
-        if (sscanf(line, "S %d t=%lf", &stop, &t) != 2 || stop < 0 || stop >= r->j->plan->n_stops)
+        if (sscanf(line, "S %d t=%lf", &stop, &t) != 2)
             return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "bad stop record");
-        r->prog->stop_reached[stop] = 1;
-        return HV_OK;
+        return apply(r, HV_JR_STOP, stop, -1, 0, "bad stop record");
     }
     case 'C':
     case 'R': {
         if (sscanf(line, "%*c %39s %39s a=%d t=%lf", a, b, &attempt, &t) != 4)
             return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "bad cut/release record");
-        int pick = find_pick(r, a, b);
-        if (pick < 0)
-            return bad(r, HV_ERR_EXEC_JOURNAL_UNKNOWN, "fruit not in the plan");
-        if (r->prog->pick[pick] != HV_PROG_DONE)
-            r->prog->pick[pick] = kind[0] == 'C' ? HV_PROG_CUT : HV_PROG_RELEASE;
-        return HV_OK;
+        return apply(r, kind[0] == 'C' ? HV_JR_CUT : HV_JR_RELEASE, -1, find_pick(r, a, b), 0,
+                     "bad cut/release record");
     }
     case 'F': {
         if (sscanf(line, "F %39s %39s %23s %31s a=%d t=%lf", a, b, c, d, &attempt, &t) != 6)
             return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "bad outcome record");
         int pick = find_pick(r, a, b);
-        if (pick < 0)
-            return bad(r, HV_ERR_EXEC_JOURNAL_UNKNOWN, "fruit not in the plan");
         int outcome = hv_exec_outcome_parse(c), reason = hv_exec_reason_parse(d);
-        if (outcome < 0 || reason < 0)
+        if (pick >= 0 && (outcome < 0 || reason < 0))
             return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "unknown outcome or reason");
-        if (r->prog->pick[pick] == HV_PROG_DONE)
-            return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "second outcome for one fruit");
-        r->prog->pick[pick] = HV_PROG_DONE;
-        r->prog->outcome[pick] = (uint8_t)outcome;
-        r->prog->reason[pick] = (uint8_t)reason;
-        return HV_OK;
+        r->outcome = outcome;
+        r->reason = reason;
+        return apply(r, HV_JR_OUTCOME, -1, pick, 0, "second outcome for one fruit");
     }
     case 'D':
         if (sscanf(line, "D t=%lf", &t) != 1)
             return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "bad row-done record");
-        r->prog->row_done = 1;
-        return HV_OK;
+        return apply(r, HV_JR_DONE, -1, -1, 0, "bad row-done record");
     case 'E': {
         int end = 0;
         if (sscanf(line, "E %39s nodes=%39s t=%lf%n", a, b, &t, &end) != 3 || line[end] != '\0')
             return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "bad e-stop clear record");
         if (!hv_exec_journal_operator_ok(a))
             return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "e-stop clear: bad operator name");
-        if (parse_nodes(b) == 0)
-            return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "e-stop clear: bad node list");
-        r->prog->estop_clears++;
-        return HV_OK;
+        return apply(r, HV_JR_ESTOP_CLEAR, -1, -1, parse_nodes(b), "e-stop clear: bad node list");
     }
     default: return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "unknown record");
     }

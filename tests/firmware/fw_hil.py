@@ -10,6 +10,7 @@ import sys
 import time
 
 import fw_qemu
+import pytest
 
 from harvest.firmware import rig
 
@@ -33,7 +34,7 @@ def missing():
     return out
 
 
-def plan_image(workdir, plan_path, time_scale):
+def plan_image(workdir, plan_path, time_scale, heartbeat_timeout=H.HEARTBEAT_TIMEOUT_S):
     out = os.path.join(workdir, "plan.img")
     subprocess.run(
         [
@@ -47,7 +48,7 @@ def plan_image(workdir, plan_path, time_scale):
             "--time-scale",
             str(time_scale),
             "--heartbeat-timeout",
-            str(H.HEARTBEAT_TIMEOUT_S),
+            str(heartbeat_timeout),
         ],
         check=True,
         capture_output=True,
@@ -58,13 +59,23 @@ def plan_image(workdir, plan_path, time_scale):
 
 
 class Rig:
-    """QEMU (serial on TCP, waiting for the bridge), the bridge, the simulator."""
+    """QEMU (serial on TCP, waiting for the bridge), the bridge, the simulator. The
+    firmware's journal is workdir/fw.journal, kept when the firmware starts again."""
 
     def __init__(self, workdir, time_scale, faults=(), sim=True):
-        self.qemu = fw_qemu.Qemu(str(workdir))
+        self.workdir = str(workdir)
+        self.start_firmware()
+        self.sim = H.Sim(self.workdir, time_scale, faults) if sim else None
+
+    def start_firmware(self):
+        self.qemu = fw_qemu.Qemu(self.workdir)
         self.qemu.wait_listening()
-        self.bridge = rig.Bridge(str(workdir), self.qemu.port, H.GROUP, H.env())
-        self.sim = H.Sim(str(workdir), time_scale, faults) if sim else None
+        self.bridge = rig.Bridge(self.workdir, self.qemu.port, H.GROUP, H.env())
+
+    def kill_firmware(self):
+        """SIGKILL of QEMU (a power cut of the board), then its serial line's bridge."""
+        self.qemu.kill()
+        self.bridge.stop()
 
     def stop(self):
         for part in (self.sim, self.bridge, self.qemu):
@@ -79,3 +90,44 @@ def wait_until(predicate, timeout, period=0.5):
             return True
         time.sleep(period)
     return predicate()
+
+
+def rigs(tmp_path, time_scale):
+    """The body of a test's rig fixture (`yield from`): skips naming what is missing,
+    enters the private network namespace, yields make(faults=(), sim=True) that starts a
+    Rig, and stops every rig it made."""
+    fw_qemu.require_qemu()
+    fw_qemu.fw_build.require_image()
+    reasons = missing()
+    if reasons:
+        pytest.skip("SKIPPED: " + "; ".join(reasons))
+    fw_qemu.enter_netns()
+    made = []
+
+    def make(faults=(), sim=True):
+        made.append(Rig(tmp_path, time_scale, faults, sim=sim))
+        return made[-1]
+
+    try:
+        yield make
+    finally:
+        for r in made:
+            r.stop()
+
+
+def upload(image, timeout=30.0):
+    """The plan image uploaded on the test's bus (harvest.canbus.plan_upload)."""
+    from harvest.canbus import plan_upload
+    from harvest.canbus.buses import open_bus
+
+    with open_bus("udp") as bus:
+        return plan_upload.upload(bus, image, timeout)
+
+
+def uart_phases(rig):
+    """The phase of each status line the firmware wrote to UART0, in order."""
+    return [
+        fw_qemu.status_fields(ln)["phase"]
+        for ln in fw_qemu.uart_lines(rig.qemu.uart_log)
+        if ln.startswith("harvest-fw: status")
+    ]

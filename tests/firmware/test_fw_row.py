@@ -10,7 +10,7 @@ import can
 import fw_hil
 import fw_qemu
 import pytest
-from fw_hil import H
+from fw_hil import H, uart_phases, upload
 
 # Time scale 1: the serial line carries every frame of the bus, and the simulator sends
 # its status and joint frames at rates that grow with the time scale.
@@ -19,38 +19,7 @@ SCALE = 1.0
 
 @pytest.fixture
 def rig_factory(tmp_path):
-    fw_qemu.require_qemu()
-    fw_qemu.fw_build.require_image()
-    reasons = fw_hil.missing()
-    if reasons:
-        pytest.skip("SKIPPED: " + "; ".join(reasons))
-    fw_qemu.enter_netns()
-    rigs = []
-
-    def make(faults=(), sim=True):
-        r = fw_hil.Rig(tmp_path, SCALE, faults, sim=sim)
-        rigs.append(r)
-        return r
-
-    yield make
-    for r in rigs:
-        r.stop()
-
-
-def uart_phases(rig):
-    return [
-        fw_qemu.status_fields(ln)["phase"]
-        for ln in fw_qemu.uart_lines(rig.qemu.uart_log)
-        if ln.startswith("harvest-fw: status")
-    ]
-
-
-def upload(image, timeout=30.0):
-    from harvest.canbus import plan_upload
-    from harvest.canbus.buses import open_bus
-
-    with open_bus("udp") as bus:
-        return plan_upload.upload(bus, image, timeout)
+    yield from fw_hil.rigs(tmp_path, SCALE)
 
 
 def test_short_row_picks_every_planned_fruit(tmp_path, rig_factory):

@@ -5,8 +5,10 @@
  * (hv_exec_port_carry_out). Two implementations:
  *   - Linux (exec_port_linux.c, hv_exec_port_linux): CLOCK_MONOTONIC, an hv_can_bus_t
  *     (SocketCAN or udp), the journal file (hv/exec_journal.h);
- *   - the firmware (firmware/fw_port.c): the SysTick, SLCAN on the UART, journal records
- *     counted in RAM (QEMU's mps2-an386 has no storage that outlives a reset).
+ *   - the firmware (firmware/fw_port.c): the SysTick, SLCAN on the UART, the journal as
+ *     fixed-size binary records on the board's storage (firmware/fw_journal.h; in QEMU a
+ *     host file through semihosting), replayed at boot like the Linux journal
+ *     (hv/exec_progress.h).
  */
 #ifndef HV_EXEC_PORT_H
 #define HV_EXEC_PORT_H

@@ -1,7 +1,10 @@
 """python -m harvest firmware run: a whole row with harvest-fw.elf in QEMU on the
 simulator's bus, the plan uploaded over the bus, and a summary from the simulator's own
 record (scripts/demo.sh --target firmware). Run it inside a private network namespace
-(unshare -rn): QEMU's serial port and the multicast bus stay on its loopback."""
+(unshare -rn): QEMU's serial port and the multicast bus stay on its loopback. The
+firmware's journal is a host file (semihosting, standing for the board's flash): fresh in
+the output folder for each run, or --journal FILE, kept across runs, so a run started
+again on the same file resumes the row the last one left."""
 
 import argparse
 import json
@@ -46,6 +49,9 @@ def summarize(record_path, plan, image, uart_log, icount=True):
     planned_s, expected_s = _image_makespans(image)
     st = rig.last_status(uart_log)
     cycles = int(st.get("worst_step_cycles", 0))
+    # what the firmware's journal held when the plan started (more than its header: resumed)
+    jl = [ln for ln in rig.uart_lines(uart_log) if ln.startswith("harvest-fw: journal")]
+    journal = rig.status_fields(jl[-1]) if jl else {}
     return {
         "phase": st.get("phase", "unknown"),
         "safe_reason": st.get("safe_reason"),
@@ -61,6 +67,8 @@ def summarize(record_path, plan, image, uart_log, icount=True):
         "worst_step_instructions": round(cycles / rig.CYCLES_PER_INSN) if icount else None,
         "bad_lines": int(st.get("bad_lines", 0)),
         "overruns": int(st.get("overruns", 0)),
+        "journal_records_at_start": int(journal.get("records", 0)),
+        "journal_outcomes_at_start": int(journal.get("outcomes", 0)),
     }
 
 
@@ -75,7 +83,12 @@ def run(a):
         plan = json.load(f)
     p = plan["params"]
     record = os.path.join(a.out, "sim.jsonl")
-    qemu = rig.Qemu(a.image, a.out, icount=a.icount)
+    journal = a.journal or os.path.join(a.out, "fw.journal")
+    stale = [os.path.join(a.out, "uart0.log")] + ([] if a.journal else [journal])
+    for path in stale:  # this run's only (the UART log is appended to)
+        if os.path.exists(path):
+            os.remove(path)
+    qemu = rig.Qemu(a.image, a.out, icount=a.icount, journal=journal)
     qemu.wait_listening()
     bridge = rig.Bridge(a.out, qemu.port)
     # the simulator's frame rate in wall time stays that of time scale 1: the serial line
@@ -156,6 +169,12 @@ def main(argv=None):
         type=float,
         default=None,
         help="the simulator's frame rate, simulated Hz (default 50 / time scale)",
+    )
+    r.add_argument(
+        "--journal",
+        default=None,
+        help="the firmware's journal file, kept across runs: a run on the file an "
+        "interrupted run left resumes its row (default: a fresh OUT/fw.journal)",
     )
     r.add_argument("--out", required=True, help="folder for the record, logs, firmware.json")
     a = ap.parse_args(argv)

@@ -19,11 +19,24 @@ ICOUNT_SHIFT = 5
 CYCLES_PER_INSN = (2**ICOUNT_SHIFT) * 25e6 / 1e9
 
 
-def qemu_argv(image, port, uart_log, icount=False):
+def semihosting_args(journal):
+    """Semihosting on, and the journal's file named on its command line, which the
+    firmware reads (firmware/fw_semihost.h): the host file stands for the board's flash.
+    QEMU's option values escape a comma by doubling it."""
+    path = os.path.abspath(journal).replace(",", ",,")
+    return [
+        "-semihosting-config",
+        f"enable=on,target=native,arg=harvest-fw,arg=--journal,arg={path}",
+    ]
+
+
+def qemu_argv(image, port, uart_log, journal, icount=False):
     """QEMU waits for the client before the firmware starts (wait=on): nothing is lost.
     nodelay=on: the UART sends byte by byte, and with Nagle's algorithm each reply waited
     for the client's delayed ACK (a "V" line's round trip 41 ms median, 0.2 ms without).
-    Everything the firmware writes to UART0 is also kept in uart_log."""
+    Everything the firmware writes to UART0 is also kept in uart_log (appended: a restart
+    keeps what the run before it wrote); its journal goes to the file `journal` (created
+    when absent, kept across QEMU's restarts)."""
     argv = [
         "qemu-system-arm",
         "-M",
@@ -32,12 +45,13 @@ def qemu_argv(image, port, uart_log, icount=False):
         "-monitor",
         "none",
         "-chardev",
-        f"socket,id=uart0,host=127.0.0.1,port={port},server=on,wait=on,nodelay=on,logfile={uart_log}",
+        f"socket,id=uart0,host=127.0.0.1,port={port},server=on,wait=on,nodelay=on,"
+        f"logfile={uart_log},logappend=on",
         "-serial",
         "chardev:uart0",
         "-kernel",
         image,
-    ]
+    ] + semihosting_args(journal)
     if icount:
         argv += ["-icount", f"shift={ICOUNT_SHIFT},align=off,sleep=on"]
     return argv
@@ -56,14 +70,19 @@ def stop_process(proc):
 
 class Qemu:
     """The firmware in QEMU. connect() makes .sock UART0 (tests that speak SLCAN
-    themselves); a Bridge connects instead when the firmware goes on the bus."""
+    themselves); a Bridge connects instead when the firmware goes on the bus. The journal
+    file (default: workdir/fw.journal) is the board's storage: a QEMU started again on the
+    same file resumes the row it holds. Each start appends to the logs."""
 
-    def __init__(self, image, workdir, port=SERIAL_PORT, icount=False):
+    def __init__(self, image, workdir, port=SERIAL_PORT, icount=False, journal=None):
         self.port = port
-        self.log = open(os.path.join(workdir, "qemu.log"), "w")
+        self.journal = journal or os.path.join(workdir, "fw.journal")
+        self.log = open(os.path.join(workdir, "qemu.log"), "a")
         self.uart_log = os.path.join(workdir, "uart0.log")
         self.proc = subprocess.Popen(
-            qemu_argv(image, port, self.uart_log, icount), stdout=self.log, stderr=subprocess.STDOUT
+            qemu_argv(image, port, self.uart_log, self.journal, icount),
+            stdout=self.log,
+            stderr=subprocess.STDOUT,
         )
         self.sock = None
         self.buf = b""
@@ -138,6 +157,15 @@ class Qemu:
         if self.sock:
             self.sock.close()
         stop_process(self.proc)
+        self.log.close()
+
+    def kill(self):
+        """SIGKILL, as a power cut: nothing of the firmware's runs after it."""
+        if self.sock:
+            self.sock.close()
+        if self.proc.poll() is None:
+            self.proc.kill()
+        self.proc.wait()
         self.log.close()
 
 
