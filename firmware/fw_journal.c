@@ -47,12 +47,13 @@ static int crc_ok(const uint8_t in[HV_FW_JOURNAL_RECORD])
 }
 
 /* plan time in whole ms, within u32 (informational: never read back into the run) */
-static uint32_t t_ms_of(double t_s)
+static uint32_t t_ms_of(hv_exec_real_t t_s)
 {
-    double ms = t_s * 1000.0;
-    if (!(ms > 0.0))
+    hv_exec_real_t ms = t_s * HV_EXEC_REAL(1000.0);
+    if (!(ms > HV_EXEC_REAL(0.0)))
         return 0u;
-    return ms >= 4294967295.0 ? 0xFFFFFFFFu : (uint32_t)ms;
+    /* the largest float below 2^32, so the comparison is exact in either precision */
+    return ms >= HV_EXEC_REAL(4294967040.0) ? 0xFFFFFFFFu : (uint32_t)ms;
 }
 
 static int fits(int v, int max)
@@ -60,7 +61,7 @@ static int fits(int v, int max)
     return v >= 0 && v <= max;
 }
 
-hv_status_t hv_fw_journal_encode(const hv_exec_action_t *rec, double t_s,
+hv_status_t hv_fw_journal_encode(const hv_exec_action_t *rec, hv_exec_real_t t_s,
                                  uint8_t out[HV_FW_JOURNAL_RECORD])
 {
     if (!rec || rec->kind != HV_ACT_JOURNAL || (unsigned)rec->u.jr.kind >= N_KINDS)
@@ -248,7 +249,8 @@ hv_status_t hv_fw_journal_open(hv_fw_journal_t *j, const hv_fw_store_t *store,
     return st;
 }
 
-hv_status_t hv_fw_journal_append(hv_fw_journal_t *j, const hv_exec_action_t *rec, double t_s)
+hv_status_t hv_fw_journal_append(hv_fw_journal_t *j, const hv_exec_action_t *rec,
+                                 hv_exec_real_t t_s)
 {
     uint8_t buf[HV_FW_JOURNAL_RECORD];
     if (!j || !j->store)

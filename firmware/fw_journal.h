@@ -42,7 +42,7 @@ typedef struct hv_fw_journal {
 
 /* A journal record of the state machine (an HV_ACT_JOURNAL action) at plan time t_s into
  * out. HV_ERR_ARG for one that has no encoding (a field beyond its width). */
-hv_status_t hv_fw_journal_encode(const hv_exec_action_t *rec, double t_s,
+hv_status_t hv_fw_journal_encode(const hv_exec_action_t *rec, hv_exec_real_t t_s,
                                  uint8_t out[HV_FW_JOURNAL_RECORD]);
 
 /* A record back into an HV_ACT_JOURNAL action (*t_ms: its plan time, ms; may be NULL).
@@ -60,6 +60,7 @@ hv_status_t hv_fw_journal_open(hv_fw_journal_t *j, const hv_fw_store_t *store,
 
 /* Append one record durably (the store's write returned). HV_ERR_FW_JOURNAL_IO when the
  * journal is not open or the store failed; HV_ERR_ARG as hv_fw_journal_encode. */
-hv_status_t hv_fw_journal_append(hv_fw_journal_t *j, const hv_exec_action_t *rec, double t_s);
+hv_status_t hv_fw_journal_append(hv_fw_journal_t *j, const hv_exec_action_t *rec,
+                                 hv_exec_real_t t_s);
 
 #endif /* HV_FW_JOURNAL_H */

@@ -97,7 +97,7 @@ static hv_status_t fw_wait(void *ctx, uint64_t until_ns)
     return HV_OK;
 }
 
-static hv_status_t fw_journal(void *ctx, const hv_exec_action_t *record, double t_s)
+static hv_status_t fw_journal(void *ctx, const hv_exec_action_t *record, hv_exec_real_t t_s)
 {
     hv_fw_port_t *P = ctx;
     hv_status_t st = hv_fw_journal_append(&P->journal, record, t_s);

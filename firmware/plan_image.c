@@ -13,51 +13,82 @@
 #define STOP_F64   5u
 #define PICK_F64   12u
 
-static void header_f64(hv_exec_plan_t *pl, hv_exec_params_t *p, double *f[HEADER_F64])
+/* One f64 of the image: a double of the plan (data the host prepared, never computed
+ * with here) or a field in the executor's real type (hv/exec_real.h: float on the
+ * firmware), converted as its record arrives, so never per step. */
+typedef struct field {
+    double *d;
+    hv_exec_real_t *r;
+} field_t;
+#define D(x) ((field_t){&(x), NULL})
+#define R(x) ((field_t){NULL, &(x)})
+
+static void header_f64(hv_exec_plan_t *pl, hv_exec_params_t *p, field_t f[HEADER_F64])
 {
-    double *list[HEADER_F64] = {&p->time_scale,
-                                &p->margin,
-                                &p->slack_s,
-                                &p->latency_s,
-                                &p->heartbeat_timeout_s,
-                                &p->heartbeat_period_s,
-                                &p->startup_timeout_s,
-                                &p->command_timeout_s,
-                                &p->home_max_s,
-                                &p->cut_s,
-                                &p->release_s,
-                                &p->vehicle_speed_mps,
-                                &p->vehicle_accel_mps2,
-                                &p->resend_s,
-                                &pl->row_start_m,
-                                &pl->row_length_m,
-                                &pl->stop_margin_m,
-                                &pl->planned_makespan_s,
-                                &pl->planned_pick_s,
-                                &pl->final_drive_s,
-                                &pl->expected_makespan_s,
-                                &pl->home[0][0],
-                                &pl->home[0][1],
-                                &pl->home[0][2],
-                                &pl->home[0][3],
-                                &pl->home[1][0],
-                                &pl->home[1][1],
-                                &pl->home[1][2],
-                                &pl->home[1][3]};
+    field_t list[HEADER_F64] = {R(p->time_scale),
+                                R(p->margin),
+                                R(p->slack_s),
+                                R(p->latency_s),
+                                R(p->heartbeat_timeout_s),
+                                R(p->heartbeat_period_s),
+                                R(p->startup_timeout_s),
+                                R(p->command_timeout_s),
+                                R(p->home_max_s),
+                                R(p->cut_s),
+                                R(p->release_s),
+                                R(p->vehicle_speed_mps),
+                                R(p->vehicle_accel_mps2),
+                                R(p->resend_s),
+                                R(pl->row_start_m),
+                                R(pl->row_length_m),
+                                R(pl->stop_margin_m),
+                                D(pl->planned_makespan_s),
+                                D(pl->planned_pick_s),
+                                D(pl->final_drive_s),
+                                D(pl->expected_makespan_s),
+                                R(pl->home[0][0]),
+                                R(pl->home[0][1]),
+                                R(pl->home[0][2]),
+                                R(pl->home[0][3]),
+                                R(pl->home[1][0]),
+                                R(pl->home[1][1]),
+                                R(pl->home[1][2]),
+                                R(pl->home[1][3])};
     memcpy(f, list, sizeof list);
 }
 
-static void stop_f64(hv_exec_stop_t *s, double *f[STOP_F64])
+static void stop_f64(hv_exec_stop_t *s, field_t f[STOP_F64])
 {
-    double *list[STOP_F64] = {&s->y_m, &s->arm_s[0], &s->arm_s[1], &s->expected_s, &s->drive_s};
+    field_t list[STOP_F64] = {R(s->y_m), D(s->arm_s[0]), D(s->arm_s[1]), D(s->expected_s),
+                              D(s->drive_s)};
     memcpy(f, list, sizeof list);
 }
 
-static void pick_f64(hv_exec_pick_t *k, double *f[PICK_F64])
+static void pick_f64(hv_exec_pick_t *k, field_t f[PICK_F64])
 {
-    double *list[PICK_F64] = {&k->q[0],   &k->q[1],    &k->q[2], &k->q[3], &k->move_s, &k->cycle_s,
-                              &k->cost_s, &k->start_s, &k->x_m,  &k->y_m,  &k->z_m,    &k->yaw_rad};
+    field_t list[PICK_F64] = {R(k->q[0]),   R(k->q[1]),    R(k->q[2]),   R(k->q[3]),
+                              R(k->move_s), D(k->cycle_s), D(k->cost_s), D(k->start_s),
+                              D(k->x_m),    D(k->y_m),     D(k->z_m),    D(k->yaw_rad)};
     memcpy(f, list, sizeof list);
+}
+
+static double field_get(field_t f)
+{
+    return f.d ? *f.d : (double)*f.r;
+}
+
+/* Store v; 0 when it is not finite in the field's type (a real too large for a float is
+ * refused before the conversion, which C leaves undefined for it). */
+static int field_set(field_t f, double v)
+{
+    if (f.d) {
+        *f.d = v;
+        return isfinite(v);
+    }
+    if (!(fabs(v) <= (double)HV_EXEC_REAL_MAX))
+        return 0;
+    *f.r = (hv_exec_real_t)v;
+    return 1;
 }
 
 static void put_u16(uint8_t *b, unsigned v)
@@ -118,7 +149,7 @@ size_t hv_fw_image_write(const hv_exec_plan_t *plan, const hv_exec_params_t *prm
     /* the field tables point into non-const structs; here they are only read */
     hv_exec_params_t p = *prm;
     hv_exec_plan_t *pl = (hv_exec_plan_t *)(uintptr_t)plan;
-    double *f[HEADER_F64];
+    field_t f[HEADER_F64];
     uint8_t *b = buf;
     put_u32(b, HV_FW_IMAGE_MAGIC);
     put_u16(b + 4, HV_FW_IMAGE_VERSION);
@@ -128,7 +159,7 @@ size_t hv_fw_image_write(const hv_exec_plan_t *plan, const hv_exec_params_t *prm
     b[11] = (uint8_t)prm->clear_estop;
     header_f64(pl, &p, f);
     for (unsigned i = 0; i < HEADER_F64; i++)
-        put_f64(b + 12 + 8 * i, *f[i]);
+        put_f64(b + 12 + 8 * i, field_get(f[i]));
     b += HV_FW_IMAGE_HEADER;
     for (unsigned s = 0; s < plan->n_stops; s++, b += HV_FW_IMAGE_STOP) {
         hv_exec_stop_t *st = &pl->stops[s];
@@ -139,7 +170,7 @@ size_t hv_fw_image_write(const hv_exec_plan_t *plan, const hv_exec_params_t *prm
         put_u16(b + 10, st->count[1]);
         stop_f64(st, f);
         for (unsigned i = 0; i < STOP_F64; i++)
-            put_f64(b + 12 + 8 * i, *f[i]);
+            put_f64(b + 12 + 8 * i, field_get(f[i]));
     }
     for (unsigned k = 0; k < plan->n_picks; k++, b += HV_FW_IMAGE_PICK) {
         hv_exec_pick_t *pk = &pl->picks[k];
@@ -151,7 +182,7 @@ size_t hv_fw_image_write(const hv_exec_plan_t *plan, const hv_exec_params_t *prm
             b[4 + i] = (uint8_t)pk->id[i];
         pick_f64(pk, f);
         for (unsigned i = 0; i < PICK_F64; i++)
-            put_f64(b + 36 + 8 * i, *f[i]);
+            put_f64(b + 36 + 8 * i, field_get(f[i]));
     }
     return need;
 }
@@ -167,19 +198,20 @@ void hv_fw_image_begin(hv_fw_image_reader_t *r, hv_exec_plan_t *plan, hv_exec_pa
     memset(plan, 0, sizeof *plan);
 }
 
-static int all_finite(double *const *f, unsigned n)
+/* The n f64 at b into the fields f; 0 when one is not finite in its field's type. */
+static int take_f64(const field_t *f, unsigned n, const uint8_t *b)
 {
+    int ok = 1;
     for (unsigned i = 0; i < n; i++)
-        if (!isfinite(*f[i]))
-            return 0;
-    return 1;
+        ok &= field_set(f[i], get_f64(b + 8 * i));
+    return ok;
 }
 
 static hv_status_t take_header(hv_fw_image_reader_t *r)
 {
     const uint8_t *b = r->buf;
     hv_exec_plan_t *pl = r->plan;
-    double *f[HEADER_F64];
+    field_t f[HEADER_F64];
     if (get_u32(b) != HV_FW_IMAGE_MAGIC || get_u16(b + 4) != HV_FW_IMAGE_VERSION)
         return HV_ERR_FW_UPLOAD_FORMAT;
     unsigned n_stops = get_u16(b + 6), n_picks = get_u16(b + 8);
@@ -193,16 +225,14 @@ static hv_status_t take_header(hv_fw_image_reader_t *r)
     r->prm->max_retries = b[10];
     r->prm->clear_estop = b[11];
     header_f64(pl, r->prm, f);
-    for (unsigned i = 0; i < HEADER_F64; i++)
-        *f[i] = get_f64(b + 12 + 8 * i);
-    return all_finite(f, HEADER_F64) ? HV_OK : HV_ERR_FW_UPLOAD_FORMAT;
+    return take_f64(f, HEADER_F64, b + 12) ? HV_OK : HV_ERR_FW_UPLOAD_FORMAT;
 }
 
 static hv_status_t take_stop(hv_fw_image_reader_t *r, unsigned s)
 {
     const uint8_t *b = r->buf;
     hv_exec_stop_t *st = &r->plan->stops[s];
-    double *f[STOP_F64];
+    field_t f[STOP_F64];
     st->plan_index = get_u32(b);
     for (unsigned a = 0; a < 2; a++) {
         st->first[a] = (uint16_t)get_u16(b + 4 + 2 * a);
@@ -211,16 +241,14 @@ static hv_status_t take_stop(hv_fw_image_reader_t *r, unsigned s)
             return HV_ERR_FW_UPLOAD_FORMAT;
     }
     stop_f64(st, f);
-    for (unsigned i = 0; i < STOP_F64; i++)
-        *f[i] = get_f64(b + 12 + 8 * i);
-    return all_finite(f, STOP_F64) ? HV_OK : HV_ERR_FW_UPLOAD_FORMAT;
+    return take_f64(f, STOP_F64, b + 12) ? HV_OK : HV_ERR_FW_UPLOAD_FORMAT;
 }
 
 static hv_status_t take_pick(hv_fw_image_reader_t *r, unsigned k)
 {
     const uint8_t *b = r->buf;
     hv_exec_pick_t *pk = &r->plan->picks[k];
-    double *f[PICK_F64];
+    field_t f[PICK_F64];
     if (b[0] > 1 || b[1] > 1 || get_u16(b + 2) >= r->plan->n_stops)
         return HV_ERR_FW_UPLOAD_FORMAT;
     const hv_exec_stop_t *st = &r->plan->stops[get_u16(b + 2)];
@@ -242,11 +270,9 @@ static hv_status_t take_pick(hv_fw_image_reader_t *r, unsigned k)
     pk->stop = (uint16_t)get_u16(b + 2);
     pk->ik_status = pk->reachable ? HV_OK : HV_ERR_UNREACHABLE;
     pick_f64(pk, f);
-    for (unsigned i = 0; i < PICK_F64; i++)
-        *f[i] = get_f64(b + 36 + 8 * i);
     if (!pk->reachable)
         r->plan->n_unreachable++;
-    return all_finite(f, PICK_F64) ? HV_OK : HV_ERR_FW_UPLOAD_FORMAT;
+    return take_f64(f, PICK_F64, b + 36) ? HV_OK : HV_ERR_FW_UPLOAD_FORMAT;
 }
 
 /* size of record number `i` (header first); 0 past the last */

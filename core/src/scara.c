@@ -106,6 +106,14 @@ double hv_trap_time(double dist, double vmax, double amax)
     return d / vmax + vmax / amax;
 }
 
+float hv_trap_timef(float dist, float vmax, float amax)
+{
+    float d = fabsf(dist);
+    if (!isfinite(d) || !isfinite(vmax) || !isfinite(amax) || !(vmax > 0.0f) || !(amax > 0.0f))
+        return -1.0f;
+    return d <= vmax * vmax / amax ? 2.0f * sqrtf(d / amax) : d / vmax + vmax / amax;
+}
+
 double hv_scara_move_time(const hv_arm_t *arm, const double q_from[HV_NJOINTS],
                           const double q_to[HV_NJOINTS])
 {

@@ -177,8 +177,8 @@ hv_status_t hv_exec_can_encode(const hv_exec_action_t *a, hv_exec_can_tx_t *tx, 
     *has_frame = 1;
     switch (a->kind) {
     case HV_ACT_HEARTBEAT: {
-        double ts = a->u.hb.time_scale;
-        if (!(ts >= 0.01 && ts <= 655.35))
+        hv_exec_real_t ts = a->u.hb.time_scale;
+        if (!(ts >= HV_EXEC_REAL(0.01) && ts <= HV_EXEC_REAL(655.35)))
             return HV_ERR_EXEC_CAN_FRAME;
         ENCODE_SIMPLE(executor_heartbeat, HARVEST_CAN_EXECUTOR_HEARTBEAT_FRAME_ID,
                       m.counter = tx->hb_counter++;
@@ -224,8 +224,9 @@ hv_status_t hv_exec_can_encode(const hv_exec_action_t *a, hv_exec_can_tx_t *tx, 
         return HV_OK;
     }
     case HV_ACT_MOVE: {
-        double target = a->u.move.target_m, speed = a->u.move.speed_mps;
-        if (!isfinite(target) || fabs(target) > 838.0 || !(speed >= 0.0 && speed < 65.5))
+        hv_exec_real_t target = a->u.move.target_m, speed = a->u.move.speed_mps;
+        if (!isfinite(target) || hv_exec_fabs(target) > HV_EXEC_REAL(838.0) ||
+            !(speed >= HV_EXEC_REAL(0.0) && speed < HV_EXEC_REAL(65.5)))
             return HV_ERR_EXEC_CAN_FRAME;
         ENCODE_SIMPLE(vehicle_move, HARVEST_CAN_VEHICLE_MOVE_FRAME_ID,
                       m.target_position = harvest_can_vehicle_move_target_position_encode(target);

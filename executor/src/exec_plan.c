@@ -7,10 +7,11 @@
 #include "hv/exec_status.h"
 #include "hv/pick.h"
 
-double hv_exec_vehicle_move_s(double dist_m, double speed_mps, double accel_mps2)
+hv_exec_real_t hv_exec_vehicle_move_s(hv_exec_real_t dist_m, hv_exec_real_t speed_mps,
+                                      hv_exec_real_t accel_mps2)
 {
     /* the same trapezoid as a joint: the drive is one more axis with speed/accel limits */
-    return hv_trap_time(dist_m, speed_mps, accel_mps2);
+    return hv_exec_trap_time(dist_m, speed_mps, accel_mps2);
 }
 
 static int timing_ok(const hv_exec_timing_t *t)
@@ -29,7 +30,8 @@ hv_status_t hv_exec_plan_prepare(hv_exec_plan_t *plan, const hv_arm_t arm[2],
     if (!timing_ok(timing))
         return HV_ERR_EXEC_PARAMS;
     for (int s = 0; s < 2; s++)
-        memcpy(plan->home[s], arm[s].home, sizeof plan->home[s]);
+        for (int j = 0; j < HV_NJOINTS; j++)
+            plan->home[s][j] = (hv_exec_real_t)arm[s].home[j];
 
     plan->n_unreachable = 0;
     for (uint16_t i = 0; i < plan->n_picks; i++) {
@@ -37,21 +39,26 @@ hv_status_t hv_exec_plan_prepare(hv_exec_plan_t *plan, const hv_arm_t arm[2],
         if (pk->stop >= plan->n_stops || (pk->side != HV_SIDE_LEFT && pk->side != HV_SIDE_RIGHT))
             return HV_ERR_ARG;
         const hv_arm_t *a = &arm[pk->side];
-        pk->ik_status = hv_pick_solve(a, pk->x_m, pk->y_m - plan->stops[pk->stop].y_m, pk->z_m,
-                                      pk->yaw_rad, pk->q, &pk->move_s, NULL);
+        /* solved in double, kept in the executor's real type (hv/exec_real.h) */
+        double q[HV_NJOINTS], move_s = 0.0;
+        pk->ik_status = hv_pick_solve(a, pk->x_m, pk->y_m - (double)plan->stops[pk->stop].y_m,
+                                      pk->z_m, pk->yaw_rad, q, &move_s, NULL);
         pk->reachable = pk->ik_status == HV_OK;
         if (pk->reachable) {
             /* return home is the same distances reversed: the same time */
-            pk->cycle_s = 2.0 * pk->move_s + timing->cut_s + timing->release_s;
+            pk->cycle_s = 2.0 * move_s + timing->cut_s + timing->release_s;
         } else {
-            memcpy(pk->q, a->home, sizeof pk->q);
-            pk->move_s = 0.0;
+            memcpy(q, a->home, sizeof q);
+            move_s = 0.0;
             pk->cycle_s = 0.0;
             plan->n_unreachable++;
         }
+        for (int j = 0; j < HV_NJOINTS; j++)
+            pk->q[j] = (hv_exec_real_t)q[j];
+        pk->move_s = (hv_exec_real_t)move_s;
     }
 
-    double total = 0.0, y_prev = hv_exec_course_start(plan);
+    double total = 0.0, y_prev = (double)hv_exec_course_start(plan);
     for (uint16_t p = 0; p < plan->n_stops; p++) {
         hv_exec_stop_t *st = &plan->stops[p];
         for (int s = 0; s < 2; s++) {
@@ -62,26 +69,25 @@ hv_status_t hv_exec_plan_prepare(hv_exec_plan_t *plan, const hv_arm_t arm[2],
                 st->arm_s[s] += plan->picks[st->first[s] + k].cycle_s;
         }
         st->expected_s = st->arm_s[0] > st->arm_s[1] ? st->arm_s[0] : st->arm_s[1];
-        st->drive_s = hv_exec_vehicle_move_s(st->y_m - y_prev, timing->vehicle_speed_mps,
-                                             timing->vehicle_accel_mps2);
-        y_prev = st->y_m;
+        st->drive_s = hv_trap_time((double)st->y_m - y_prev, timing->vehicle_speed_mps,
+                                   timing->vehicle_accel_mps2);
+        y_prev = (double)st->y_m;
         total += st->expected_s + st->drive_s;
     }
-    double end = hv_exec_course_end(plan);
-    plan->final_drive_s = end > y_prev
-                              ? hv_exec_vehicle_move_s(end - y_prev, timing->vehicle_speed_mps,
-                                                       timing->vehicle_accel_mps2)
-                              : 0.0;
+    double end = (double)hv_exec_course_end(plan);
+    plan->final_drive_s = end > y_prev ? hv_trap_time(end - y_prev, timing->vehicle_speed_mps,
+                                                      timing->vehicle_accel_mps2)
+                                       : 0.0;
     plan->expected_makespan_s = total + plan->final_drive_s;
     return HV_OK;
 }
 
-double hv_exec_course_start(const hv_exec_plan_t *plan)
+hv_exec_real_t hv_exec_course_start(const hv_exec_plan_t *plan)
 {
     return plan->row_start_m - plan->stop_margin_m;
 }
 
-double hv_exec_course_end(const hv_exec_plan_t *plan)
+hv_exec_real_t hv_exec_course_end(const hv_exec_plan_t *plan)
 {
     return plan->row_start_m + plan->row_length_m + plan->stop_margin_m;
 }
@@ -94,7 +100,7 @@ int hv_exec_plan_find(const hv_exec_plan_t *plan, hv_side_t side, const char *id
     return -1;
 }
 
-hv_status_t hv_exec_plan_append(hv_exec_plan_t *plan, uint32_t plan_index, double y_m,
+hv_status_t hv_exec_plan_append(hv_exec_plan_t *plan, uint32_t plan_index, hv_exec_real_t y_m,
                                 const hv_exec_pick_t *picks, uint16_t n_left, uint16_t n_right)
 {
     if (!plan || (!picks && n_left + n_right > 0))
@@ -103,8 +109,8 @@ hv_status_t hv_exec_plan_append(hv_exec_plan_t *plan, uint32_t plan_index, doubl
     if (plan->n_stops >= HV_EXEC_MAX_STOPS || plan->n_picks + n > HV_EXEC_MAX_PICKS)
         return HV_ERR_EXEC_PLAN_CAPACITY;
     const hv_exec_stop_t *last = plan->n_stops ? &plan->stops[plan->n_stops - 1] : NULL;
-    if (!isfinite(y_m) || y_m < hv_exec_course_start(plan) - 1e-6 ||
-        y_m > hv_exec_course_end(plan) + 1e-6 ||
+    if (!isfinite(y_m) || y_m < hv_exec_course_start(plan) - HV_EXEC_REAL(1e-6) ||
+        y_m > hv_exec_course_end(plan) + HV_EXEC_REAL(1e-6) ||
         (last && (plan_index <= last->plan_index || y_m <= last->y_m)))
         return HV_ERR_EXEC_PLAN_RANGE;
     for (unsigned k = 0; k < n; k++) {
@@ -143,13 +149,13 @@ hv_status_t hv_exec_plan_append(hv_exec_plan_t *plan, uint32_t plan_index, doubl
 }
 
 int hv_exec_plan_stop_matches(const hv_exec_plan_t *plan, uint16_t s, uint32_t plan_index,
-                              double y_m, const hv_exec_pick_t *picks, uint16_t n_left,
+                              hv_exec_real_t y_m, const hv_exec_pick_t *picks, uint16_t n_left,
                               uint16_t n_right)
 {
     if (!plan || s >= plan->n_stops || (!picks && n_left + n_right > 0))
         return 0;
     const hv_exec_stop_t *st = &plan->stops[s];
-    if (st->plan_index != plan_index || !(fabs(st->y_m - y_m) <= 1e-9) ||
+    if (st->plan_index != plan_index || !(hv_exec_fabs(st->y_m - y_m) <= HV_EXEC_REAL(1e-9)) ||
         st->count[HV_SIDE_LEFT] != n_left || st->count[HV_SIDE_RIGHT] != n_right)
         return 0;
     for (unsigned k = 0; k < (unsigned)n_left + n_right; k++) {

@@ -2,7 +2,7 @@
 #include "hv/exec_port.h"
 
 hv_status_t hv_exec_port_carry_out(const hv_exec_port_t *port, hv_exec_can_tx_t *tx,
-                                   const hv_exec_actions_t *out, double t_s,
+                                   const hv_exec_actions_t *out, hv_exec_real_t t_s,
                                    hv_exec_port_stats_t *st, unsigned *done)
 {
     unsigned i;

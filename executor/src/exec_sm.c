@@ -46,17 +46,18 @@ double hv_exec_home_max_s(const hv_arm_t *arm)
 
 static int params_ok(const hv_exec_params_t *p)
 {
-    const double pos[] = {p->heartbeat_timeout_s, p->heartbeat_period_s,
-                          p->startup_timeout_s,   p->command_timeout_s,
-                          p->home_max_s,          p->cut_s,
-                          p->release_s,           p->vehicle_speed_mps,
-                          p->vehicle_accel_mps2,  p->resend_s};
+    const hv_exec_real_t pos[] = {p->heartbeat_timeout_s, p->heartbeat_period_s,
+                                  p->startup_timeout_s,   p->command_timeout_s,
+                                  p->home_max_s,          p->cut_s,
+                                  p->release_s,           p->vehicle_speed_mps,
+                                  p->vehicle_accel_mps2,  p->resend_s};
     for (size_t i = 0; i < sizeof pos / sizeof pos[0]; i++)
-        if (!(pos[i] > 0.0) || !isfinite(pos[i]))
+        if (!(pos[i] > HV_EXEC_REAL(0.0)) || !isfinite(pos[i]))
             return 0;
-    return p->time_scale >= 0.0 && isfinite(p->time_scale) && p->margin >= 0.0 &&
-           isfinite(p->margin) && p->slack_s >= 0.0 && isfinite(p->slack_s) &&
-           p->latency_s >= 0.0 && isfinite(p->latency_s) && p->max_retries < 100 &&
+    const hv_exec_real_t zero = HV_EXEC_REAL(0.0);
+    return p->time_scale >= zero && isfinite(p->time_scale) && p->margin >= zero &&
+           isfinite(p->margin) && p->slack_s >= zero && isfinite(p->slack_s) &&
+           p->latency_s >= zero && isfinite(p->latency_s) && p->max_retries < 100 &&
            (p->clear_estop == 0 || p->clear_estop == 1) && (p->online == 0 || p->online == 1);
 }
 
@@ -75,7 +76,8 @@ hv_status_t hv_exec_init(hv_exec_sm_t *sm, const hv_exec_plan_t *plan,
     sm->phase = HV_PH_WAIT_NODES;
     sm->safe_node = -1;
     sm->stop = -1;
-    sm->time_scale = params->time_scale > 0.0 ? params->time_scale : 1.0;
+    sm->time_scale =
+        params->time_scale > HV_EXEC_REAL(0.0) ? params->time_scale : HV_EXEC_REAL(1.0);
     for (int n = 0; n < HV_EXEC_NODES; n++)
         sm->node[n].wait_cmd_seq = -1;
     for (int s = 0; s < 2; s++)
@@ -105,11 +107,6 @@ static hv_exec_action_t *push(ctx_t *c, hv_exec_action_kind_t kind, int node)
     return a;
 }
 
-static uint64_t secs_ns(double s)
-{
-    return s <= 0.0 ? 0u : (uint64_t)(s * 1e9);
-}
-
 /* Keep the frame just sent to `node` for resending until the node acknowledges it; it
  * supersedes whatever was pending for that node. */
 static void remember(ctx_t *c, int node, const hv_exec_action_t *a)
@@ -119,7 +116,7 @@ static void remember(ctx_t *c, int node, const hv_exec_action_t *a)
         return;
     n->resend = *a;
     n->resend_active = 1;
-    n->resend_ns = c->now + secs_ns(c->sm->prm.resend_s);
+    n->resend_ns = c->now + hv_exec_real_ns(c->sm->prm.resend_s);
 }
 
 static int acknowledged(const hv_exec_node_t *n)
@@ -147,17 +144,19 @@ static void resend_unacknowledged(ctx_t *c)
             if (a)
                 *a = n->resend;
             c->sm->resends++;
-            n->resend_ns = c->now + secs_ns(c->sm->prm.resend_s);
+            n->resend_ns = c->now + hv_exec_real_ns(c->sm->prm.resend_s);
         }
     }
 }
 
 /* A motion or action planned to take `planned_s` of plan time: its deadline from now. */
-static uint64_t motion_deadline(const ctx_t *c, double planned_s)
+static uint64_t motion_deadline(const ctx_t *c, hv_exec_real_t planned_s)
 {
     const hv_exec_params_t *p = &c->sm->prm;
-    double real = (planned_s * (1.0 + p->margin) + p->slack_s) / c->sm->time_scale + p->latency_s;
-    return c->now + secs_ns(real);
+    hv_exec_real_t real =
+        (planned_s * (HV_EXEC_REAL(1.0) + p->margin) + p->slack_s) / c->sm->time_scale +
+        p->latency_s;
+    return c->now + hv_exec_real_ns(real);
 }
 
 static void set_phase(ctx_t *c, hv_exec_phase_t ph)
@@ -190,7 +189,7 @@ static void enter_safe(ctx_t *c, hv_exec_safe_reason_t why, int node)
     push(c, HV_ACT_ESTOP, -1);
     set_phase(c, HV_PH_SAFE);
     send_heartbeat(c);
-    sm->next_hb_ns = c->now + secs_ns(sm->prm.heartbeat_period_s);
+    sm->next_hb_ns = c->now + hv_exec_real_ns(sm->prm.heartbeat_period_s);
 }
 
 static void send_command(ctx_t *c, int node, int command)
@@ -213,7 +212,7 @@ static int echoed(const hv_exec_sm_t *sm, int node)
     return n->wait_cmd_seq >= 0 && n->cmd_seq == n->wait_cmd_seq;
 }
 
-static void send_setpoint(ctx_t *c, int side, const double q[HV_NJOINTS])
+static void send_setpoint(ctx_t *c, int side, const hv_exec_real_t q[HV_NJOINTS])
 {
     hv_exec_node_t *n = &c->sm->node[arm_node[side]];
     int seq = n->next_sp_seq;
@@ -289,7 +288,7 @@ static void record_outcome(ctx_t *c, int pick, int attempt, hv_exec_outcome_t ou
 
 /* ---- vehicle and stops ------------------------------------------------------------ */
 
-static void send_move(ctx_t *c, double target_m)
+static void send_move(ctx_t *c, hv_exec_real_t target_m)
 {
     hv_exec_sm_t *sm = c->sm;
     hv_exec_node_t *v = &sm->node[HV_EXEC_VEHICLE];
@@ -369,7 +368,8 @@ static int vehicle_arrived(const hv_exec_sm_t *sm)
 static void advance(ctx_t *c)
 {
     hv_exec_sm_t *sm = c->sm;
-    if (!sm->advancing && sm->advance_m > sm->node[HV_EXEC_VEHICLE].position_m + 0.005 &&
+    if (!sm->advancing &&
+        sm->advance_m > sm->node[HV_EXEC_VEHICLE].position_m + HV_EXEC_REAL(0.005) &&
         sm->advance_m <= hv_exec_course_end(sm->plan)) {
         send_move(c, sm->advance_m);
         sm->advancing = 1;
@@ -525,7 +525,7 @@ static void start_recover(ctx_t *c, int side, hv_exec_reason_t why)
     arm->recover_step = 0;
     /* DISABLE first: whatever the arm was doing, its motion stops */
     send_command(c, arm_node[side], HV_CAN_CMD_DISABLE);
-    arm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
+    arm->deadline_ns = c->now + hv_exec_real_ns(sm->prm.command_timeout_s);
 }
 
 static void recover_progress(ctx_t *c, int side)
@@ -545,12 +545,12 @@ static void recover_progress(ctx_t *c, int side)
     case 0:
         arm->recover_step = 1;
         send_command(c, node, HV_CAN_CMD_CLEAR_FAULT);
-        arm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
+        arm->deadline_ns = c->now + hv_exec_real_ns(sm->prm.command_timeout_s);
         break;
     case 1:
         arm->recover_step = 2;
         send_command(c, node, HV_CAN_CMD_ENABLE);
-        arm->deadline_ns = c->now + secs_ns(sm->prm.command_timeout_s);
+        arm->deadline_ns = c->now + hv_exec_real_ns(sm->prm.command_timeout_s);
         break;
     case 2:
         if (n->state != HV_CAN_STATE_IDLE)
@@ -743,9 +743,9 @@ static int all_nodes_ready(const hv_exec_sm_t *sm)
     return 1;
 }
 
-static int same_scale(double a, double b)
+static int same_scale(hv_exec_real_t a, hv_exec_real_t b)
 {
-    return fabs(a - b) <= 0.01 * (a > b ? a : b);
+    return hv_exec_fabs(a - b) <= HV_EXEC_REAL(0.01) * (a > b ? a : b);
 }
 
 static int reports_estop(const hv_exec_sm_t *sm, int i)
@@ -788,7 +788,7 @@ static void global_checks(ctx_t *c)
         return;
     for (int i = 0; i < HV_EXEC_NODES; i++) {
         const hv_exec_node_t *n = &sm->node[i];
-        if (c->now > n->last_hb_ns + secs_ns(sm->prm.heartbeat_timeout_s)) {
+        if (c->now > n->last_hb_ns + hv_exec_real_ns(sm->prm.heartbeat_timeout_s)) {
             enter_safe(c, HV_SAFE_HEARTBEAT, i);
             return;
         }
@@ -835,7 +835,7 @@ static int first_pending(const hv_exec_sm_t *sm, unsigned nodes)
 static void enable_step(ctx_t *c, int sub)
 {
     c->sm->sub = sub;
-    c->sm->deadline_ns = c->now + secs_ns(c->sm->prm.command_timeout_s);
+    c->sm->deadline_ns = c->now + hv_exec_real_ns(c->sm->prm.command_timeout_s);
 }
 
 /* Start-up after every node was seen: DISABLE -> [e-stop clear] -> CLEAR_FAULT -> ENABLE
@@ -908,10 +908,10 @@ static void phase_logic(ctx_t *c, const hv_exec_event_t *ev)
     switch (sm->phase) {
     case HV_PH_WAIT_NODES:
         if (all_nodes_ready(sm)) {
-            double ts = sm->node[0].time_scale;
+            hv_exec_real_t ts = sm->node[0].time_scale;
             for (int i = 0; i < HV_EXEC_NODES; i++)
                 if (!same_scale(sm->node[i].time_scale, ts) ||
-                    (sm->prm.time_scale > 0.0 &&
+                    (sm->prm.time_scale > HV_EXEC_REAL(0.0) &&
                      !same_scale(sm->node[i].time_scale, sm->prm.time_scale))) {
                     enter_safe(c, HV_SAFE_TIME_SCALE, i);
                     return;
@@ -1016,7 +1016,7 @@ hv_status_t hv_exec_step(hv_exec_sm_t *sm, const hv_exec_event_t *ev, uint64_t n
         sm->advance_m = hv_exec_course_start(sm->plan);
         sm->started = 1;
         sm->t_start_ns = now_ns;
-        sm->deadline_ns = now_ns + secs_ns(sm->prm.startup_timeout_s);
+        sm->deadline_ns = now_ns + hv_exec_real_ns(sm->prm.startup_timeout_s);
         sm->next_hb_ns = now_ns;
     }
     apply_event(sm, ev, now_ns);
@@ -1036,9 +1036,9 @@ hv_status_t hv_exec_step(hv_exec_sm_t *sm, const hv_exec_event_t *ev, uint64_t n
         if (sm->phase == HV_PH_SAFE)
             push(&c, HV_ACT_ESTOP, -1); /* DBC: repeated every 100 ms while safe */
         send_heartbeat(&c);
-        sm->next_hb_ns += secs_ns(sm->prm.heartbeat_period_s);
+        sm->next_hb_ns += hv_exec_real_ns(sm->prm.heartbeat_period_s);
         if (sm->next_hb_ns <= now_ns) /* a long gap: do not burst to catch up */
-            sm->next_hb_ns = now_ns + secs_ns(sm->prm.heartbeat_period_s);
+            sm->next_hb_ns = now_ns + hv_exec_real_ns(sm->prm.heartbeat_period_s);
     }
     if (c.overflow) {
         /* cannot happen with the bounded work of one step; if it does, stop safely */
@@ -1056,15 +1056,16 @@ hv_status_t hv_exec_step(hv_exec_sm_t *sm, const hv_exec_event_t *ev, uint64_t n
     return HV_OK;
 }
 
-double hv_exec_executed_s(const hv_exec_sm_t *sm, uint64_t now_ns)
+hv_exec_real_t hv_exec_executed_s(const hv_exec_sm_t *sm, uint64_t now_ns)
 {
     if (sm->t_row_start_ns == 0)
-        return 0.0;
+        return HV_EXEC_REAL(0.0);
     uint64_t end = sm->t_row_end_ns ? sm->t_row_end_ns : now_ns;
-    return (double)(end - sm->t_row_start_ns) * 1e-9 * sm->time_scale;
+    return hv_exec_ns_real(end - sm->t_row_start_ns) * sm->time_scale;
 }
 
-void hv_exec_plan_wait_s(const hv_exec_sm_t *sm, uint64_t now_ns, double *first_s, double *row_s)
+void hv_exec_plan_wait_s(const hv_exec_sm_t *sm, uint64_t now_ns, hv_exec_real_t *first_s,
+                         hv_exec_real_t *row_s)
 {
     uint64_t first = sm->wait_first_ns, row = sm->wait_row_ns;
     if (sm->phase == HV_PH_WAIT_PLAN && now_ns > sm->wait_from_ns) {
@@ -1073,8 +1074,8 @@ void hv_exec_plan_wait_s(const hv_exec_sm_t *sm, uint64_t now_ns, double *first_
         else
             row += now_ns - sm->wait_from_ns;
     }
-    *first_s = (double)first * 1e-9 * sm->time_scale;
-    *row_s = (double)row * 1e-9 * sm->time_scale;
+    *first_s = hv_exec_ns_real(first) * sm->time_scale;
+    *row_s = hv_exec_ns_real(row) * sm->time_scale;
 }
 
 int hv_exec_finished(const hv_exec_sm_t *sm)

@@ -30,6 +30,22 @@ static void test_trapezoid_branches(void **state)
     assert_true(hv_trap_time(NAN, 0.2, 0.2) < 0.0);
 }
 
+/* The single-precision twin (the firmware's vehicle moves) agrees with the double one to
+ * float's precision on both branches, and refuses the same bad input. */
+static void test_trapezoid_single_precision(void **state)
+{
+    (void)state;
+    for (int k = -40; k <= 40; k++) {
+        double d = 0.0125 * k;
+        double want = hv_trap_time(d, 0.1, 0.1);
+        assert_float_equal((double)hv_trap_timef((float)d, 0.1f, 0.1f), want, 1e-6 * (1.0 + want));
+    }
+    assert_true(hv_trap_timef(1.0f, 0.0f, 0.2f) < 0.0f);
+    assert_true(hv_trap_timef(1.0f, 0.2f, -1.0f) < 0.0f);
+    assert_true(hv_trap_timef(NAN, 0.2f, 0.2f) < 0.0f);
+    assert_true(hv_trap_timef(INFINITY, 0.2f, 0.2f) < 0.0f);
+}
+
 static void test_move_time_is_slowest_joint(void **state)
 {
     (void)state;
@@ -237,6 +253,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_trapezoid_branches),
+        cmocka_unit_test(test_trapezoid_single_precision),
         cmocka_unit_test(test_move_time_is_slowest_joint),
         cmocka_unit_test(test_fk_zero_pose_matches_link_origins),
         cmocka_unit_test(test_fk_ik_roundtrip_limited),

@@ -106,11 +106,36 @@ static void test_damage_is_named(void **state)
     f->image[8] = 3;
 }
 
+static void put_f64_le(uint8_t *b, double v)
+{
+    uint64_t u;
+    memcpy(&u, &v, sizeof u);
+    for (unsigned i = 0; i < 8; i++)
+        b[i] = (uint8_t)(u >> (8u * i));
+}
+
+/* A number finite as a double but not in the executor's real type refuses the plan where
+ * that type is float (the firmware's; firmware_plan_image_single_test builds this file so);
+ * the plan's own double fields take it in either build. */
+static void test_number_beyond_the_real_type(void **state)
+{
+    fixture_t *f = *state;
+    const double big = 1e300;
+    int single = sizeof(hv_exec_real_t) == sizeof(float);
+    put_f64_le(f->image + 12 + 8 * 18, big); /* header f64 18: planned_pick_s, double */
+    assert_int_equal(feed(f, hv_crc32(0, f->image, f->size), (size_t)-1), HV_OK);
+    assert_true(f->got.planned_pick_s == big);
+    put_f64_le(f->image + 12 + 8 * 8, big); /* header f64 8: home_max_s, real */
+    assert_int_equal(feed(f, hv_crc32(0, f->image, f->size), (size_t)-1),
+                     single ? HV_ERR_FW_UPLOAD_FORMAT : HV_OK);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_round_trip, setup, teardown),
         cmocka_unit_test_setup_teardown(test_damage_is_named, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_number_beyond_the_real_type, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

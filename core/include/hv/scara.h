@@ -73,6 +73,8 @@ int hv_scara_within_limits(const hv_arm_t *arm, const double q[HV_NJOINTS]);
  * dist may be negative (its magnitude is used). Returns a negative value for vmax<=0,
  * amax<=0 or non-finite input. */
 double hv_trap_time(double dist, double vmax, double amax);
+/* The same in single precision, for a target whose FPU has no double (hv/exec_real.h). */
+float hv_trap_timef(float dist, float vmax, float amax);
 
 /* Time (s) for all joints moving together from q_from to q_to: the slowest joint's time. */
 double hv_scara_move_time(const hv_arm_t *arm, const double q_from[HV_NJOINTS],

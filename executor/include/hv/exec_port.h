@@ -44,7 +44,7 @@ typedef struct hv_exec_port {
     hv_status_t (*wait)(void *ctx, uint64_t until_ns);
     /* store one journal record (an HV_ACT_JOURNAL action; t_s: the run's plan time)
      * durably before returning: the next action must not happen without it */
-    hv_status_t (*journal_append)(void *ctx, const hv_exec_action_t *record, double t_s);
+    hv_status_t (*journal_append)(void *ctx, const hv_exec_action_t *record, hv_exec_real_t t_s);
 } hv_exec_port_t;
 
 typedef struct hv_exec_port_stats {
@@ -57,7 +57,7 @@ typedef struct hv_exec_port_stats {
  * caller then steps HV_EV_JOURNAL_FAILED); HV_OK otherwise. *done (may be NULL): the
  * actions carried out. */
 hv_status_t hv_exec_port_carry_out(const hv_exec_port_t *port, hv_exec_can_tx_t *tx,
-                                   const hv_exec_actions_t *out, double t_s,
+                                   const hv_exec_actions_t *out, hv_exec_real_t t_s,
                                    hv_exec_port_stats_t *st, unsigned *done);
 
 #ifdef __cplusplus

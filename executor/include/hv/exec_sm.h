@@ -52,6 +52,7 @@
 #include "hv/can_enums.h"
 #include "hv/exec_outcome.h"
 #include "hv/exec_plan.h"
+#include "hv/exec_real.h"
 #include "hv/status.h"
 
 #ifdef __cplusplus
@@ -132,26 +133,27 @@ typedef enum hv_exec_safe_reason {
     HV_SAFE_COUNT
 } hv_exec_safe_reason_t;
 
+/* Parameters in the executor's real type (hv/exec_real.h). */
 typedef struct hv_exec_params {
-    double time_scale;          /* expected node time scale; 0 = take the nodes' */
-    double margin;              /* timeout = planned * (1 + margin) + slack (>= 0) */
-    double slack_s;             /* plan time (>= 0) */
-    double latency_s;           /* real time added to every timeout for the bus (>= 0) */
-    double heartbeat_timeout_s; /* real time without a node's heartbeat = lost (> 0) */
-    double heartbeat_period_s;  /* our heartbeat and e-stop repeat period, real (> 0) */
-    double startup_timeout_s;   /* real time to see every node (> 0) */
-    double command_timeout_s;   /* real time for a command echo (> 0) */
-    double home_max_s;          /* plan time of the longest possible move to home (> 0) */
-    double cut_s, release_s;    /* plan time of the end-effector actions (> 0) */
-    double vehicle_speed_mps;   /* sent with each move (> 0) */
-    double vehicle_accel_mps2;  /* for the move timeouts (> 0) */
-    unsigned max_retries;       /* further attempts of a fruit after a recoverable fault */
-    double resend_s;            /* real time before an unacknowledged frame is sent again
-                                   (> 0; several status periods, so a status was missed) */
-    int clear_estop;            /* 1: an operator cleared the e-stop for this run: a latch
-                                   found at start-up is released; 0: it keeps us in SAFE */
-    int online;                 /* 1: the plan grows while the row runs (HV_EV_PLAN_GROWN)
-                                   until an event says it is final; 0: the plan is whole */
+    hv_exec_real_t time_scale;          /* expected node time scale; 0 = take the nodes' */
+    hv_exec_real_t margin;              /* timeout = planned * (1 + margin) + slack (>= 0) */
+    hv_exec_real_t slack_s;             /* plan time (>= 0) */
+    hv_exec_real_t latency_s;           /* real time added to every timeout for the bus (>= 0) */
+    hv_exec_real_t heartbeat_timeout_s; /* real time without a node's heartbeat = lost (> 0) */
+    hv_exec_real_t heartbeat_period_s;  /* our heartbeat and e-stop repeat period, real (> 0) */
+    hv_exec_real_t startup_timeout_s;   /* real time to see every node (> 0) */
+    hv_exec_real_t command_timeout_s;   /* real time for a command echo (> 0) */
+    hv_exec_real_t home_max_s;          /* plan time of the longest possible move to home (> 0) */
+    hv_exec_real_t cut_s, release_s;    /* plan time of the end-effector actions (> 0) */
+    hv_exec_real_t vehicle_speed_mps;   /* sent with each move (> 0) */
+    hv_exec_real_t vehicle_accel_mps2;  /* for the move timeouts (> 0) */
+    unsigned max_retries;               /* further attempts of a fruit after a recoverable fault */
+    hv_exec_real_t resend_s;            /* real time before an unacknowledged frame is sent again
+                                           (> 0; several status periods, so a status was missed) */
+    int clear_estop;                    /* 1: an operator cleared the e-stop for this run: a latch
+                                           found at start-up is released; 0: it keeps us in SAFE */
+    int online;                         /* 1: the plan grows while the row runs (HV_EV_PLAN_GROWN)
+                                           until an event says it is final; 0: the plan is whole */
 } hv_exec_params_t;
 
 /* Defaults: margin 0.5, slack 1 s, latency 0.3 s, heartbeat 0.5 s / 0.1 s, start-up 10 s,
@@ -180,11 +182,11 @@ typedef struct hv_exec_event {
     union {
         struct {
             int health;
-            double time_scale;
+            hv_exec_real_t time_scale;
             int protocol;
         } hb;
         struct {
-            double position_m;
+            hv_exec_real_t position_m;
             int state;
             int arrived;
             int fault_bits;
@@ -209,7 +211,7 @@ typedef struct hv_exec_event {
          * to here, so the vehicle may drive this far when no stop with work is ahead */
         struct {
             int final;
-            double advance_m;
+            hv_exec_real_t advance_m;
         } plan;
     } u;
 } hv_exec_event_t;
@@ -250,14 +252,14 @@ typedef struct hv_exec_action {
     union {
         struct {
             int health;
-            double time_scale;
+            hv_exec_real_t time_scale;
         } hb;
         struct {
             int command;
             int seq;
         } cmd;
         struct {
-            double q[HV_NJOINTS];
+            hv_exec_real_t q[HV_NJOINTS];
             int seq;
         } sp;
         struct {
@@ -265,8 +267,8 @@ typedef struct hv_exec_action {
             int seq;
         } ee;
         struct {
-            double target_m;
-            double speed_mps;
+            hv_exec_real_t target_m;
+            hv_exec_real_t speed_mps;
             int seq;
         } move;
         struct {
@@ -301,11 +303,11 @@ typedef struct hv_exec_node {
     int status_seen;       /* a status frame arrived */
     uint64_t hb_rx, st_rx; /* arrival order (hv_exec_sm_t.rx) of the last heartbeat, status */
     uint64_t last_hb_ns;
-    double time_scale;
+    hv_exec_real_t time_scale;
     int health;
     int state, fault_bits, homed, reached, sp_seq, cmd_seq; /* last status */
     int move_seq, arrived;
-    double position_m;                                    /* vehicle */
+    hv_exec_real_t position_m;                            /* vehicle */
     int ee_seen, ee_state, ee_action, ee_seq, fruit_held; /* arms: last EeStatus */
     /* what we sent */
     int next_cmd_seq, next_sp_seq, next_ee_seq, next_move_seq;
@@ -340,8 +342,8 @@ typedef struct hv_exec_sm {
     uint64_t rx;       /* heartbeats and statuses received so far (their order) */
     uint64_t clear_rx; /* rx when the last CLEAR_ESTOP was echoed: later is fresh */
     hv_exec_safe_reason_t safe_reason;
-    int safe_node;     /* node of the safe reason, -1 when none */
-    double time_scale; /* in use (from the nodes once they agree) */
+    int safe_node;             /* node of the safe reason, -1 when none */
+    hv_exec_real_t time_scale; /* in use (from the nodes once they agree) */
     hv_exec_node_t node[HV_EXEC_NODES];
     hv_exec_arm_t arm[2];
     int stop;             /* current stop (plan position), -1 before the first */
@@ -355,14 +357,14 @@ typedef struct hv_exec_sm {
     unsigned resends;                 /* frames sent again for want of an acknowledgement */
     int started;                      /* first step done */
     /* online (params.online) */
-    int plan_final;         /* the planner said no stop will follow */
-    double advance_m;       /* the course is committed up to here (m) */
-    int advancing;          /* WAIT_PLAN: a move to advance_m is under way */
-    uint64_t wait_from_ns;  /* WAIT_PLAN entered */
-    int wait_first;         /* this wait came before the row started */
-    uint64_t wait_first_ns; /* real time waited for the first stop (before the row) */
-    uint64_t wait_row_ns;   /* real time waited for the planner once the row started */
-    unsigned waits;         /* times the vehicle waited for the planner in the row */
+    int plan_final;           /* the planner said no stop will follow */
+    hv_exec_real_t advance_m; /* the course is committed up to here (m) */
+    int advancing;            /* WAIT_PLAN: a move to advance_m is under way */
+    uint64_t wait_from_ns;    /* WAIT_PLAN entered */
+    int wait_first;           /* this wait came before the row started */
+    uint64_t wait_first_ns;   /* real time waited for the first stop (before the row) */
+    uint64_t wait_row_ns;     /* real time waited for the planner once the row started */
+    unsigned waits;           /* times the vehicle waited for the planner in the row */
 } hv_exec_sm_t;
 
 /* Set up for `plan` (prepared) with `params`; `progress` from the journal, or NULL for a
@@ -377,11 +379,12 @@ hv_status_t hv_exec_step(hv_exec_sm_t *sm, const hv_exec_event_t *ev, uint64_t n
                          hv_exec_actions_t *out);
 
 /* Plan time (s) elapsed between the first move and row done (or now when not done). */
-double hv_exec_executed_s(const hv_exec_sm_t *sm, uint64_t now_ns);
+hv_exec_real_t hv_exec_executed_s(const hv_exec_sm_t *sm, uint64_t now_ns);
 
 /* Online: plan time (s) the vehicle waited for the planner before its first stop (*first_s)
  * and once the row had started (*row_s), the current wait included. */
-void hv_exec_plan_wait_s(const hv_exec_sm_t *sm, uint64_t now_ns, double *first_s, double *row_s);
+void hv_exec_plan_wait_s(const hv_exec_sm_t *sm, uint64_t now_ns, hv_exec_real_t *first_s,
+                         hv_exec_real_t *row_s);
 
 /* 1 once the run ended (ROW_DONE or SAFE). */
 int hv_exec_finished(const hv_exec_sm_t *sm);

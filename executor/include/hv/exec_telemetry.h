@@ -28,8 +28,8 @@ extern "C" {
 /* One arm's joint state as the CAN layer decoded it. */
 typedef struct hv_exec_arm_sample {
     int side;
-    double q[HV_NJOINTS];  /* m, rad */
-    double qd[HV_NJOINTS]; /* m/s, rad/s */
+    hv_exec_real_t q[HV_NJOINTS];  /* m, rad */
+    hv_exec_real_t qd[HV_NJOINTS]; /* m/s, rad/s */
 } hv_exec_arm_sample_t;
 
 /* Bus counters (a copy of the CAN layer's, so telemetry does not depend on it). */
