@@ -3,6 +3,7 @@
 
 #include <string.h>
 
+#include "fw_le.h"
 #include "fw_status.h"
 #include "hv/cost_table.h" /* hv_crc32 */
 #include "hv/exec_progress.h"
@@ -14,36 +15,14 @@ static const char kind_letter[] = {'S', 'C', 'R', 'F', 'D', 'E'};
 #define N_KINDS  (sizeof kind_letter)
 #define K_HEADER 'H'
 
-static void put_u16(uint8_t *b, uint32_t v)
-{
-    b[0] = (uint8_t)(v & 0xFFu);
-    b[1] = (uint8_t)((v >> 8) & 0xFFu);
-}
-
-static void put_u32(uint8_t *b, uint32_t v)
-{
-    put_u16(b, v & 0xFFFFu);
-    put_u16(b + 2, v >> 16);
-}
-
-static uint32_t get_u16(const uint8_t *b)
-{
-    return (uint32_t)b[0] | ((uint32_t)b[1] << 8);
-}
-
-static uint32_t get_u32(const uint8_t *b)
-{
-    return get_u16(b) | (get_u16(b + 2) << 16);
-}
-
 static void seal(uint8_t out[HV_FW_JOURNAL_RECORD])
 {
-    put_u32(out + BODY, hv_crc32(0, out, BODY));
+    hv_fw_put_u32(out + BODY, hv_crc32(0, out, BODY));
 }
 
 static int crc_ok(const uint8_t in[HV_FW_JOURNAL_RECORD])
 {
-    return get_u32(in + BODY) == hv_crc32(0, in, BODY);
+    return hv_fw_get_u32(in + BODY) == hv_crc32(0, in, BODY);
 }
 
 /* plan time in whole ms, within u32 (informational: never read back into the run) */
@@ -73,7 +52,7 @@ hv_status_t hv_fw_journal_encode(const hv_exec_action_t *rec, hv_exec_real_t t_s
         if (!fits(rec->u.jr.pick, 0xFFFF) || !fits(rec->u.jr.attempt, 0xFF))
             return HV_ERR_ARG;
         out[1] = (uint8_t)rec->u.jr.attempt;
-        put_u16(out + 2, (uint32_t)rec->u.jr.pick);
+        hv_fw_put_u16(out + 2, (uint32_t)rec->u.jr.pick);
     }
     if (k == HV_JR_OUTCOME) {
         if (!fits(rec->u.jr.outcome, 0xFF) || !fits(rec->u.jr.reason, 0xFF))
@@ -84,14 +63,14 @@ hv_status_t hv_fw_journal_encode(const hv_exec_action_t *rec, hv_exec_real_t t_s
     if (k == HV_JR_STOP) {
         if (!fits(rec->u.jr.stop, 0xFFFF))
             return HV_ERR_ARG;
-        put_u16(out + 2, (uint32_t)rec->u.jr.stop);
+        hv_fw_put_u16(out + 2, (uint32_t)rec->u.jr.stop);
     }
     if (k == HV_JR_ESTOP_CLEAR) {
         if (rec->u.jr.nodes > 0xFFu)
             return HV_ERR_ARG;
         out[6] = (uint8_t)rec->u.jr.nodes;
     }
-    put_u32(out + 8, t_ms_of(t_s));
+    hv_fw_put_u32(out + 8, t_ms_of(t_s));
     seal(out);
     return HV_OK;
 }
@@ -115,7 +94,7 @@ hv_status_t hv_fw_journal_decode(const uint8_t in[HV_FW_JOURNAL_RECORD], hv_exec
     hv_exec_journal_kind_t kind = rec->u.jr.kind;
     if (kind == HV_JR_CUT || kind == HV_JR_RELEASE || kind == HV_JR_OUTCOME) {
         rec->u.jr.attempt = in[1];
-        rec->u.jr.pick = (int)get_u16(in + 2);
+        rec->u.jr.pick = (int)hv_fw_get_u16(in + 2);
         used = 0x0Eu;
     }
     if (kind == HV_JR_OUTCOME) {
@@ -124,7 +103,7 @@ hv_status_t hv_fw_journal_decode(const uint8_t in[HV_FW_JOURNAL_RECORD], hv_exec
         used |= 0x30u;
     }
     if (kind == HV_JR_STOP) {
-        rec->u.jr.stop = (int)get_u16(in + 2);
+        rec->u.jr.stop = (int)hv_fw_get_u16(in + 2);
         used = 0x0Cu;
     }
     if (kind == HV_JR_ESTOP_CLEAR) {
@@ -135,7 +114,7 @@ hv_status_t hv_fw_journal_decode(const uint8_t in[HV_FW_JOURNAL_RECORD], hv_exec
         if (!(used & (1u << i)) && in[i] != 0)
             return HV_ERR_FW_JOURNAL_FORMAT;
     if (t_ms)
-        *t_ms = get_u32(in + 8);
+        *t_ms = hv_fw_get_u32(in + 8);
     return HV_OK;
 }
 
@@ -144,9 +123,9 @@ static void header(const hv_exec_plan_t *plan, uint32_t plan_crc, uint8_t out[HV
     memset(out, 0, HV_FW_JOURNAL_RECORD);
     out[0] = K_HEADER;
     out[1] = HV_FW_JOURNAL_VERSION;
-    put_u16(out + 2, plan->n_picks);
-    put_u16(out + 4, plan->n_stops);
-    put_u32(out + 8, plan_crc);
+    hv_fw_put_u16(out + 2, plan->n_picks);
+    hv_fw_put_u16(out + 4, plan->n_stops);
+    hv_fw_put_u32(out + 8, plan_crc);
     seal(out);
 }
 
@@ -189,8 +168,8 @@ static hv_status_t check_header(hv_fw_journal_t *j, const hv_exec_plan_t *plan, 
     }
     if (buf[0] != K_HEADER || buf[1] != HV_FW_JOURNAL_VERSION || buf[6] != 0 || buf[7] != 0)
         return HV_ERR_FW_JOURNAL_FORMAT;
-    if (get_u32(buf + 8) != plan_crc || get_u16(buf + 2) != plan->n_picks ||
-        get_u16(buf + 4) != plan->n_stops)
+    if (hv_fw_get_u32(buf + 8) != plan_crc || hv_fw_get_u16(buf + 2) != plan->n_picks ||
+        hv_fw_get_u16(buf + 4) != plan->n_stops)
         return HV_ERR_FW_JOURNAL_PLAN;
     return HV_OK;
 }

@@ -5,6 +5,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "fw_le.h"
 #include "fw_status.h"
 #include "hv/cost_table.h" /* hv_crc32 */
 #include "hv/fruit_id.h"
@@ -91,37 +92,12 @@ static int field_set(field_t f, double v)
     return 1;
 }
 
-static void put_u16(uint8_t *b, unsigned v)
-{
-    b[0] = (uint8_t)(v & 0xFFu);
-    b[1] = (uint8_t)((v >> 8) & 0xFFu);
-}
-
-static void put_u32(uint8_t *b, uint32_t v)
-{
-    for (unsigned i = 0; i < 4; i++)
-        b[i] = (uint8_t)((v >> (8u * i)) & 0xFFu);
-}
-
 static void put_f64(uint8_t *b, double v)
 {
     uint64_t u;
     memcpy(&u, &v, sizeof u);
     for (unsigned i = 0; i < 8; i++)
         b[i] = (uint8_t)((u >> (8u * i)) & 0xFFu);
-}
-
-static unsigned get_u16(const uint8_t *b)
-{
-    return (unsigned)b[0] | ((unsigned)b[1] << 8);
-}
-
-static uint32_t get_u32(const uint8_t *b)
-{
-    uint32_t v = 0;
-    for (unsigned i = 0; i < 4; i++)
-        v |= (uint32_t)b[i] << (8u * i);
-    return v;
 }
 
 static double get_f64(const uint8_t *b)
@@ -151,10 +127,10 @@ size_t hv_fw_image_write(const hv_exec_plan_t *plan, const hv_exec_params_t *prm
     hv_exec_plan_t *pl = (hv_exec_plan_t *)(uintptr_t)plan;
     field_t f[HEADER_F64];
     uint8_t *b = buf;
-    put_u32(b, HV_FW_IMAGE_MAGIC);
-    put_u16(b + 4, HV_FW_IMAGE_VERSION);
-    put_u16(b + 6, plan->n_stops);
-    put_u16(b + 8, plan->n_picks);
+    hv_fw_put_u32(b, HV_FW_IMAGE_MAGIC);
+    hv_fw_put_u16(b + 4, HV_FW_IMAGE_VERSION);
+    hv_fw_put_u16(b + 6, plan->n_stops);
+    hv_fw_put_u16(b + 8, plan->n_picks);
     b[10] = (uint8_t)prm->max_retries;
     b[11] = (uint8_t)prm->clear_estop;
     header_f64(pl, &p, f);
@@ -163,11 +139,11 @@ size_t hv_fw_image_write(const hv_exec_plan_t *plan, const hv_exec_params_t *prm
     b += HV_FW_IMAGE_HEADER;
     for (unsigned s = 0; s < plan->n_stops; s++, b += HV_FW_IMAGE_STOP) {
         hv_exec_stop_t *st = &pl->stops[s];
-        put_u32(b, st->plan_index);
-        put_u16(b + 4, st->first[0]);
-        put_u16(b + 6, st->first[1]);
-        put_u16(b + 8, st->count[0]);
-        put_u16(b + 10, st->count[1]);
+        hv_fw_put_u32(b, st->plan_index);
+        hv_fw_put_u16(b + 4, st->first[0]);
+        hv_fw_put_u16(b + 6, st->first[1]);
+        hv_fw_put_u16(b + 8, st->count[0]);
+        hv_fw_put_u16(b + 10, st->count[1]);
         stop_f64(st, f);
         for (unsigned i = 0; i < STOP_F64; i++)
             put_f64(b + 12 + 8 * i, field_get(f[i]));
@@ -176,7 +152,7 @@ size_t hv_fw_image_write(const hv_exec_plan_t *plan, const hv_exec_params_t *prm
         hv_exec_pick_t *pk = &pl->picks[k];
         b[0] = (uint8_t)pk->side;
         b[1] = (uint8_t)(pk->reachable ? 1 : 0);
-        put_u16(b + 2, pk->stop);
+        hv_fw_put_u16(b + 2, pk->stop);
         memset(b + 4, 0, HV_EXEC_ID_LEN);
         for (unsigned i = 0; i + 1 < HV_EXEC_ID_LEN && pk->id[i]; i++)
             b[4 + i] = (uint8_t)pk->id[i];
@@ -212,9 +188,9 @@ static hv_status_t take_header(hv_fw_image_reader_t *r)
     const uint8_t *b = r->buf;
     hv_exec_plan_t *pl = r->plan;
     field_t f[HEADER_F64];
-    if (get_u32(b) != HV_FW_IMAGE_MAGIC || get_u16(b + 4) != HV_FW_IMAGE_VERSION)
+    if (hv_fw_get_u32(b) != HV_FW_IMAGE_MAGIC || hv_fw_get_u16(b + 4) != HV_FW_IMAGE_VERSION)
         return HV_ERR_FW_UPLOAD_FORMAT;
-    unsigned n_stops = get_u16(b + 6), n_picks = get_u16(b + 8);
+    unsigned n_stops = hv_fw_get_u16(b + 6), n_picks = hv_fw_get_u16(b + 8);
     if (n_stops == 0 || n_stops > HV_EXEC_MAX_STOPS || n_picks > HV_EXEC_MAX_PICKS ||
         b[10] >= 100 || b[11] > 1)
         return HV_ERR_FW_UPLOAD_FORMAT;
@@ -233,10 +209,10 @@ static hv_status_t take_stop(hv_fw_image_reader_t *r, unsigned s)
     const uint8_t *b = r->buf;
     hv_exec_stop_t *st = &r->plan->stops[s];
     field_t f[STOP_F64];
-    st->plan_index = get_u32(b);
+    st->plan_index = hv_fw_get_u32(b);
     for (unsigned a = 0; a < 2; a++) {
-        st->first[a] = (uint16_t)get_u16(b + 4 + 2 * a);
-        st->count[a] = (uint16_t)get_u16(b + 8 + 2 * a);
+        st->first[a] = (uint16_t)hv_fw_get_u16(b + 4 + 2 * a);
+        st->count[a] = (uint16_t)hv_fw_get_u16(b + 8 + 2 * a);
         if ((unsigned)st->first[a] + st->count[a] > r->plan->n_picks)
             return HV_ERR_FW_UPLOAD_FORMAT;
     }
@@ -249,9 +225,9 @@ static hv_status_t take_pick(hv_fw_image_reader_t *r, unsigned k)
     const uint8_t *b = r->buf;
     hv_exec_pick_t *pk = &r->plan->picks[k];
     field_t f[PICK_F64];
-    if (b[0] > 1 || b[1] > 1 || get_u16(b + 2) >= r->plan->n_stops)
+    if (b[0] > 1 || b[1] > 1 || hv_fw_get_u16(b + 2) >= r->plan->n_stops)
         return HV_ERR_FW_UPLOAD_FORMAT;
-    const hv_exec_stop_t *st = &r->plan->stops[get_u16(b + 2)];
+    const hv_exec_stop_t *st = &r->plan->stops[hv_fw_get_u16(b + 2)];
     /* the pick lies in its stop's range of its arm: the state machine walks those ranges */
     if (k < st->first[b[0]] || k >= (unsigned)st->first[b[0]] + st->count[b[0]])
         return HV_ERR_FW_UPLOAD_FORMAT;
@@ -267,7 +243,7 @@ static hv_status_t take_pick(hv_fw_image_reader_t *r, unsigned k)
     pk->id[n] = '\0';
     pk->side = (hv_side_t)b[0];
     pk->reachable = b[1];
-    pk->stop = (uint16_t)get_u16(b + 2);
+    pk->stop = (uint16_t)hv_fw_get_u16(b + 2);
     pk->ik_status = pk->reachable ? HV_OK : HV_ERR_UNREACHABLE;
     pick_f64(pk, f);
     if (!pk->reachable)

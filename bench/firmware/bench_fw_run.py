@@ -21,7 +21,6 @@ import os
 import statistics
 import sys
 import tempfile
-import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SOURCE = os.environ.get("HV_SOURCE_DIR", os.path.dirname(os.path.dirname(HERE)))
@@ -47,13 +46,15 @@ def missing():
     return out
 
 
+FINAL = ("row_done", "safe")
+
+
 def build_image():
     import fw_build
 
     done = fw_build.build()
     if done.returncode != 0:
         raise SystemExit("bench_fw_run: the firmware's cross build failed:\n" + done.stdout)
-    return fw_build.IMAGE
 
 
 def run_linux(d, plan_path, plan, scale, rate):
@@ -74,33 +75,20 @@ def run_linux(d, plan_path, plan, scale, rate):
     return executed, summary["expected_makespan_s"], listener.frames
 
 
-def run_firmware(d, image_elf, plan_path, plan, scale, rate):
+def run_firmware(d, plan_path, plan, scale, rate):
     import fw_hil
 
     image = fw_hil.plan_image(d, plan_path, scale)
-    qemu = rig.Qemu(image_elf, d)
-    qemu.wait_listening()
-    bridge = rig.Bridge(d, qemu.port, H.GROUP, H.env())
     listener = B.Listener()
     listener.start()
-    sim = H.Sim(d, scale, extra=("--rate", str(rate)))
+    r = fw_hil.Rig(d, scale, sim_extra=("--rate", str(rate)))
     try:
-        from harvest.canbus import plan_upload
-        from harvest.canbus.buses import open_bus
-
-        with open_bus("udp") as bus:
-            plan_upload.upload(bus, image, 60)
-        end = time.monotonic() + 1800
-        while time.monotonic() < end:
-            if rig.last_status(qemu.uart_log).get("phase") in ("row_done", "safe"):
-                break
-            time.sleep(0.5)
+        fw_hil.upload(image, 60)
+        fw_hil.wait_until(lambda: rig.last_status(r.qemu.uart_log).get("phase") in FINAL, 1800)
     finally:
-        sim.stop()
+        r.stop()
         listener.close()
-        bridge.stop()
-        qemu.stop()
-    s = fw_cli.summarize(sim.record, plan, image, qemu.uart_log)
+    s = fw_cli.summarize(r.sim.record, plan, image, r.qemu.uart_log)
     if s["phase"] != "row_done" or s["picked"] != s["fruits_planned"]:
         raise SystemExit(f"bench_fw_run: the firmware did not finish its row: {json.dumps(s)}")
     return s["executed_makespan_s"], s["expected_makespan_s"], listener.frames
@@ -117,7 +105,7 @@ def main(argv=None):
     if reasons:
         print("bench_fw_run: SKIPPED: " + "; ".join(reasons))
         return 0
-    image_elf = build_image()
+    build_image()  # where fw_hil's rig takes it from
     try:
         netns.enter_private_netns()
     except netns.NetnsUnavailable as e:
@@ -139,7 +127,7 @@ def main(argv=None):
                 if target == "linux":
                     got = run_linux(work, plan_path, plan, args.time_scale, rate)
                 else:
-                    got = run_firmware(work, image_elf, plan_path, plan, args.time_scale, rate)
+                    got = run_firmware(work, plan_path, plan, args.time_scale, rate)
                 executed, expected, frames = got
                 excess[target].append((executed / expected - 1.0) * 100.0)
                 for k, v in B.reactions(frames, proto).items():

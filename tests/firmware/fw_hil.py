@@ -62,10 +62,10 @@ class Rig:
     """QEMU (serial on TCP, waiting for the bridge), the bridge, the simulator. The
     firmware's journal is workdir/fw.journal, kept when the firmware starts again."""
 
-    def __init__(self, workdir, time_scale, faults=(), sim=True):
+    def __init__(self, workdir, time_scale, faults=(), sim=True, sim_extra=()):
         self.workdir = str(workdir)
         self.start_firmware()
-        self.sim = H.Sim(self.workdir, time_scale, faults) if sim else None
+        self.sim = H.Sim(self.workdir, time_scale, faults, sim_extra) if sim else None
 
     def start_firmware(self):
         self.qemu = fw_qemu.Qemu(self.workdir)
