@@ -15,8 +15,10 @@
 #include "hv/exec_sm.h"
 #include "hv/exec_status.h"
 
-#define TICK_NS   10000000u   /* the state machine's timer tick, like harvest-exec's */
-#define REPORT_NS 1000000000u /* status line period */
+#define TICK_NS          10000000u   /* the state machine's timer tick, like harvest-exec's */
+#define REPORT_NS        1000000000u /* status line period */
+/* PlanStatus repeated while waiting for a plan: the DBC's cycle */
+#define UPLOAD_STATUS_NS ((uint64_t)HV_CAN_PLAN_STATUS_CYCLE_MS * 1000000u)
 
 typedef struct hv_fw {
     hv_exec_port_t port;
@@ -104,7 +106,7 @@ static void send_upload_status(hv_fw_t *fw, uint64_t now)
     hv_can_frame_t f;
     hv_fw_upload_status(&fw->upload, &f);
     fw->port.can_send(fw->port.ctx, &f);
-    fw->next_upload_status_ns = now + REPORT_NS;
+    fw->next_upload_status_ns = now + UPLOAD_STATUS_NS;
 }
 
 /* What the journal brought back: records held, torn bytes ignored, fruits with an outcome. */

@@ -93,7 +93,7 @@ int main(int argc, char **argv)
     hb.kind = HV_EV_HEARTBEAT;
     hb.node = HV_EXEC_RIGHT;
     hb.u.hb.time_scale = start->time_scale;
-    hb.u.hb.protocol = HV_PROTOCOL_VERSION;
+    hb.u.hb.protocol = HV_CAN_PROTOCOL_VERSION;
 
     volatile step_fn empty = empty_step; /* volatile: the call is not optimised away */
     double base_call = time_steps(empty, start, &tick, t0, iters, work);

@@ -184,7 +184,7 @@ hv_status_t hv_exec_can_encode(const hv_exec_action_t *a, hv_exec_can_tx_t *tx, 
                       m.counter = tx->hb_counter++;
                       m.health = (uint8_t)a->u.hb.health;
                       m.time_scale = harvest_can_executor_heartbeat_time_scale_encode(ts);
-                      m.protocol_version = HV_PROTOCOL_VERSION);
+                      m.protocol_version = HV_CAN_PROTOCOL_VERSION);
         return HV_OK;
     }
     case HV_ACT_ESTOP:

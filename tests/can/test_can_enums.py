@@ -1,6 +1,8 @@
-"""The command, state, health and end-effector enums, in C (the build's hv/can_enums.h) and
-in Python (harvest.canbus.enums), are the DBC's value tables as cantools reads them, and
-the generator refuses a DBC whose nodes disagree or whose table nobody named."""
+"""The command, state, health and end-effector enums and the fault bits, in C (the build's
+hv/can_enums.h) and in Python (harvest.canbus.enums), are the DBC's value tables as cantools
+reads them; the header's protocol numbers (version, node ids, kinds, periods) are the DBC's
+attributes; and the generator refuses a DBC whose nodes disagree or whose table nobody
+named."""
 
 import os
 import re
@@ -30,7 +32,8 @@ CONTRACT = {
     ("EeStatus", "State"): ("EE_STATE", enums.EeState),
     ("PlanStatus", "State"): ("PLAN_STATE", enums.PlanState),
 }
-NODE_PREFIXES = [prefix for _, prefix in protocol.NODES.values()]
+DB = cantools.database.load_file(DBC, strict=True)
+NODE_PREFIXES = [n.name for n in DB.nodes]
 
 
 def _kind(message_name):
@@ -40,10 +43,9 @@ def _kind(message_name):
 
 def _dbc_tables():
     """[(message, signal, {value: label})] of every enumerated signal, read by cantools."""
-    db = cantools.database.load_file(DBC, strict=True)
     return [
         (m.name, s.name, {int(k): str(v) for k, v in s.choices.items()})
-        for m in db.messages
+        for m in DB.messages
         for s in m.signals
         if s.choices
     ]
@@ -54,7 +56,36 @@ def _header_constants():
         pytest.skip(f"SKIPPED: {HEADER} is not generated (build the executor in $HV_BUILD_DIR)")
     with open(HEADER, encoding="utf-8") as f:
         text = f.read()
-    return {name: int(value) for name, value in re.findall(r"\b(HV_CAN_\w+) = (\d+)", text)}
+    consts = {name: int(value) for name, value in re.findall(r"\b(HV_CAN_\w+) = (\d+)", text)}
+    masks = re.findall(r"#define (HV_CAN_\w+) 0x([0-9A-F]+)u", text)
+    return consts, {name: int(value, 16) for name, value in masks}
+
+
+def _dbc_numbers():
+    """{C name: value} of the protocol's numbers, from cantools' reading of the attributes."""
+    a = {k: v.value for k, v in DB.dbc.attributes.items()}
+    bits = a["KindBits"]
+    out = {"HV_CAN_PROTOCOL_VERSION": a["ProtocolVersion"]}
+    out["HV_CAN_NODE_BROADCAST"] = a["BroadcastNodeId"]
+    for n in DB.nodes:
+        out[f"HV_CAN_NODE_{protocol.snake(n.name).upper()}"] = n.dbc.attributes["NodeId"].value
+    for m in DB.messages:
+        kind = "ESTOP" if m.name == "Estop" else protocol.snake(_kind(m.name)).upper()
+        out[f"HV_CAN_KIND_{kind}"] = m.frame_id & ((1 << bits) - 1)
+        for attr, what in (("GenMsgCycleTime", "CYCLE"), ("TimeoutTime", "TIMEOUT")):
+            if attr in m.dbc.attributes:
+                out[f"HV_CAN_{kind}_{what}_MS"] = m.dbc.attributes[attr].value
+    return out
+
+
+def _dbc_masks():
+    out = {}
+    for table, bits in DB.dbc.value_tables.items():
+        prefix = f"HV_CAN_{protocol.snake(table).upper()}"
+        for bit, label in bits.items():
+            out[f"{prefix}_{label}"] = 1 << bit
+        out[f"{prefix}_ALL"] = sum(1 << bit for bit in bits)
+    return out
 
 
 def test_every_enumerated_signal_of_the_dbc_is_in_the_contract():
@@ -65,8 +96,8 @@ def test_every_enumerated_signal_of_the_dbc_is_in_the_contract():
 
 
 def test_the_c_header_has_the_dbcs_values_and_nothing_else():
-    consts = _header_constants()
-    expected = {}
+    consts, masks = _header_constants()
+    expected = _dbc_numbers()
     for msg, sig, table in _dbc_tables():
         prefix, _ = CONTRACT[(_kind(msg), sig)]
         for value, label in table.items():
@@ -75,6 +106,13 @@ def test_the_c_header_has_the_dbcs_values_and_nothing_else():
             expected[name] = value
         expected[f"HV_CAN_{prefix}_MAX"] = max(table)
     assert consts == expected
+    assert masks == _dbc_masks() and masks["HV_CAN_ARM_FAULT_ESTOP"] == 1 << 10
+
+
+def test_the_python_fault_flags_are_the_dbcs_bits():
+    for flag, table in ((enums.VehicleFault, "VehicleFault"), (enums.ArmFault, "ArmFault")):
+        bits = DB.dbc.value_tables[table]
+        assert {m.value: m.name for m in flag} == {1 << b: str(lab) for b, lab in bits.items()}
 
 
 def test_the_python_enums_have_the_dbcs_values():
@@ -113,11 +151,11 @@ def _generate(dbc, out):
 
 
 def test_the_generator_writes_the_same_header_as_the_build(tmp_path):
-    consts = _header_constants()
+    _header_constants()  # skips when the build has none
     r = _generate(DBC, tmp_path / "can_enums.h")
     assert r.returncode == 0, r.stderr
-    text = (tmp_path / "can_enums.h").read_text()
-    assert {n: int(v) for n, v in re.findall(r"\b(HV_CAN_\w+) = (\d+)", text)} == consts
+    with open(HEADER, encoding="utf-8") as f:
+        assert (tmp_path / "can_enums.h").read_text() == f.read()
 
 
 @pytest.mark.parametrize(
@@ -150,3 +188,22 @@ def test_a_dbc_with_other_values_than_the_enums_is_refused(tmp_path):
     with pytest.raises(enums.EnumError, match="State values"):
         enums.check_same(other)
     enums.check_same(protocol.load(DBC))  # the repository's DBC is the one read at import
+
+
+def test_the_protocol_document_is_current():
+    doc = os.path.join(SOURCE_DIR, "docs", "CAN_PROTOCOL.md")
+    r = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "harvest.canbus.dbc_enums",
+            "--dbc",
+            DBC,
+            "--markdown",
+            doc,
+            "--check",
+        ],
+        text=True,
+        capture_output=True,
+    )
+    assert r.returncode == 0, r.stderr

@@ -9,8 +9,9 @@
 
 #include <cmocka.h>
 
+#include "harvest_can.h"
+#include "hv/can_enums.h"
 #include "hv/can_messages.h"
-#include "hv/can_protocol.h"
 
 static void setpoint_at_joint_limits(void **state)
 {
@@ -134,21 +135,39 @@ static void short_buffers_rejected(void **state)
     assert_int_equal(harvest_can_right_arm_status_pack(buf, &st, 5), 5);
 }
 
+/* The generated names (hv/can_enums.h, from the DBC's attributes) against cantools' own
+ * reading of the same DBC (harvest_can.h): frame ids and cycle times. */
 static void ids_follow_layout(void **state)
 {
     (void)state;
     assert_int_equal(HARVEST_CAN_ESTOP_FRAME_ID,
-                     HV_CAN_ID(HV_CAN_NODE_BROADCAST, HV_CAN_CMD_ESTOP));
+                     HV_CAN_ID(HV_CAN_NODE_BROADCAST, HV_CAN_KIND_ESTOP));
     assert_int_equal(HARVEST_CAN_EXECUTOR_HEARTBEAT_FRAME_ID,
-                     HV_CAN_ID(HV_CAN_NODE_EXECUTOR, HV_CAN_CMD_HEARTBEAT));
+                     HV_CAN_ID(HV_CAN_NODE_EXECUTOR, HV_CAN_KIND_HEARTBEAT));
     assert_int_equal(HARVEST_CAN_VEHICLE_MOVE_FRAME_ID,
-                     HV_CAN_ID(HV_CAN_NODE_VEHICLE, HV_CAN_CMD_SETPOINT));
+                     HV_CAN_ID(HV_CAN_NODE_VEHICLE, HV_CAN_KIND_MOVE));
     assert_int_equal(HARVEST_CAN_LEFT_ARM_SETPOINT_FRAME_ID,
-                     HV_CAN_ID(HV_CAN_NODE_ARM_LEFT, HV_CAN_CMD_SETPOINT));
+                     HV_CAN_ID(HV_CAN_NODE_LEFT_ARM, HV_CAN_KIND_SETPOINT));
     assert_int_equal(HARVEST_CAN_RIGHT_ARM_EE_STATUS_FRAME_ID,
-                     HV_CAN_ID(HV_CAN_NODE_ARM_RIGHT, HV_CAN_CMD_EE_STATUS));
-    assert_int_equal(HV_CAN_ID_NODE(HARVEST_CAN_RIGHT_ARM_STATUS_FRAME_ID), HV_CAN_NODE_ARM_RIGHT);
-    assert_int_equal(HV_CAN_ID_CMD(HARVEST_CAN_RIGHT_ARM_STATUS_FRAME_ID), HV_CAN_CMD_STATUS);
+                     HV_CAN_ID(HV_CAN_NODE_RIGHT_ARM, HV_CAN_KIND_EE_STATUS));
+    assert_int_equal(HARVEST_CAN_EXECUTOR_PLAN_STATUS_FRAME_ID,
+                     HV_CAN_ID(HV_CAN_NODE_EXECUTOR, HV_CAN_KIND_PLAN_STATUS));
+    assert_int_equal(HV_CAN_ID_NODE(HARVEST_CAN_RIGHT_ARM_STATUS_FRAME_ID), HV_CAN_NODE_RIGHT_ARM);
+    assert_int_equal(HV_CAN_ID_KIND(HARVEST_CAN_RIGHT_ARM_STATUS_FRAME_ID), HV_CAN_KIND_STATUS);
+}
+
+static void cycle_times_match_cantools(void **state)
+{
+    (void)state;
+    assert_int_equal(HV_CAN_ESTOP_CYCLE_MS, HARVEST_CAN_ESTOP_CYCLE_TIME_MS);
+    assert_int_equal(HV_CAN_HEARTBEAT_CYCLE_MS, HARVEST_CAN_EXECUTOR_HEARTBEAT_CYCLE_TIME_MS);
+    assert_int_equal(HV_CAN_HEARTBEAT_CYCLE_MS, HARVEST_CAN_RIGHT_ARM_HEARTBEAT_CYCLE_TIME_MS);
+    assert_int_equal(HV_CAN_STATUS_CYCLE_MS, HARVEST_CAN_VEHICLE_STATUS_CYCLE_TIME_MS);
+    assert_int_equal(HV_CAN_JOINT_STATE_CYCLE_MS, HARVEST_CAN_LEFT_ARM_JOINT_STATE_CYCLE_TIME_MS);
+    assert_int_equal(HV_CAN_EE_STATUS_CYCLE_MS, HARVEST_CAN_RIGHT_ARM_EE_STATUS_CYCLE_TIME_MS);
+    assert_int_equal(HV_CAN_PLAN_STATUS_CYCLE_MS, HARVEST_CAN_EXECUTOR_PLAN_STATUS_CYCLE_TIME_MS);
+    /* a lost heartbeat is several missed ones, not one late frame */
+    assert_true(HV_CAN_HEARTBEAT_TIMEOUT_MS >= 2 * HV_CAN_HEARTBEAT_CYCLE_MS);
 }
 
 static void message_table_matches_typed_code(void **state)
@@ -196,6 +215,7 @@ int main(void)
         cmocka_unit_test(heartbeat_time_scale_limits),
         cmocka_unit_test(short_buffers_rejected),
         cmocka_unit_test(ids_follow_layout),
+        cmocka_unit_test(cycle_times_match_cantools),
         cmocka_unit_test(message_table_matches_typed_code),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -12,7 +12,7 @@ import pytest
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import can_checks as cc  # noqa: E402
 
-from harvest.canbus import COMMANDS, NODES, load, split_id  # noqa: E402
+from harvest.canbus import load  # noqa: E402
 
 SOURCE = os.environ.get("HV_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
 
@@ -31,7 +31,6 @@ def test_every_id_follows_node_command_layout():
     proto = load()
     seen = set()
     for m in proto.messages:
-        node, cmd = split_id(m.frame_id)
         assert m.frame_id < 0x800 and not m.is_extended_frame
         assert m.length <= 8
         assert m.frame_id not in seen
@@ -66,17 +65,58 @@ def test_sequence_counters_are_echoed():
         assert a.length == proto.message("VehicleStatus").get_signal_by_name(sig).length
 
 
-def test_c_header_numbers_match_protocol_py():
-    text = open(os.path.join(SOURCE, "executor/can/include/hv/can_protocol.h")).read()
-    c_nodes = {k.lower(): int(v) for k, v in re.findall(r"HV_CAN_NODE_(\w+) = (\d+)", text)}
-    assert c_nodes["executor"] == NODES["executor"][0]
-    assert c_nodes["vehicle"] == NODES["vehicle"][0]
-    assert c_nodes["arm_left"] == NODES["left_arm"][0]
-    assert c_nodes["arm_right"] == NODES["right_arm"][0]
-    c_cmds = {k.lower(): int(v) for k, v in re.findall(r"HV_CAN_CMD_(\w+) = (\d+)", text)}
-    for name, (number, _) in COMMANDS.items():
-        key = "setpoint" if name == "move" else name
-        assert c_cmds[key] == number, name
+def test_ids_are_the_node_id_and_the_kind():
+    """Each frame id is its node's NodeId and its kind's number, as the DBC says."""
+    proto = load()
+    assert proto.nodes["left_arm"].prefix == "LeftArm"
+    for node, n in proto.nodes.items():
+        for kind, k in proto.kinds.items():
+            name = n.prefix + k.suffix
+            if name in {m.name for m in proto.messages}:
+                assert proto.message(name).frame_id == proto.frame_id(n.id, k.number), name
+                assert proto.split_id(proto.message(name).frame_id) == (n.id, k.number)
+                assert (
+                    proto.kind_of(name) == kind and proto.node_of(proto.frame_id(n.id, 0)) == node
+                )
+    assert proto.message("Estop").frame_id == proto.frame_id(proto.broadcast_node, 0)
+    assert proto.kinds["setpoint"].number == proto.kinds["move"].number  # arms / vehicle
+
+
+@pytest.mark.parametrize(
+    "old,new,why",
+    [
+        ('BA_ "NodeId" BU_ LeftArm 3;', 'BA_ "NodeId" BU_ LeftArm 5;', "whose name does not begin"),
+        ('BA_ "NodeId" BU_ LeftArm 3;', 'BA_ "NodeId" BU_ LeftArm 2;', "given twice"),
+        ('BA_ "ProtocolVersion" 1;\n', "", "no network attribute ProtocolVersion"),
+        ('BA_ "GenMsgCycleTime" BO_ 99 50;', 'BA_ "GenMsgCycleTime" BO_ 99 40;', "one period"),
+        ('BA_ "TimeoutTime" BO_ 97 500;\n', "", "LeftArmHeartbeat has no TimeoutTime"),
+        ('BA_ "BitTable" SG_ 67 FaultBits "VehicleFault";\n', "", "is no signal's BitTable"),
+        (
+            'BA_ "BitTable" SG_ 99 FaultBits "ArmFault";',
+            'BA_ "BitTable" SG_ 99 FaultBits "X";',
+            "no VAL_TABLE_",
+        ),
+        ('4 "ESTOP" 3 "COMM_TIMEOUT"', '6 "ESTOP" 3 "COMM_TIMEOUT"', "one of the signal's 6 bits"),
+    ],
+)
+def test_a_dbc_whose_attributes_disagree_is_refused(tmp_path, old, new, why):
+    from harvest.canbus import Protocol, ProtocolError
+
+    with open(os.path.join(SOURCE, "executor", "can", "harvest.dbc"), encoding="utf-8") as f:
+        text = f.read()
+    assert old in text
+    path = tmp_path / "variant.dbc"
+    path.write_text(text.replace(old, new))
+    with pytest.raises(ProtocolError, match=re.escape(why)):
+        Protocol(str(path))
+
+
+def test_periods_are_the_dbcs():
+    proto = load()
+    for m in proto.messages:
+        if m.cycle_time:
+            assert proto.cycle_s(proto.kind_of(m.name)) == m.cycle_time / 1000.0
+    assert proto.timeout_s("heartbeat") > proto.cycle_s("heartbeat")
 
 
 def test_c_message_table_matches_dbc(tool):

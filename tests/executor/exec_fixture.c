@@ -348,7 +348,7 @@ void fx_run(fx_t *fx, double seconds)
                     hb.u.hb.health =
                         fx->node[i].state == HV_CAN_STATE_ESTOP ? HV_CAN_HEALTH_ESTOP : 0;
                     hb.u.hb.time_scale = fx->node[i].time_scale;
-                    hb.u.hb.protocol = HV_PROTOCOL_VERSION;
+                    hb.u.hb.protocol = HV_CAN_PROTOCOL_VERSION;
                     enqueue(fx, &hb);
                 }
         if (tick % 5 == 0)

@@ -72,7 +72,7 @@ static void push(tport_t *t, const hv_can_frame_t *f)
         harvest_can_##MSG##_init(&m);                                                              \
         m.health = HV_CAN_HEALTH_OK;                                                               \
         m.time_scale = harvest_can_##MSG##_time_scale_encode(TIME_SCALE);                          \
-        m.protocol_version = HV_PROTOCOL_VERSION;                                                  \
+        m.protocol_version = HV_CAN_PROTOCOL_VERSION;                                              \
         PACK(MSG, ID, m);                                                                          \
     } while (0)
 

@@ -515,7 +515,7 @@ static void hand_hb(hand_t *h, int node, int health)
     ev.node = node;
     ev.u.hb.health = health;
     ev.u.hb.time_scale = 10.0;
-    ev.u.hb.protocol = HV_PROTOCOL_VERSION;
+    ev.u.hb.protocol = HV_CAN_PROTOCOL_VERSION;
     hand_step(h, &ev);
 }
 

@@ -60,7 +60,7 @@ class Client:
             if msg is None:
                 continue
             m = self.proto.by_id(msg.arbitration_id)
-            if m is None or "EXECUTOR" in m.senders:
+            if m is None or self.proto.nodes["executor"].prefix in m.senders:
                 continue  # our own frames looped back, or foreign ids
             signals = m.decode(bytes(msg.data), decode_choices=False)
             with self._cond:
@@ -114,7 +114,7 @@ class Client:
                     Counter=counter,
                     Health=0,
                     TimeScale=scale,
-                    ProtocolVersion=protocol.PROTOCOL_VERSION,
+                    ProtocolVersion=self.proto.version,
                 )
                 if stop.wait(period_s):
                     break

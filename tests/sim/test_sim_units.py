@@ -5,8 +5,7 @@ import math
 
 import pytest
 
-from harvest.canbus.enums import Command, EeAction, EeState, Health, State
-from harvest.sim import arm as arm_mod
+from harvest.canbus.enums import ArmFault, Command, EeAction, EeState, Health, State
 from harvest.sim import faults
 from harvest.sim.arm import ArmNode
 from harvest.sim.clock import ScaledClock
@@ -220,7 +219,7 @@ def test_arm_state_machine_and_setpoint():
     assert a.positions(t_end + 5) == q
     # out of range: bit 11, not echoed, state kept
     a.on_setpoint(20.0, [0.3, 0.0, 3.0, 0.0], 3)
-    assert a.fault_bits == 1 << arm_mod.BIT_REJECTED and a.setpoint_seq == 2
+    assert a.fault_bits == ArmFault.SETPOINT_REJECTED and a.setpoint_seq == 2
     assert a.state == State.IDLE and a.health() == Health.WARNING
 
 
@@ -233,7 +232,7 @@ def test_arm_estop_brakes_and_latches():
     _, v = a.axes[1].state(3.0)
     assert v > 0
     a.estop(3.0, "test")
-    assert a.state == State.ESTOP and a.fault_bits == 1 << arm_mod.BIT_ESTOP
+    assert a.state == State.ESTOP and a.fault_bits == ArmFault.ESTOP
     stop = a.axes[1].t_end
     assert stop == pytest.approx(3.0 + v / MODEL.joints[1].amax)
     a.update(stop + 1)
@@ -306,7 +305,7 @@ def test_injected_joint_fault_during_the_nth_homing():
     due = a.next_event()
     assert due == pytest.approx(100.0 + 0.5 * (a.motion["t_end"] - 100.0))
     a.update(due)
-    assert a.state == State.FAULT and a.fault_bits == 1 << arm_mod.BIT_FOLLOWING
+    assert a.state == State.FAULT and a.fault_bits == ArmFault.JOINT1_FOLLOWING_ERROR
     assert a.motion is None and [e["joint"] for e in log.of("fault_injected")] == [1]
 
 

@@ -1,12 +1,15 @@
 """The protocol's value tables as IntEnums, read from the DBC (executor/can/harvest.dbc,
 the source of truth) at import: Command, State, Health, EeAction, EeState, PlanState (the
-firmware's plan upload).
+firmware's plan upload); and its bit tables as IntFlags: VehicleFault, ArmFault (the
+FaultBits of the status frames).
 
-    from harvest.canbus.enums import Command, State
+    from harvest.canbus.enums import ArmFault, Command, State
     node.on_command(t, Command.CLEAR_ESTOP, seq)
+    node.fault(t, ArmFault.SETPOINT_REJECTED, "out of range")
 
-Which signal each one types, and the checks that make them the DBC's, are dbc_enums.SPEC;
-the C side gets the same tables as hv/can_enums.h (HV_CAN_CMD_CLEAR_ESTOP, ...).
+Which signal each one types, and the checks that make them the DBC's, are dbc_enums.SPEC
+and protocol.Protocol (BitTable); the C side gets the same tables as hv/can_enums.h
+(HV_CAN_CMD_CLEAR_ESTOP, HV_CAN_ARM_FAULT_ESTOP, ...).
 """
 
 import enum
@@ -16,12 +19,19 @@ from .dbc_enums import EnumError, tables
 
 
 def _int_enums(proto):
-    return {
+    out = {
         name: enum.IntEnum(
             name, {label: value for value, label in sorted(t.items())}, module=__name__
         )
         for name, t in tables(proto).items()
     }
+    for name, bits in proto.bit_tables.items():
+        out[name] = enum.IntFlag(
+            name,
+            {label: 1 << bit for label, bit in sorted(bits.items(), key=lambda kv: kv[1])},
+            module=__name__,
+        )
+    return out
 
 
 _ENUMS = _int_enums(protocol.load())
@@ -31,6 +41,8 @@ Health = _ENUMS["Health"]
 EeAction = _ENUMS["EeAction"]
 EeState = _ENUMS["EeState"]
 PlanState = _ENUMS["PlanState"]
+VehicleFault = _ENUMS["VehicleFault"]
+ArmFault = _ENUMS["ArmFault"]
 
 
 def member(kind, value):
@@ -49,12 +61,12 @@ def label(kind, value):
 
 def check_same(proto):
     """Raise EnumError when the DBC `proto` was loaded from (e.g. a simulator's --dbc) has
-    other value tables than the one these enums were read from."""
+    other value or bit tables than the one these enums were read from."""
     have = {name: {m.value: m.name for m in kind} for name, kind in _ENUMS.items()}
-    got = tables(proto)
+    got = {name: {m.value: m.name for m in kind} for name, kind in _int_enums(proto).items()}
     for name in have:
-        if got[name] != have[name]:
+        if got.get(name) != have[name]:
             raise EnumError(
-                f"{proto.path}: {name} values {got[name]} differ from "
-                f"{protocol.DBC_PATH}'s {have[name]}, which this program uses"
+                f"{proto.path}: {name} values {got.get(name)} differ from "
+                f"{protocol.load().path}'s {have[name]}, which this program uses"
             )

@@ -1,9 +1,16 @@
 """The harvest CAN protocol as loaded by cantools from executor/can/harvest.dbc.
 
-IDs are `(node_id << 5) | command` (11-bit, ODrive CANSimple style). The node and
-command numbers below name what the DBC already encodes; `Protocol` checks at load time
-that every message of the DBC agrees with them, so a DBC edit that breaks the layout
-fails loudly instead of being silently misrouted.
+The DBC is the one source of every number of the protocol (DESIGN §6); this module reads
+them from it and restates none:
+  - ids are `(node id << KindBits) | kind`; a node's id is its NodeId attribute (the
+    BroadcastNodeId for Estop), a message's name is the node's name and its kind
+    ("LeftArm" + "Setpoint"), and a kind has one number on every node that has it;
+  - ProtocolVersion (network attribute): what every heartbeat carries;
+  - GenMsgCycleTime / TimeoutTime (message attributes): a kind's period and how long its
+    receiver waits before it treats the sender as lost;
+  - BitTable (signal attribute): the VAL_TABLE_ naming a bit field's bits.
+`Protocol` checks at load time that the frame ids agree with the attributes, so a DBC edit
+that breaks the layout fails loudly instead of being silently misrouted.
 
 Typical use (simulator side):
 
@@ -12,96 +19,198 @@ Typical use (simulator side):
     data = proto.encode("LeftArmSetpoint", {...})  # bytes, strict range check
     name, fields = proto.decode(frame_id, data)     # -> ("LeftArmSetpoint", {...})
     proto.name_for("left_arm", "setpoint")          # -> "LeftArmSetpoint"
+    proto.version, proto.cycle_s("heartbeat")        # -> 1, 0.1
 """
 
 import os
+import re
+from typing import NamedTuple
 
 import cantools
+from cantools.database.can.c_source import camel_to_snake_case
 
 # host/harvest/canbus/protocol.py -> repository root is four levels up.
 _ROOT = os.path.dirname(
     os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 )
-DBC_PATH = os.environ.get("HV_CAN_DBC", os.path.join(_ROOT, "executor", "can", "harvest.dbc"))
-
-PROTOCOL_VERSION = 1  # the ProtocolVersion every heartbeat carries
-
-BROADCAST_NODE = 0
-# node name -> (node id, DBC message-name prefix)
-NODES = {
-    "executor": (1, "Executor"),
-    "vehicle": (2, "Vehicle"),
-    "left_arm": (3, "LeftArm"),
-    "right_arm": (4, "RightArm"),
-}
-# command name -> (command number, DBC message-name suffix)
-COMMANDS = {
-    "estop": (0, "Estop"),  # broadcast node only: the whole message name is "Estop"
-    "heartbeat": (1, "Heartbeat"),
-    "command": (2, "Command"),
-    "status": (3, "Status"),
-    "setpoint": (4, "Setpoint"),  # arms
-    "move": (4, "Move"),  # vehicle
-    "joint_state": (5, "JointState"),
-    "joint_velocity": (6, "JointVelocity"),
-    "ee_command": (7, "EeCommand"),
-    "ee_status": (8, "EeStatus"),
-    "plan_begin": (9, "PlanBegin"),  # executor: the plan upload (firmware/)
-    "plan_data": (10, "PlanData"),
-    "plan_status": (11, "PlanStatus"),
-}
 
 
-def frame_id(node_id, command):
-    """Standard 11-bit id of `command` (0..31) on node `node_id` (0..63)."""
-    if not 0 <= node_id < 64 or not 0 <= command < 32:
-        raise ValueError(f"node_id {node_id} / command {command} outside 6/5 bits")
-    return (node_id << 5) | command
+def default_dbc_path():
+    """The DBC to load when none is named: $HV_CAN_DBC, else the repository's
+    executor/can/harvest.dbc. The one place that locates it."""
+    return os.environ.get("HV_CAN_DBC") or os.path.join(_ROOT, "executor", "can", "harvest.dbc")
 
 
-def split_id(can_id):
-    """(node_id, command) of an 11-bit id."""
-    return can_id >> 5, can_id & 0x1F
+class Node(NamedTuple):
+    id: int  # the node's NodeId attribute
+    prefix: str  # its DBC name, which begins the names of its messages ("LeftArm")
+
+
+class Kind(NamedTuple):
+    number: int  # the low KindBits of the frame ids
+    suffix: str  # what follows the node's name in a message name ("Setpoint")
+
+
+def snake(name):
+    """A DBC name in snake case, as cantools' C generator spells it: "LeftArm" -> "left_arm"."""
+    return camel_to_snake_case(name)
 
 
 class ProtocolError(ValueError):
     """The DBC disagrees with the id layout, or a frame does not belong to it."""
 
 
-class Protocol:
-    """The loaded DBC with lookups by message name, frame id and (node, kind)."""
+_LABEL = re.compile(r"[A-Z][A-Z0-9_]*")
 
-    def __init__(self, path=DBC_PATH):
-        self.path = path
-        self.db = cantools.database.load_file(path, strict=True)
+
+class Protocol:
+    """The loaded DBC with lookups by message name, frame id and (node, kind), and the
+    protocol's numbers: version, kind_bits, broadcast_node, nodes, kinds, cycle_s,
+    timeout_s, bit_tables."""
+
+    def __init__(self, path=None):
+        self.path = path or default_dbc_path()
+        self.db = cantools.database.load_file(self.path, strict=True)
         self._by_name = {m.name: m for m in self.db.messages}
         self._by_id = {m.frame_id: m for m in self.db.messages}
+        self.version = self._network_int("ProtocolVersion")
+        self.kind_bits = self._network_int("KindBits")
+        self.broadcast_node = self._network_int("BroadcastNodeId")
+        self.nodes = self._read_nodes()  # {"left_arm": Node(id, "LeftArm"), ...}
+        self.kinds = {}  # {"setpoint": Kind(number, "Setpoint"), ...}
+        self._kind_of = {}  # message name -> kind name
         self._check_layout()
+        self.cycle_ms = self._per_kind("GenMsgCycleTime")  # {"heartbeat": 100, ...}
+        self.timeout_ms = self._per_kind("TimeoutTime")  # {"heartbeat": 500}
+        self.bit_signals = {}  # {"ArmFault": ["LeftArmStatus.FaultBits", ...]}
+        self.bit_tables = self._read_bit_tables()  # {"ArmFault": {"ESTOP": 10, ...}}
+
+    # -- reading the attributes ----------------------------------------------------------
+    def _network_int(self, name):
+        attrs = self.db.dbc.attributes if self.db.dbc else {}
+        if name not in attrs:
+            raise ProtocolError(f'{self.path}: no network attribute {name} (BA_ "{name}" N;)')
+        return int(attrs[name].value)
+
+    def _read_nodes(self):
+        nodes = {}
+        for n in self.db.nodes:
+            attrs = n.dbc.attributes if n.dbc else {}
+            if "NodeId" not in attrs:
+                raise ProtocolError(f"{self.path}: node {n.name} has no NodeId attribute")
+            node_id = int(attrs["NodeId"].value)
+            if node_id == self.broadcast_node or node_id >= 1 << (11 - self.kind_bits):
+                raise ProtocolError(f"{self.path}: node {n.name}: NodeId {node_id} not usable")
+            if any(o.id == node_id for o in nodes.values()):
+                raise ProtocolError(f"{self.path}: node {n.name}: NodeId {node_id} given twice")
+            nodes[snake(n.name)] = Node(node_id, n.name)
+        return nodes
 
     def _check_layout(self):
-        prefixes = {prefix: node_id for node_id, prefix in NODES.values()}
-        suffix_cmds = {}
-        for number, suffix in COMMANDS.values():
-            suffix_cmds[suffix] = number
+        by_id = {node.id: node for node in self.nodes.values()}
         for m in self.db.messages:
             where = f"{self.path}: message {m.name}"
             if m.is_extended_frame:
                 raise ProtocolError(f"{where}: extended id, protocol uses 11-bit ids")
-            node_id, command = split_id(m.frame_id)
-            if m.name == "Estop":
-                expected = frame_id(BROADCAST_NODE, 0)
+            node_id, number = self.split_id(m.frame_id)
+            if node_id == self.broadcast_node:
+                suffix = m.name
+            elif node_id in by_id and m.name.startswith(by_id[node_id].prefix):
+                suffix = m.name[len(by_id[node_id].prefix) :]
             else:
-                prefix = next((p for p in prefixes if m.name.startswith(p)), None)
-                suffix = m.name[len(prefix) :] if prefix else None
-                if prefix is None or suffix not in suffix_cmds:
-                    raise ProtocolError(f"{where}: name is not <Node><Kind> of protocol.py")
-                expected = frame_id(prefixes[prefix], suffix_cmds[suffix])
-            if m.frame_id != expected:
+                owner = by_id[node_id].prefix if node_id in by_id else "no node"
                 raise ProtocolError(
-                    f"{where}: frame id 0x{m.frame_id:03x}, layout says "
-                    f"0x{expected:03x} (node {node_id}, command {command})"
+                    f"{where}: frame id 0x{m.frame_id:03x} is node {node_id} ({owner}), "
+                    "whose name does not begin the message's"
                 )
+            kind = snake(suffix)
+            if kind in self.kinds and self.kinds[kind].number != number:
+                raise ProtocolError(
+                    f"{where}: kind {suffix} is number {number} here, "
+                    f"{self.kinds[kind].number} on another node"
+                )
+            self.kinds.setdefault(kind, Kind(number, suffix))
+            self._kind_of[m.name] = kind
 
+    def _per_kind(self, attr):
+        """{kind: ms} of a message attribute, which every message of a kind must share."""
+        out, where = {}, {}
+        for m in self.db.messages:
+            attrs = m.dbc.attributes if m.dbc else {}
+            if attr not in attrs or not attrs[attr].value:
+                continue
+            kind, ms = self._kind_of[m.name], int(attrs[attr].value)
+            if kind in out and out[kind] != ms:
+                raise ProtocolError(
+                    f"{self.path}: {attr} of {m.name} is {ms} ms, of {where[kind]} {out[kind]} ms"
+                    " (a kind has one period)"
+                )
+            out.setdefault(kind, ms)
+            where.setdefault(kind, m.name)
+        for m in self.db.messages:
+            kind = self._kind_of[m.name]
+            attrs = m.dbc.attributes if m.dbc else {}
+            if kind in out and not (attr in attrs and attrs[attr].value):
+                raise ProtocolError(f"{self.path}: {m.name} has no {attr}, {where[kind]} has")
+        return out
+
+    def _read_bit_tables(self):
+        tables = self.db.dbc.value_tables if self.db.dbc else {}
+        used = {}
+        for m in self.db.messages:
+            for s in m.signals:
+                attrs = s.dbc.attributes if s.dbc else {}
+                if "BitTable" not in attrs or not attrs["BitTable"].value:
+                    continue
+                name = str(attrs["BitTable"].value)
+                where = f"{self.path}: {m.name}.{s.name}"
+                if name not in tables:
+                    raise ProtocolError(f"{where}: BitTable {name} is no VAL_TABLE_")
+                bits = {str(label): int(bit) for bit, label in tables[name].items()}
+                for label, bit in bits.items():
+                    if not _LABEL.fullmatch(label) or not 0 <= bit < s.length:
+                        raise ProtocolError(
+                            f"{where}: {name} bit {label!r} = {bit}: not an upper-case "
+                            f"identifier naming one of the signal's {s.length} bits"
+                        )
+                used[name] = bits
+                self.bit_signals.setdefault(name, []).append(f"{m.name}.{s.name}")
+        unused = sorted(set(tables) - set(used))
+        if unused:
+            raise ProtocolError(f"{self.path}: VAL_TABLE_ {unused[0]} is no signal's BitTable")
+        return used
+
+    # -- the protocol's numbers ----------------------------------------------------------
+    def frame_id(self, node_id, kind):
+        """Standard 11-bit id of kind number `kind` on node `node_id`."""
+        if not 0 <= kind < 1 << self.kind_bits or not 0 <= node_id < 1 << (11 - self.kind_bits):
+            raise ValueError(f"node_id {node_id} / kind {kind} outside the id layout")
+        return (node_id << self.kind_bits) | kind
+
+    def split_id(self, can_id):
+        """(node_id, kind number) of an 11-bit id."""
+        return can_id >> self.kind_bits, can_id & ((1 << self.kind_bits) - 1)
+
+    def kind_of(self, name):
+        """The kind of message `name`, e.g. "setpoint" for "LeftArmSetpoint"."""
+        self.message(name)
+        return self._kind_of[name]
+
+    def cycle_s(self, kind):
+        """Period of a periodic kind ("heartbeat", "status", ...), s (GenMsgCycleTime)."""
+        return self._period(self.cycle_ms, "GenMsgCycleTime", kind)
+
+    def timeout_s(self, kind):
+        """How long a receiver waits for the next message of `kind` before it treats the
+        sender as lost, s (TimeoutTime)."""
+        return self._period(self.timeout_ms, "TimeoutTime", kind)
+
+    def _period(self, table, attr, kind):
+        if kind not in table:
+            raise ProtocolError(f"{self.path}: no message of kind '{kind}' has {attr}")
+        return table[kind] / 1000.0
+
+    # -- messages --------------------------------------------------------------------------
     @property
     def messages(self):
         """Every cantools Message of the DBC, in file order."""
@@ -120,22 +229,22 @@ class Protocol:
 
     def name_for(self, node, kind):
         """DBC name of `kind` ("setpoint", "status", ...) on `node` ("left_arm", ...)."""
-        if kind == "estop":
-            return "Estop"
-        if node not in NODES:
-            raise ProtocolError(f"unknown node '{node}' (known: {', '.join(NODES)})")
-        if kind not in COMMANDS:
-            raise ProtocolError(f"unknown message kind '{kind}' (known: {', '.join(COMMANDS)})")
-        name = NODES[node][1] + COMMANDS[kind][1]
+        if kind not in self.kinds:
+            raise ProtocolError(f"unknown message kind '{kind}' (known: {', '.join(self.kinds)})")
+        if self.kinds[kind].suffix in self._by_name:  # a broadcast message: no node
+            return self.kinds[kind].suffix
+        if node not in self.nodes:
+            raise ProtocolError(f"unknown node '{node}' (known: {', '.join(self.nodes)})")
+        name = self.nodes[node].prefix + self.kinds[kind].suffix
         self.message(name)
         return name
 
     def node_of(self, can_id):
-        """Node name an id belongs to ("broadcast" for node 0), None if unknown."""
-        node_id, _ = split_id(can_id)
-        if node_id == BROADCAST_NODE:
+        """Node name an id belongs to ("broadcast" for the broadcast node), None if unknown."""
+        node_id, _ = self.split_id(can_id)
+        if node_id == self.broadcast_node:
             return "broadcast"
-        return next((n for n, (i, _) in NODES.items() if i == node_id), None)
+        return next((n for n, node in self.nodes.items() if node.id == node_id), None)
 
     def encode(self, name, signals, scaling=True):
         """Frame payload for `name`; raises on a missing or out-of-range signal."""
@@ -172,8 +281,9 @@ class Protocol:
 _CACHE = {}
 
 
-def load(path=DBC_PATH):
-    """The protocol from `path` (default: the repository's DBC), loaded once per path."""
+def load(path=None):
+    """The protocol from `path` (default: default_dbc_path()), loaded once per path."""
+    path = path or default_dbc_path()
     if path not in _CACHE:
         _CACHE[path] = Protocol(path)
     return _CACHE[path]

@@ -1,30 +1,25 @@
-"""One SCARA joint controller with its end effector (DBC nodes ARM_L / ARM_R).
+"""One SCARA joint controller with its end effector (DBC nodes LeftArm / RightArm).
 
 Setpoints move all four joints at once, each on its own trapezoid at the config's limits;
-a setpoint outside a joint's range is refused with fault bit 11 and not echoed. The end
-effector cuts or releases in a configurable (simulated) time, only while the arm stands.
+a setpoint outside a joint's range is refused with fault bit SETPOINT_REJECTED and not
+echoed. The end effector cuts or releases in the config's times (or others given), only
+while the arm stands.
 Injected faults (stall, joint fault, reject) are applied here, counted per arm.
 """
 
-from ..canbus.enums import EeAction, EeState, State, label, member
+from ..canbus.enums import ArmFault, EeAction, EeState, State, label, member
 from .node import Node
 from .profile import Profile
 
-# FaultBits of <Arm>Status (DBC comment)
-BIT_LIMIT = 0  # + joint index 0..3
-BIT_FOLLOWING = 4  # + joint index 0..3
-BIT_EE = 8
-BIT_COMM = 9
-BIT_ESTOP = 10
-BIT_REJECTED = 11
+REJECTED = int(ArmFault.SETPOINT_REJECTED)  # FaultBits of <Arm>Status (the DBC's ArmFault)
 
 # "Within tolerance of the setpoint": the DBC's resolution of a joint position.
 REACHED_TOL = 1e-4
 
 
 class ArmNode(Node):
-    ESTOP_BIT = BIT_ESTOP
-    COMM_BIT = BIT_COMM
+    ESTOP_FAULT = int(ArmFault.ESTOP)
+    COMM_FAULT = int(ArmFault.COMM_TIMEOUT)
 
     def __init__(
         self,
@@ -33,14 +28,16 @@ class ArmNode(Node):
         log,
         faults=(),
         start=None,
-        cut_s=1.0,
-        release_s=0.5,
+        cut_s=None,
+        release_s=None,
         vehicle_position=lambda t: 0.0,
     ):
         start = list(model.home if start is None else start)
         super().__init__(name, start, [(j.vmax, j.amax) for j in model.joints], log)
         self.model = model
-        self.cut_s, self.release_s = cut_s, release_s
+        # the end effector's times: the config's unless given
+        self.cut_s = model.cut_s if cut_s is None else cut_s
+        self.release_s = model.release_s if release_s is None else release_s
         self.vehicle_position = vehicle_position
         self.faults = [f for f in faults if f.get("node") == name]
         self.target_reached = False
@@ -102,13 +99,13 @@ class ArmNode(Node):
         elif injected is not None:
             reason, bits = (
                 f"injected reject of setpoint #{self.setpoints_received}",
-                1 << BIT_REJECTED,
+                REJECTED,
             )
         else:
             for j, (qj, lim) in enumerate(zip(q, self.model.joints)):
                 if not lim.contains(qj):
                     reason = f"joint {j + 1} = {qj:.4f} outside [{lim.min}, {lim.max}]"
-                    bits = 1 << BIT_REJECTED
+                    bits = REJECTED
                     break
         if reason:
             self.set_bits(bits)
@@ -123,7 +120,7 @@ class ArmNode(Node):
             )
             return
         self.setpoints_accepted += 1
-        self.clear_bits(1 << BIT_REJECTED)
+        self.clear_bits(REJECTED)
         if seq != self.setpoint_seq:
             self.setpoint_seq = seq
             self.changed = True
@@ -212,17 +209,17 @@ class ArmNode(Node):
         return next((f for f in self.faults if f["type"] == kind and f.get(trigger) == count), None)
 
     def _joint_fault(self, t, jf):
-        j = jf["joint"] - 1
-        bit = (BIT_FOLLOWING if jf["kind"] == "following" else BIT_LIMIT) + j
+        what = "FOLLOWING_ERROR" if jf["kind"] == "following" else "LIMIT"
+        bits = int(ArmFault[f"JOINT{jf['joint']}_{what}"])
         self.log(
             t,
             "fault_injected",
             fault="joint_fault",
             joint=jf["joint"],
             kind=jf["kind"],
-            bits=1 << bit,
+            bits=bits,
         )
-        self.fault(t, 1 << bit, f"injected {jf['kind']} fault on joint {jf['joint']}")
+        self.fault(t, bits, f"injected {jf['kind']} fault on joint {jf['joint']}")
 
     def _set_ee(self, t, state):
         if state != self.ee_state:

@@ -117,8 +117,9 @@ def build_parser():
     sim.add_argument(
         "--rate",
         type=_positive,
-        default=50.0,
-        help="joint state, velocity and status rate, simulated Hz (default 50)",
+        default=None,
+        help="joint state, velocity and status rate, simulated Hz (default: the DBC's "
+        "JointState cycle)",
     )
     sim.add_argument(
         "--heartbeat-period",
@@ -129,9 +130,9 @@ def build_parser():
     sim.add_argument(
         "--exec-timeout",
         type=_non_negative,
-        default=0.5,
+        default=None,
         help="wall s without executor heartbeat before COMM_TIMEOUT, armed by the "
-        "first heartbeat; 0 disables (default 0.5, the DBC's)",
+        "first heartbeat; 0 disables (default: the DBC's TimeoutTime)",
     )
     sim.add_argument(
         "--cut-time",
@@ -235,8 +236,8 @@ def _options(args, model):
         rate_hz=args.rate,
         heartbeat_s=args.heartbeat_period,
         exec_timeout_s=args.exec_timeout,
-        cut_s=model.cut_s if args.cut_time is None else args.cut_time,
-        release_s=model.release_s if args.release_time is None else args.release_time,
+        cut_s=args.cut_time,
+        release_s=args.release_time,
         faults=faults,
         seed=seed or 0,
         arm_start=args.arm_start,
@@ -352,7 +353,7 @@ def main(argv=None, stop_event=None):
         timer.start()
     print(
         f"harvest sim: {where} x{options.time_scale:g} "
-        f"rate {options.rate_hz:g} Hz, {len(options.faults)} fault(s)"
+        f"rate {sim.rate_hz:g} Hz, {len(options.faults)} fault(s)"
         + (f", record {args.record}" if args.record else ""),
         file=sys.stderr,
         flush=True,

@@ -22,7 +22,7 @@ flag and a file entry mean exactly the same thing. Times are simulated seconds.
                k-th pick, the fruit held): the node's own e-stop trips and latches, as an
                e-stop button wired to it would; only CLEAR_ESTOP releases it
   reject       node (an arm), setpoint n >= 1: the n-th setpoint received is refused as
-               out of range (fault bit 11), whatever its values
+               out of range (fault bit SETPOINT_REJECTED), whatever its values
 
 Flag form: `--fault TYPE:key=value,key=value`, e.g. `--fault drop:fraction=0.1,node=left_arm`.
 File form (JSON): {"seed": 7, "faults": [{"type": "drop", "fraction": 0.1}, ...]}.

@@ -14,8 +14,8 @@ from .profile import Profile
 class Node:
     """Base state machine; subclasses say what homing and their fault bits are."""
 
-    ESTOP_BIT = 0  # fault bit latched by an e-stop (subclass)
-    COMM_BIT = 0  # fault bit of a lost executor heartbeat (subclass)
+    ESTOP_FAULT = 0  # fault bit (mask) latched by an e-stop (subclass)
+    COMM_FAULT = 0  # fault bit (mask) of a lost executor heartbeat (subclass)
 
     def __init__(self, name, positions, limits, log):
         self.name = name
@@ -153,7 +153,7 @@ class Node:
                 if self.state == State.FAULT:
                     self.set_state(t, State.DISABLED, "CLEAR_FAULT")
         elif command == Command.CLEAR_ESTOP:
-            self.clear_bits(1 << self.ESTOP_BIT)
+            self.clear_bits(self.ESTOP_FAULT)
             if self.state == State.ESTOP:
                 # a fault from before the e-stop is still there: FAULT until CLEAR_FAULT
                 self.set_state(t, State.FAULT if self.fault_bits else State.DISABLED, "CLEAR_ESTOP")
@@ -176,12 +176,12 @@ class Node:
     def estop(self, t, why):
         if self.state != State.ESTOP:
             self.stop_axes(t)
-            self.set_bits(1 << self.ESTOP_BIT)
+            self.set_bits(self.ESTOP_FAULT)
             self.set_state(t, State.ESTOP, why)
             self.on_stopped(t, why)
 
     def comm_timeout(self, t):
-        self.fault(t, 1 << self.COMM_BIT, "executor heartbeat lost")
+        self.fault(t, self.COMM_FAULT, "executor heartbeat lost")
 
     def on_new_motion(self, t):
         """A new motion replaced the running one (hook)."""

@@ -10,7 +10,7 @@ Faults on the wire (drop, delay, silent) sit between the nodes and the bus: outg
 are encoded when a node emits them, then dropped, held back or sent; incoming frames are
 decoded once and delivered to each addressed node, each delivery subject to that node's rx
 faults. The executor's heartbeat watchdog runs in wall time: the DBC makes the executor's
-TimeScale informational, so its 100 ms heartbeat is not scaled.
+TimeScale informational, so its heartbeat period is not scaled.
 """
 
 import heapq
@@ -19,14 +19,13 @@ import threading
 
 import can
 
-from harvest.canbus import PROTOCOL_VERSION, buses
+from harvest.canbus import buses
 from harvest.canbus.enums import State, check_same
 
 from .arm import ArmNode
+from .faults import ARMS, NODES
 from .vehicle import VehicleNode
 
-NODE_PREFIX = {"vehicle": "Vehicle", "left_arm": "LeftArm", "right_arm": "RightArm"}
-NODE_ORDER = ("vehicle", "left_arm", "right_arm")
 MAX_SLEEP_WALL_S = 0.05  # longest recv() wait, so a stop request is seen promptly
 # Input the simulator cannot take is counted and dropped, never fatal; these name why.
 REJECT_REASONS = ("bad_datagram", "not_data_frame", "unknown_id", "wrong_length", "bad_value")
@@ -40,11 +39,13 @@ class Options:
 
     def __init__(self, **kw):
         self.time_scale = kw.pop("time_scale", 1.0)
-        self.rate_hz = kw.pop("rate_hz", 50.0)  # joint state and status, simulated Hz
+        # joint state and status, simulated Hz; None: the DBC's JointState cycle
+        self.rate_hz = kw.pop("rate_hz", None)
         self.heartbeat_s = kw.pop("heartbeat_s", None)  # None: the DBC's cycle time
-        self.exec_timeout_s = kw.pop("exec_timeout_s", 0.5)  # wall s; 0 disables the watchdog
-        self.cut_s = kw.pop("cut_s", 1.0)
-        self.release_s = kw.pop("release_s", 0.5)
+        # wall s; None: the DBC's TimeoutTime of the executor's heartbeat; 0: no watchdog
+        self.exec_timeout_s = kw.pop("exec_timeout_s", None)
+        self.cut_s = kw.pop("cut_s", None)  # s; None: the config's pick.cut_time
+        self.release_s = kw.pop("release_s", None)  # s; None: the config's pick.release_time
         self.faults = kw.pop("faults", [])
         self.seed = kw.pop("seed", 0)
         self.arm_start = kw.pop("arm_start", None)  # joint positions, None: home pose
@@ -59,6 +60,18 @@ class Options:
 class Simulator:
     def __init__(self, bus, proto, model, options, record, clock, stop_event=None, out=None):
         self.bus, self.proto, self.model, self.opt = bus, proto, model, options
+        missing = [n for n in ("executor",) + NODES if n not in proto.nodes]
+        if missing:
+            raise ValueError(f"{proto.path}: no node {missing[0]} (the simulator's nodes)")
+        self.prefix = {n: proto.nodes[n].prefix for n in NODES}
+        self.exec_timeout_s = (
+            proto.timeout_s("heartbeat")
+            if options.exec_timeout_s is None
+            else options.exec_timeout_s
+        )
+        self.rate_hz = options.rate_hz or 1.0 / proto.cycle_s("joint_state")
+        cut_s = model.cut_s if options.cut_s is None else options.cut_s
+        release_s = model.release_s if options.release_s is None else options.release_s
         self.record, self.clock = record, clock
         self.stop_event = stop_event or threading.Event()
         self.out = out
@@ -86,11 +99,11 @@ class Simulator:
                 self._logger(name),
                 options.faults,
                 options.arm_start,
-                options.cut_s,
-                options.release_s,
+                cut_s,
+                release_s,
                 vpos,
             )
-            for name in ("left_arm", "right_arm")
+            for name in ARMS
         }
         self.nodes = {"vehicle": self.vehicle, **self.arms}
         self.camera = None
@@ -128,7 +141,7 @@ class Simulator:
         self._drops, self._delays, self._silent = [], [], []
         self._timed_estops = []  # [(sim t, node)] still to trip, soonest first
         for i, f in enumerate(self.opt.faults):
-            nodes = NODE_ORDER if f.get("node", "all") == "all" else (f["node"],)
+            nodes = NODES if f.get("node", "all") == "all" else (f["node"],)
             if f["type"] == "drop":
                 # one generator per fault, so one fault's draws do not shift another's
                 rng = random.Random(f"{self.opt.seed}:{i}")
@@ -193,23 +206,23 @@ class Simulator:
             n.estop(at, "injected e-stop")
 
     def _build_schedule(self):
-        period = 1.0 / self.opt.rate_hz
+        period = 1.0 / self.rate_hz
         self._periodic = []  # [next sim t, period, node, kind]
-        for name in NODE_ORDER:
+        for name in NODES:
             hb = self.opt.heartbeat_s
             if hb is None:
-                hb = self.proto.message(f"{NODE_PREFIX[name]}Heartbeat").cycle_time / 1000.0
+                hb = self.proto.cycle_s("heartbeat")
             self._periodic.append([0.0, hb, name, "heartbeat"])
             self._periodic.append([0.0, period, name, "feedback"])
-        self._hb_counter = {n: 0 for n in NODE_ORDER}
-        self._js_counter = {n: 0 for n in NODE_ORDER}
+        self._hb_counter = {n: 0 for n in NODES}
+        self._js_counter = {n: 0 for n in NODES}
 
     # -- output path --------------------------------------------------------------------------
     def _wire_match(self, faults, node, direction):
         return [x for x in faults if node in x[1] and x[0]["direction"] in (direction, "both")]
 
     def emit(self, t, node, kind, signals):
-        name = f"{NODE_PREFIX[node]}{kind}"
+        name = f"{self.prefix[node]}{kind}"
         if self._silenced(t, node, kind):
             self.stats["tx_silenced"] += 1
             return
@@ -261,12 +274,9 @@ class Simulator:
                 "Counter": self._hb_counter[node],
                 "Health": self.nodes[node].health(),
                 "TimeScale": round(self.opt.time_scale, 2),
-                "ProtocolVersion": self._version(),
+                "ProtocolVersion": self.proto.version,
             },
         )
-
-    def _version(self):
-        return PROTOCOL_VERSION
 
     def _send_changes(self, t):
         """Status at once when State, TargetReached, FaultBits or an echoed seq changed."""
@@ -325,7 +335,7 @@ class Simulator:
                 t, "unknown_id", id=msg.arbitration_id, extended=msg.is_extended_id, data=data.hex()
             )
             return None
-        if "EXECUTOR" not in m.senders:
+        if self.proto.nodes["executor"].prefix not in m.senders:
             self.stats["ignored"] += 1  # the nodes' own frames: udp loops them back
             return None
         if len(data) != m.length:
@@ -365,9 +375,9 @@ class Simulator:
         m, signals = checked
         self.stats["rx"] += 1
         if m.name in ("Estop", "ExecutorHeartbeat"):
-            targets = NODE_ORDER
+            targets = NODES
         else:
-            targets = [n for n, p in NODE_PREFIX.items() if m.name.startswith(p)]
+            targets = [n for n, p in self.prefix.items() if m.name.startswith(p)]
         for node in targets:
             if any(
                 rng.random() < f["fraction"]
@@ -389,7 +399,8 @@ class Simulator:
 
     def deliver(self, t, node, name, s):
         n = self.nodes[node]
-        kind = name[len(NODE_PREFIX[node]) :] if name.startswith(NODE_PREFIX[node]) else name
+        prefix = self.prefix[node]
+        kind = name[len(prefix) :] if name.startswith(prefix) else name
         if name == "ExecutorHeartbeat":
             self._executor_heartbeat(t, node, s)
         elif name == "Estop":
@@ -414,7 +425,7 @@ class Simulator:
             n.on_move(t, float(s["TargetPosition"]), float(s["MaxSpeed"]), int(s["MoveSeq"]))
 
     def _executor_heartbeat(self, t, node, s):
-        if int(s["ProtocolVersion"]) != self._version():
+        if int(s["ProtocolVersion"]) != self.proto.version:
             if "version" not in self._warned:
                 self._warned.add("version")
                 self.record.write(
@@ -423,7 +434,7 @@ class Simulator:
                     node,
                     "executor_version_mismatch",
                     got=int(s["ProtocolVersion"]),
-                    want=self._version(),
+                    want=self.proto.version,
                 )
             return
         if self._last_hb_wall[node] is None:
@@ -434,7 +445,7 @@ class Simulator:
         self._hb_tripped[node] = False
 
     def _watchdog(self, t):
-        limit = self.opt.exec_timeout_s
+        limit = self.exec_timeout_s
         if not limit:
             return None
         wall = self.clock.wall()
@@ -493,7 +504,7 @@ class Simulator:
             None,
             "start",
             time_scale=opt.time_scale,
-            rate_hz=opt.rate_hz,
+            rate_hz=self.rate_hz,
             faults=opt.faults,
             seed=opt.seed,
             config=self.model.path,
@@ -502,8 +513,8 @@ class Simulator:
             home=self.model.home,
             arm_start=opt.arm_start,
             vehicle_start=opt.vehicle_start_m,
-            cut_s=opt.cut_s,
-            release_s=opt.release_s,
+            cut_s=self.arms[ARMS[0]].cut_s,
+            release_s=self.arms[ARMS[0]].release_s,
         )
         next_progress = opt.progress_s
         reason = "stop requested"
@@ -545,7 +556,7 @@ class Simulator:
 
     def _progress(self):
         t = self.clock.sim()
-        states = " ".join(f"{n}={State(self.nodes[n].state).name}" for n in NODE_ORDER)
+        states = " ".join(f"{n}={State(self.nodes[n].state).name}" for n in NODES)
         print(
             f"sim t={t:.1f}s vehicle={self.vehicle.positions(t)[0]:.3f}m "
             f"tx={self.stats['tx']} rx={self.stats['rx']} states[{states}]",

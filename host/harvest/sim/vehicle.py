@@ -1,23 +1,18 @@
-"""The vehicle drive (DBC node VEHICLE): moves along the row to the commanded position at
+"""The vehicle drive (DBC node Vehicle): moves along the row to the commanded position at
 the config's speed and acceleration, reports its position and "arrived"."""
 
-from ..canbus.enums import State
+from ..canbus.enums import State, VehicleFault
 from .node import Node
 
-# FaultBits of VehicleStatus (DBC comment)
-BIT_DRIVE = 0
-BIT_POSITION_LIMIT = 1
-BIT_FOLLOWING = 2
-BIT_COMM = 3
-BIT_ESTOP = 4
+POSITION_LIMIT = int(VehicleFault.POSITION_LIMIT)  # FaultBits of VehicleStatus
 
 # "Within 1 mm of the target" (DBC): the profile ends exactly on it.
 ARRIVED_TOL_M = 1e-3
 
 
 class VehicleNode(Node):
-    ESTOP_BIT = BIT_ESTOP
-    COMM_BIT = BIT_COMM
+    ESTOP_FAULT = int(VehicleFault.ESTOP)
+    COMM_FAULT = int(VehicleFault.COMM_TIMEOUT)
 
     def __init__(self, model, log, start_m=0.0, travel=None, home_m=0.0):
         super().__init__("vehicle", [start_m], [(model.vehicle_speed, model.vehicle_accel)], log)
@@ -55,7 +50,7 @@ class VehicleNode(Node):
             reason = f"state {State(self.state).name}"
         elif self.travel and not self.travel[0] <= target_m <= self.travel[1]:
             reason = f"target {target_m:.4f} m outside travel [{self.travel[0]}, {self.travel[1]}]"
-            bits = 1 << BIT_POSITION_LIMIT
+            bits = POSITION_LIMIT
         if reason:
             self.set_bits(bits)
             self.log(
@@ -68,7 +63,7 @@ class VehicleNode(Node):
                 reason=reason,
             )
             return
-        self.clear_bits(1 << BIT_POSITION_LIMIT)
+        self.clear_bits(POSITION_LIMIT)
         # the configured speed is the drive's limit; a move may only ask for less
         speed = (
             self.model.vehicle_speed if max_speed <= 0 else min(max_speed, self.model.vehicle_speed)
