@@ -1,10 +1,10 @@
 #!/bin/sh
 # Ablation of the MILP's improvements (planner/SOLVER.md): the default solver, then the
 # default with one choice switched, on the same instances in the same run.
-# usage: bench/planner/ablation.sh BUILD_DIR [ALPHAS] [SEEDS] [LIMIT_S]
+# usage: bench/planner/ablation.sh BUILD_DIR [ALPHAS] [SEEDS] [LIMIT_S] [MODEL]
 set -eu
 if [ "${1:-}" = "--help" ] || [ $# -lt 1 ]; then
-    echo "usage: $0 BUILD_DIR [ALPHAS=1,4] [SEEDS=3] [LIMIT_S=10]"
+    echo "usage: $0 BUILD_DIR [ALPHAS=1,4] [SEEDS=3] [LIMIT_S=10] [MODEL=product|paper]"
     echo "Runs bench_milp once per variant and prints each variant's summary rows."
     exit 0
 fi
@@ -12,6 +12,7 @@ bench="$1/bench/planner/bench_milp"
 alphas="${2:-1,4}"
 seeds="${3:-3}"
 limit="${4:-10}"
+model="${5:-product}"
 [ -x "$bench" ] || { echo "ablation.sh: $bench not built" >&2; exit 1; }
 # the default (branch-and-price), its incumbent, interval branching (or its pseudocosts),
 # tailing off (or only its branching of stalled masters the incumbent does not prune), the
@@ -42,6 +43,7 @@ for variant in \
     "$c --set backtracking=2"; do
     echo "== variant: ${variant:-default}"
     # shellcheck disable=SC2086
-    "$bench" --alphas "$alphas" --seeds "$seeds" --plain-seeds 0 --time-limit "$limit" \
-        --no-baselines $variant 2>/dev/null | sed -n '/^# Summary/,$p' | tail -n +3
+    "$bench" --alphas "$alphas" --seeds "$seeds" --models "$model" --highs-seeds 0 \
+        --time-limit "$limit" --no-baselines $variant 2>/dev/null |
+        sed -n '/^# Summary/,$p' | tail -n +3
 done

@@ -1,4 +1,4 @@
-/* Paper-sized planner instances from the real arm model (bench_instances.h). */
+/* Paper-sized planner instances in the product's and the paper's model (bench_instances.h). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -6,11 +6,20 @@
 
 #include "bench_instances.h"
 
-int bench_model_init(const hv_config_t *cfg, bench_model_t *m)
+const char *bench_model_name(bench_model_kind_t kind)
 {
-    hv_config_t paper = *cfg;
-    paper.pick_cycle = 0;
-    hv_status_t st = hv_pick_model_ik(&paper, &m->ik, &m->model);
+    return kind == BENCH_MODEL_PAPER ? "paper" : "product";
+}
+
+int bench_model_init(const hv_config_t *cfg, bench_model_kind_t kind, bench_model_t *m)
+{
+    m->kind = kind;
+    m->cfg = *cfg;
+    if (kind == BENCH_MODEL_PAPER) {
+        m->cfg.pick_cycle = 0;
+        m->cfg.stops_beyond_ends = 0;
+    }
+    hv_status_t st = hv_pick_model_ik(&m->cfg, &m->ik, &m->model);
     if (st != HV_OK) {
         fprintf(stderr, "bench: pick model: %s\n", hv_status_name(st));
         return -1;
@@ -51,19 +60,16 @@ hv_fruit_t *bench_fruits_make(const hv_config_t *cfg, size_t n_left, size_t n_ri
     return fr;
 }
 
-int bench_instance_make(const hv_config_t *cfg, const bench_model_t *m, size_t n_left,
-                        size_t n_right, uint64_t seed, hv_instance_t *inst)
+int bench_instance_make(const bench_model_t *m, size_t n_left, size_t n_right, uint64_t seed,
+                        hv_instance_t *inst)
 {
     size_t n = n_left + n_right;
-    hv_fruit_t *fr = bench_fruits_make(cfg, n_left, n_right, seed);
+    hv_fruit_t *fr = bench_fruits_make(&m->cfg, n_left, n_right, seed);
     if (fr == NULL) {
         return -1;
     }
-    hv_config_t paper = *cfg;
-    paper.stops_beyond_ends = 0;
-    paper.pick_cycle = 0;
     hv_instance_params_t par;
-    hv_instance_params_from_config(&paper, &m->model, &par);
+    hv_instance_params_from_config(&m->cfg, &m->model, &par);
     hv_diag_t diag;
     hv_status_t st = hv_instance_build(&par, fr, n, &m->model, inst, &diag);
     free(fr);

@@ -1,12 +1,14 @@
-/* bench_milp: the paper's experiment (DESIGN §10) on the MILP, the heuristic and the
- * baselines, with the plain model measured in the same run as the reference.
- * Run `bench_milp --help`.
+/* bench_milp: the MILP on paper-sized instances (DESIGN §10) in the product's model and in
+ * the paper's, against HiGHS on the same exported model and against FOV and Serial, all
+ * measured in the same run. Run `bench_milp --help`.
  */
+#define _DEFAULT_SOURCE /* popen, mkstemps */
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "bench_instances.h"
 #include "hv/baselines.h"
@@ -17,25 +19,43 @@
 #ifndef HV_BENCH_DEFAULT_CONFIG
 #define HV_BENCH_DEFAULT_CONFIG "config/harvest.cfg"
 #endif
+#ifndef HV_BENCH_PYTHON
+#define HV_BENCH_PYTHON "python3"
+#endif
+#ifndef HV_BENCH_HIGHS_SCRIPT
+#define HV_BENCH_HIGHS_SCRIPT "bench/planner/highs_baseline.py"
+#endif
 
 #define MAX_ALPHAS 16
 #define MAX_SEEDS  100
+#define MAX_MODELS 2
+
+/* HiGHS stops as ours does: our rel_gap, and an absolute gap just under 1 ms (the pick
+ * costs are whole ms, so a plan within it of the bound is proven optimal: ms_granularity) */
+#define HIGHS_ABS_GAP_S 0.000999
 
 static void usage(FILE *f)
 {
     fprintf(
         f,
         "usage: bench_milp [options]\n"
-        "The paper's experiment: m_L = 50, m_R = alpha * 50, N = 201 stops, real arm costs.\n"
-        "Per alpha: MILP solve times, proven optima, gaps, stops and throughput (fruits / T)\n"
-        "against FOV and Serial, and the plain model (no improvements) as the reference.\n"
+        "The paper's experiment, m_L = 50, m_R = alpha * 50 fruits uniform on a 2 m row with\n"
+        "exact-IK whole-ms pick costs, in two models: the product's (config/harvest.cfg as\n"
+        "harvest-plan builds it: stops beyond the row's ends, the whole pick cycle, tau = the\n"
+        "drive's v/a) and the paper's (N = 201 stops on the row, one-way costs, tau =\n"
+        "vehicle.stop_penalty). Per model and alpha: MILP solve times, proven optima, gaps,\n"
+        "stops, throughput (fruits / T) against FOV and Serial, and HiGHS (highspy) on the\n"
+        "model harvest-plan --export-lp writes, with the same stopping rule (relative gap\n"
+        "rel_gap, absolute gap 0.999 ms: whole-ms costs), 2 threads and its own limit.\n"
         "  --config PATH        harvest config (default %s)\n"
+        "  --models LIST        product,paper (default), or one of them\n"
         "  --alphas A,B,..      alphas (default 0.25,0.4,1,2.5,4)\n"
         "  --seeds N            seeds per alpha (default 10)\n"
         "  --first-seed N       the first seed (default 1): --first-seed 4 --seeds 1 runs seed 4\n"
         "  --time-limit S       MILP limit per instance, s (default 10: DESIGN's max is 7 s)\n"
-        "  --plain-seeds N      seeds per alpha also solved by the plain model (default 2)\n"
-        "  --plain-limit S      its limit, s (default 10)\n"
+        "  --highs-seeds N      seeds per alpha also solved by HiGHS (default 2; 0 none)\n"
+        "  --highs-limit S      its limit per instance, s (default 60)\n"
+        "  --python PATH        the Python with highspy (default %s)\n"
         "  --set KEY=VALUE      an option of the MILP run (repeatable): a row of the\n"
         "                       table harvest-plan --help-params prints\n"
         "  --no-baselines       skip FOV and Serial\n"
@@ -44,24 +64,7 @@ static void usage(FILE *f)
         "                       once the plan is known (the rest waited for the plan)\n"
         "  -v                   solver progress on stderr\n"
         "  --help               this text\n",
-        HV_BENCH_DEFAULT_CONFIG);
-}
-
-/* The model as the paper writes it, none of the solver's choices: the reference in the
- * same run. */
-static void plain_options(hv_milp_options_t *o, double limit_s)
-{
-    hv_milp_options_default(o);
-    o->time_limit_s = limit_s;
-    o->heuristic_incumbent = 0;
-    o->ms_granularity = 0;
-    o->decompose = 0;
-    o->glpk_cuts = HV_MILP_CUT_GMI | HV_MILP_CUT_MIR | HV_MILP_CUT_COVER | HV_MILP_CUT_CLIQUE;
-    o->pcost_branching = 0;
-    o->link_disaggregated = 0;
-    o->pattern_cuts = -1;
-    o->polish_work = 0;
-    o->algorithm = HV_MILP_ALG_COMPACT;
+        HV_BENCH_DEFAULT_CONFIG, HV_BENCH_PYTHON);
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -70,6 +73,7 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* The median of v[0 .. n) (sorts v); NAN when n = 0. */
 static double median(double *v, size_t n)
 {
     qsort(v, n, sizeof *v, cmp_double);
@@ -96,46 +100,357 @@ static const char *status_word(hv_solve_status_t s)
     }
 }
 
+/* One model's figures per alpha; the "all" row pools every alpha. */
 typedef struct row_stats {
-    double t_milp[MAX_SEEDS], t_plain[MAX_SEEDS], t_given[MAX_SEEDS];
-    size_t n, n_opt, n_plain, n_plain_opt, n_given, n_given_opt;
-    double stops_milp, stops_fov, thr_milp, thr_fov, thr_serial, gap_max, gap_sum, plain_gap_max;
+    double t_milp[MAX_ALPHAS * MAX_SEEDS], t_given[MAX_ALPHAS * MAX_SEEDS];
+    /* instances HiGHS solved: its time and ours on them */
+    double t_highs[MAX_ALPHAS * MAX_SEEDS], t_ours[MAX_ALPHAS * MAX_SEEDS];
+    size_t n, n_opt, n_given, n_given_opt, n_highs, n_highs_opt, n_highs_disagree;
+    double stops_milp, stops_fov, thr_milp, thr_fov, thr_serial, gap_max, gap_sum;
     double heur_excess_max; /* heuristic T over the MILP's T */
     size_t n_serial;
 } row_stats_t;
 
+/* What HiGHS reported on one model file. */
+typedef struct highs_run {
+    char status[32];
+    double objective_s, bound_s, time_s;
+    long nodes;
+} highs_run_t;
+
+typedef struct highs_cfg {
+    const char *python;
+    size_t seeds;
+    double limit_s;
+    double rel_gap;
+    int broken; /* the first call failed: said once, not tried again */
+} highs_cfg_t;
+
+/* Solve the model file `lp` with HiGHS (highs_baseline.py). 0 on success. */
+static int highs_solve(highs_cfg_t *h, const char *lp, highs_run_t *out)
+{
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd,
+             "'%s' '%s' '%s' --time-limit %g --threads 2 --rel-gap %g --abs-gap %g", h->python,
+             HV_BENCH_HIGHS_SCRIPT, lp, h->limit_s, h->rel_gap, HIGHS_ABS_GAP_S);
+    FILE *p = popen(cmd, "r");
+    if (p == NULL) {
+        return -1;
+    }
+    int n = fscanf(p, "%31s %lf %lf %lf %ld", out->status, &out->objective_s, &out->bound_s,
+                   &out->time_s, &out->nodes);
+    int rc = pclose(p);
+    return n == 5 && rc == 0 ? 0 : -1;
+}
+
+/* HiGHS on the exported model of `inst`: 1 when it ran (out filled), 0 when not. */
+static int highs_baseline(highs_cfg_t *h, const hv_instance_t *inst, highs_run_t *out)
+{
+    if (h->broken) {
+        return 0;
+    }
+    char lp[] = "/tmp/bench_milp_XXXXXX.lp";
+    int fd = mkstemps(lp, 3);
+    if (fd < 0) {
+        fprintf(stderr, "bench_milp: HiGHS baseline: cannot make a temporary file\n");
+        h->broken = 1;
+        return 0;
+    }
+    close(fd);
+    hv_milp_options_t o;
+    hv_milp_options_default(&o);
+    int ok = hv_milp_export_lp(inst, &o, lp) == HV_OK && highs_solve(h, lp, out) == 0;
+    unlink(lp);
+    if (!ok) {
+        fprintf(stderr,
+                "bench_milp: HiGHS baseline SKIPPED: %s %s failed (highspy missing? "
+                "scripts/setup.sh installs it)\n",
+                h->python, HV_BENCH_HIGHS_SCRIPT);
+        h->broken = 1;
+    }
+    return ok;
+}
+
+typedef struct bench_run {
+    const char *cfg_path;
+    double alphas[MAX_ALPHAS];
+    size_t n_alpha, n_seeds, first_seed;
+    int baselines, given_plan;
+    hv_milp_options_t mo;
+    highs_cfg_t highs;
+} bench_run_t;
+
+/* Every instance of model m: a row each, into st[alpha] and st[n_alpha] (all alphas).
+ * Returns the number of solver failures. */
+static int run_model(bench_run_t *br, const bench_model_t *m, row_stats_t *st)
+{
+    int failures = 0;
+    printf("\n# Model: %s (%s)\n", bench_model_name(m->kind),
+           m->kind == BENCH_MODEL_PRODUCT
+               ? "config as harvest-plan builds it: stops beyond the ends, pick cycle, tau = v/a"
+               : "the paper's: N = 201 stops on the row, one-way costs, tau = stop_penalty");
+    printf("%-5s %-4s %4s %5s %6s | %-9s %9s %9s %8s %7s %7s %5s | %9s %9s | %-14s %9s %7s | "
+           "%9s %5s | %9s\n",
+           "alpha", "seed", "nf", "stops", "pairs", "milp", "T_s", "bound_s", "gap", "time_s",
+           "nodes", "used", "root_s", "heur_T_s", "highs", "highs_T_s", "highs_s", "fov_T_s",
+           "stops", "serial_T");
+    for (size_t ai = 0; ai < br->n_alpha; ++ai) {
+        row_stats_t *r = &st[ai], *all = &st[br->n_alpha];
+        size_t n_right = (size_t)lround(br->alphas[ai] * 50.0);
+        for (size_t seed = 0; seed < br->n_seeds; ++seed) {
+            size_t s = br->first_seed + seed;
+            hv_instance_t inst;
+            if (bench_instance_make(m, 50, n_right, s, &inst) != 0) {
+                return failures + 1;
+            }
+            size_t nf = inst.n_fruits - hv_instance_unreachable_count(&inst);
+            hv_assignment_t out, tmp;
+            hv_assignment_alloc(&out, inst.n_fruits);
+            hv_assignment_alloc(&tmp, inst.n_fruits);
+            hv_milp_result_t res;
+            hv_eval_t ev;
+            memset(&ev, 0, sizeof ev);
+            if (hv_milp_solve(&inst, &br->mo, NULL, &out, &res) != HV_OK) {
+                fprintf(stderr, "bench_milp: solver error on %s alpha %g seed %zu\n",
+                        bench_model_name(m->kind), br->alphas[ai], s);
+                failures++;
+                hv_assignment_free(&out);
+                hv_assignment_free(&tmp);
+                hv_instance_free(&inst);
+                continue;
+            }
+            hv_assignment_eval(&inst, &out, &ev);
+            for (int w = 0; w < 2; ++w) {
+                row_stats_t *x = w ? all : r;
+                x->t_milp[x->n++] = res.runtime_s;
+                x->n_opt += res.status == HV_SOLVE_OPTIMAL;
+                x->gap_max = fmax(x->gap_max, res.gap);
+                x->gap_sum += res.gap;
+                x->stops_milp += (double)ev.stops;
+                x->thr_milp += (double)nf / res.objective_s;
+                if (isfinite(res.incumbent_s)) {
+                    x->heur_excess_max =
+                        fmax(x->heur_excess_max, res.incumbent_s / res.objective_s - 1.0);
+                }
+            }
+            printf("%-5g %-4zu %4zu %5zu %6zu | %-9s %9.3f %9.3f %8.2e %7.2f %7ld %5zu | %9.3f "
+                   "%9.3f |",
+                   br->alphas[ai], s, nf, inst.n_stops, inst.n_pairs, status_word(res.status),
+                   res.objective_s, res.bound_s, res.gap, res.runtime_s, res.nodes, ev.stops,
+                   res.root_bound_s, res.incumbent_s);
+            highs_run_t hr;
+            if (seed < br->highs.seeds && highs_baseline(&br->highs, &inst, &hr)) {
+                int proven = strcmp(hr.status, "optimal") == 0;
+                /* both proven: the optima agree to the ms */
+                int disagree = proven && res.status == HV_SOLVE_OPTIMAL &&
+                               fabs(hr.objective_s - res.objective_s) > 0.0005;
+                for (int w = 0; w < 2; ++w) {
+                    row_stats_t *x = w ? all : r;
+                    x->t_ours[x->n_highs] = res.runtime_s;
+                    x->t_highs[x->n_highs++] = hr.time_s;
+                    x->n_highs_opt += proven;
+                    x->n_highs_disagree += disagree;
+                }
+                printf(" %-14.14s %9.3f %7.2f |", hr.status, hr.objective_s, hr.time_s);
+                if (disagree) {
+                    fprintf(stderr,
+                            "bench_milp: %s alpha %g seed %zu: HiGHS proves %.3f s, "
+                            "the MILP %.3f s\n",
+                            bench_model_name(m->kind), br->alphas[ai], s, hr.objective_s,
+                            res.objective_s);
+                }
+            } else {
+                printf(" %-14s %9s %7s |", "-", "-", "-");
+            }
+            if (br->baselines) {
+                hv_eval_t fe;
+                double st_serial = NAN;
+                if (hv_fov_solve(&inst, HV_FOV_DEFAULT_WIDTH_M, &tmp, NULL) == HV_OK &&
+                    hv_assignment_eval(&inst, &tmp, &fe) == HV_OK) {
+                    for (int w = 0; w < 2; ++w) {
+                        row_stats_t *x = w ? all : r;
+                        x->stops_fov += (double)fe.stops;
+                        x->thr_fov += (double)nf / fe.makespan_s;
+                    }
+                    printf(" %9.3f %5zu |", fe.makespan_s, fe.stops);
+                }
+                unsigned char *passes = malloc(inst.n_fruits + 1);
+                hv_serial_result_t sr;
+                hv_milp_options_t so;
+                hv_milp_options_default(&so);
+                so.time_limit_s = br->mo.time_limit_s;
+                if (passes != NULL && hv_serial_solve(&inst, &so, &tmp, passes, &sr) == HV_OK) {
+                    st_serial = sr.makespan_s;
+                    for (int w = 0; w < 2; ++w) {
+                        row_stats_t *x = w ? all : r;
+                        x->thr_serial += (double)nf / sr.makespan_s;
+                        x->n_serial++;
+                    }
+                }
+                free(passes);
+                printf(" %9.3f", st_serial);
+            }
+            printf("\n");
+            if (br->given_plan && isfinite(res.objective_s)) {
+                /* the same solve with its own plan as the incumbent from the start */
+                hv_milp_result_t gr;
+                if (hv_milp_solve(&inst, &br->mo, &out, &tmp, &gr) == HV_OK) {
+                    for (int w = 0; w < 2; ++w) {
+                        row_stats_t *x = w ? all : r;
+                        x->t_given[x->n_given++] = gr.runtime_s;
+                        x->n_given_opt += gr.status == HV_SOLVE_OPTIMAL;
+                    }
+                    printf("#   given its plan (%.3f s): %s %9.3f, gap %8.2e in %7.2f s, %ld "
+                           "nodes\n",
+                           res.objective_s, status_word(gr.status), gr.objective_s, gr.gap,
+                           gr.runtime_s, gr.nodes);
+                } else {
+                    fprintf(stderr,
+                            "bench_milp: solver error on alpha %g seed %zu, given its plan\n",
+                            br->alphas[ai], s);
+                    failures++;
+                }
+            }
+            fflush(stdout);
+            hv_assignment_free(&out);
+            hv_assignment_free(&tmp);
+            hv_instance_free(&inst);
+        }
+    }
+    return failures;
+}
+
+/* "median max" of HiGHS and the ratio of its median to ours on the same instances into buf;
+ * the ratio is a lower bound (">") when HiGHS's median instance is unproven. */
+static void highs_cells(row_stats_t *r, char *buf, size_t len)
+{
+    if (r->n_highs == 0) {
+        snprintf(buf, len, "%5s %7s %7s", "-", "-", "-");
+        return;
+    }
+    double ours = median(r->t_ours, r->n_highs), theirs = median(r->t_highs, r->n_highs);
+    int censored = 2 * (r->n_highs - r->n_highs_opt) >= r->n_highs;
+    char ratio[16];
+    double q = theirs / fmax(ours, 1e-3);
+    snprintf(ratio, sizeof ratio, q < 10.0 ? "%s%.1fx" : "%s%.0fx", censored ? ">" : "", q);
+    snprintf(buf, len, "%2zu/%-2zu %7.2f %7s", r->n_highs_opt, r->n_highs, theirs, ratio);
+}
+
+static void print_model_summary(const bench_run_t *br, const bench_model_t *m, row_stats_t *st)
+{
+    printf("\n# Summary, %s model (times in s; throughput in fruits/s; HiGHS: proven of run, "
+           "median time, its median over ours on the same instances, %.0f s limit)\n",
+           bench_model_name(m->kind), br->highs.limit_s);
+    printf("%-5s | %7s %7s %7s %8s %8s | %5s %8s | %5s %8s %9s | %9s %5s | %-21s\n", "alpha",
+           "median", "max", "optimal", "mean_gap", "max_gap", "stops", "thr", "FOVst", "FOV_thr",
+           "MILP/FOV", "serial", "dual/s", "HiGHS opt med ratio");
+    for (size_t ai = 0; ai <= br->n_alpha; ++ai) {
+        row_stats_t *r = &st[ai];
+        double n = (double)(r->n ? r->n : 1);
+        char fov[64] = "    -        -         -", serial[64] = "        -     -", highs[64];
+        if (r->thr_fov > 0) {
+            snprintf(fov, sizeof fov, "%5.2f %8.4f %+8.1f%%", r->stops_fov / n, r->thr_fov / n,
+                     100.0 * (r->thr_milp / r->thr_fov - 1.0));
+        }
+        if (r->n_serial > 0) {
+            snprintf(serial, sizeof serial, "%9.4f %4.2fx", r->thr_serial / (double)r->n_serial,
+                     r->thr_milp / r->thr_serial);
+        }
+        highs_cells(r, highs, sizeof highs);
+        char name[16];
+        snprintf(name, sizeof name, "%g", ai < br->n_alpha ? br->alphas[ai] : 0.0);
+        double tmax = max_of(r->t_milp, r->n);
+        printf("%-5s | %7.3f %7.3f %3zu/%-3zu %8.2e %8.2e | %5.2f %8.4f | %s | %s | %s\n",
+               ai < br->n_alpha ? name : "all", median(r->t_milp, r->n), tmax, r->n_opt, r->n,
+               r->gap_sum / n, r->gap_max, r->stops_milp / n, r->thr_milp / n, fov, serial, highs);
+    }
+    if (st[br->n_alpha].n_highs_disagree > 0) {
+        printf("# HiGHS and the MILP proved different optima on %zu instances (stderr)\n",
+               st[br->n_alpha].n_highs_disagree);
+    }
+    if (br->given_plan) {
+        printf("\n# Given its own plan from the start (the proof alone)\n%-5s | %7s %7s %7s\n",
+               "alpha", "median", "max", "optimal");
+        for (size_t ai = 0; ai <= br->n_alpha; ++ai) {
+            row_stats_t *r = &st[ai];
+            char name[16];
+            snprintf(name, sizeof name, "%g", ai < br->n_alpha ? br->alphas[ai] : 0.0);
+            printf("%-5s | %7.3f %7.3f %3zu/%-3zu\n", ai < br->n_alpha ? name : "all",
+                   median(r->t_given, r->n_given), max_of(r->t_given, r->n_given), r->n_given_opt,
+                   r->n_given);
+        }
+    }
+}
+
+/* The models side by side: proven, median, max, HiGHS. */
+static void print_side_by_side(const bench_run_t *br, const bench_model_t *models, size_t n_models,
+                               row_stats_t (*st)[MAX_ALPHAS + 1])
+{
+    printf("\n# Side by side (MILP: proven, median and max time in s; HiGHS as above)\n%-5s",
+           "alpha");
+    for (size_t k = 0; k < n_models; ++k) {
+        printf(" | %-8s %7s %7s %7s %-21s", bench_model_name(models[k].kind), "median", "max",
+               "optimal", "HiGHS opt med ratio");
+    }
+    printf("\n");
+    for (size_t ai = 0; ai <= br->n_alpha; ++ai) {
+        char name[16];
+        snprintf(name, sizeof name, "%g", ai < br->n_alpha ? br->alphas[ai] : 0.0);
+        printf("%-5s", ai < br->n_alpha ? name : "all");
+        for (size_t k = 0; k < n_models; ++k) {
+            row_stats_t *r = &st[k][ai];
+            char highs[64];
+            highs_cells(r, highs, sizeof highs);
+            double tmax = max_of(r->t_milp, r->n);
+            printf(" | %-8s %7.3f %7.3f %3zu/%-3zu %s", "", median(r->t_milp, r->n), tmax, r->n_opt,
+                   r->n, highs);
+        }
+        printf("\n");
+    }
+}
+
 int main(int argc, char **argv)
 {
-    const char *cfg_path = HV_BENCH_DEFAULT_CONFIG;
-    double alphas[MAX_ALPHAS] = {0.25, 0.4, 1.0, 2.5, 4.0};
-    size_t n_alpha = 5, n_seeds = 10, plain_seeds = 2, first_seed = 1;
-    double plain_limit = 10.0;
-    int baselines = 1, given_plan = 0;
-    hv_milp_options_t mo;
-    hv_milp_options_default(&mo);
-    mo.time_limit_s = 10.0;
+    static bench_run_t br;
+    static row_stats_t stats[MAX_MODELS][MAX_ALPHAS + 1];
+    br.cfg_path = HV_BENCH_DEFAULT_CONFIG;
+    const double alphas0[] = {0.25, 0.4, 1.0, 2.5, 4.0};
+    memcpy(br.alphas, alphas0, sizeof alphas0);
+    br.n_alpha = 5;
+    br.n_seeds = 10;
+    br.first_seed = 1;
+    br.baselines = 1;
+    br.highs = (highs_cfg_t){HV_BENCH_PYTHON, 2, 60.0, 0.0, 0};
+    bench_model_kind_t kinds[MAX_MODELS] = {BENCH_MODEL_PRODUCT, BENCH_MODEL_PAPER};
+    size_t n_models = 2;
+    hv_milp_options_default(&br.mo);
+    br.mo.time_limit_s = 10.0;
     enum {
         O_NO_BASELINES = 256,
         O_GIVEN_PLAN,
         O_CONFIG,
+        O_MODELS,
         O_ALPHAS,
         O_SEEDS,
-        O_PLAIN_SEEDS,
+        O_HIGHS_SEEDS,
         O_FIRST_SEED,
         O_TIME_LIMIT,
-        O_PLAIN_LIMIT,
+        O_HIGHS_LIMIT,
+        O_PYTHON,
         O_SET
     };
     static const struct option longopts[] = {
         {"no-baselines", no_argument, NULL, O_NO_BASELINES},
         {"given-plan", no_argument, NULL, O_GIVEN_PLAN},
         {"config", required_argument, NULL, O_CONFIG},
+        {"models", required_argument, NULL, O_MODELS},
         {"alphas", required_argument, NULL, O_ALPHAS},
         {"seeds", required_argument, NULL, O_SEEDS},
-        {"plain-seeds", required_argument, NULL, O_PLAIN_SEEDS},
+        {"highs-seeds", required_argument, NULL, O_HIGHS_SEEDS},
         {"first-seed", required_argument, NULL, O_FIRST_SEED},
         {"time-limit", required_argument, NULL, O_TIME_LIMIT},
-        {"plain-limit", required_argument, NULL, O_PLAIN_LIMIT},
+        {"highs-limit", required_argument, NULL, O_HIGHS_LIMIT},
+        {"python", required_argument, NULL, O_PYTHON},
         {"set", required_argument, NULL, O_SET},
         {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0},
@@ -146,34 +461,49 @@ int main(int argc, char **argv)
         const char *v = optarg, *a = opt >= O_NO_BASELINES ? longopts[idx].name : "";
         switch (opt) {
         case 'h': usage(stdout); return 0;
-        case 'v': mo.verbose = mo.verbose + 1; break;
-        case O_NO_BASELINES: baselines = 0; break;
-        case O_GIVEN_PLAN: given_plan = 1; break;
-        case O_CONFIG: cfg_path = v; break;
+        case 'v': br.mo.verbose = br.mo.verbose + 1; break;
+        case O_NO_BASELINES: br.baselines = 0; break;
+        case O_GIVEN_PLAN: br.given_plan = 1; break;
+        case O_CONFIG: br.cfg_path = v; break;
+        case O_PYTHON: br.highs.python = v; break;
+        case O_MODELS: {
+            n_models = 0;
+            char buf[64];
+            snprintf(buf, sizeof buf, "%s", v);
+            for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
+                int paper = strcmp(tok, "paper") == 0;
+                if ((!paper && strcmp(tok, "product") != 0) || n_models == MAX_MODELS) {
+                    fprintf(stderr, "bench_milp: --models: product, paper or both, not '%s'\n", v);
+                    return 2;
+                }
+                kinds[n_models++] = paper ? BENCH_MODEL_PAPER : BENCH_MODEL_PRODUCT;
+            }
+            break;
+        }
         case O_ALPHAS: {
-            n_alpha = 0;
+            br.n_alpha = 0;
             char buf[256];
             snprintf(buf, sizeof buf, "%s", v);
-            for (char *tok = strtok(buf, ","); tok && n_alpha < MAX_ALPHAS;
+            for (char *tok = strtok(buf, ","); tok && br.n_alpha < MAX_ALPHAS;
                  tok = strtok(NULL, ",")) {
                 char *end;
-                alphas[n_alpha] = strtod(tok, &end);
-                if (*end != '\0' || !(alphas[n_alpha] > 0)) {
+                br.alphas[br.n_alpha] = strtod(tok, &end);
+                if (*end != '\0' || !(br.alphas[br.n_alpha] > 0)) {
                     fprintf(stderr, "bench_milp: --alphas: bad value '%s'\n", tok);
                     return 2;
                 }
-                n_alpha++;
+                br.n_alpha++;
             }
             break;
         }
         case O_SEEDS:
-        case O_PLAIN_SEEDS: {
+        case O_HIGHS_SEEDS: {
             long n = strtol(v, NULL, 10);
             if (n < 0 || n > MAX_SEEDS) {
                 fprintf(stderr, "bench_milp: --%s: 0..%d\n", a, MAX_SEEDS);
                 return 2;
             }
-            *(opt == O_SEEDS ? &n_seeds : &plain_seeds) = (size_t)n;
+            *(opt == O_SEEDS ? &br.n_seeds : &br.highs.seeds) = (size_t)n;
             break;
         }
         case O_FIRST_SEED: {
@@ -183,21 +513,21 @@ int main(int argc, char **argv)
                 fprintf(stderr, "bench_milp: --first-seed: a whole number >= 1, not '%s'\n", v);
                 return 2;
             }
-            first_seed = (size_t)n;
+            br.first_seed = (size_t)n;
             break;
         }
         case O_TIME_LIMIT:
-        case O_PLAIN_LIMIT: {
+        case O_HIGHS_LIMIT: {
             double t = strtod(v, NULL);
             if (!(t > 0)) {
                 fprintf(stderr, "bench_milp: --%s: must be > 0\n", a);
                 return 2;
             }
-            *(opt == O_TIME_LIMIT ? &mo.time_limit_s : &plain_limit) = t;
+            *(opt == O_TIME_LIMIT ? &br.mo.time_limit_s : &br.highs.limit_s) = t;
             break;
         }
         case O_SET:
-            if (hv_milp_option_set(&mo, v) != HV_OK) {
+            if (hv_milp_option_set(&br.mo, v) != HV_OK) {
                 fprintf(stderr, "bench_milp: --set: not an option or out of its range: '%s'\n", v);
                 return 2;
             }
@@ -212,180 +542,46 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench_milp: unexpected argument %s (see --help)\n", argv[optind]);
         return 2;
     }
+    br.highs.rel_gap = br.mo.rel_gap;
 
     hv_config_t cfg;
     char err[256];
-    if (hv_config_load(cfg_path, &cfg, err, sizeof err) != HV_OK) {
+    if (hv_config_load(br.cfg_path, &cfg, err, sizeof err) != HV_OK) {
         fprintf(stderr, "bench_milp: %s\n", err);
         return 1;
     }
-    bench_model_t pm;
-    if (bench_model_init(&cfg, &pm) != 0) {
-        return 1;
+    static bench_model_t models[MAX_MODELS];
+    for (size_t k = 0; k < n_models; ++k) {
+        if (bench_model_init(&cfg, kinds[k], &models[k]) != 0) {
+            return 1;
+        }
     }
-    printf("# MILP options: algorithm=%s disaggregated=%d heuristic=%d "
-           "ms=%d decompose=%d cuts=%d pcost=%d limit=%.0fs; price: "
+    const hv_milp_options_t *mo = &br.mo;
+    printf("# MILP options: algorithm=%s rel_gap=%g disaggregated=%d heuristic=%d "
+           "ms=%d decompose=%d limit=%.0fs; price: "
            "sr_cuts=%d/%d sr_purge=%d cover_rows=%d pseudocost=%d tree_threads=%d "
            "helper_thread=%d ascent_steps=%d auto_smoothing=%d interval_branching=%d "
            "iv_pseudocost=%d tail_off_ms=%d tail_off_open=%d binding_splits=%d "
            "balance_workers=%d warm_transfer=%d rins_every=%d region_stops=%d\n",
-           mo.algorithm == HV_MILP_ALG_PRICE ? "price" : "compact", mo.link_disaggregated,
-           mo.heuristic_incumbent, mo.ms_granularity, mo.decompose, mo.glpk_cuts,
-           mo.pcost_branching, mo.time_limit_s, mo.sr_cuts, mo.sr_cuts_large, mo.sr_purge,
-           mo.cover_rows, mo.pseudocost, mo.tree_threads, mo.helper_thread, mo.ascent_steps,
-           mo.auto_smoothing, mo.interval_branching, mo.iv_pseudocost, mo.tail_off_ms,
-           mo.tail_off_open, mo.binding_splits, mo.balance_workers, mo.warm_transfer, mo.rins_every,
-           mo.region_stops);
-    printf("%-5s %-4s %4s %6s | %-9s %9s %9s %8s %7s %7s %5s | %9s %9s | %-9s %8s %7s | %9s %5s | "
-           "%9s\n",
-           "alpha", "seed", "nf", "pairs", "milp", "T_s", "bound_s", "gap", "time_s", "nodes",
-           "stops", "root_s", "heur_T_s", "plain", "plain_gap", "plain_s", "fov_T_s", "stops",
-           "serial_T");
-    row_stats_t rows[MAX_ALPHAS];
-    memset(rows, 0, sizeof rows);
+           mo->algorithm == HV_MILP_ALG_PRICE ? "price" : "compact", mo->rel_gap,
+           mo->link_disaggregated, mo->heuristic_incumbent, mo->ms_granularity, mo->decompose,
+           mo->time_limit_s, mo->sr_cuts, mo->sr_cuts_large, mo->sr_purge, mo->cover_rows,
+           mo->pseudocost, mo->tree_threads, mo->helper_thread, mo->ascent_steps,
+           mo->auto_smoothing, mo->interval_branching, mo->iv_pseudocost, mo->tail_off_ms,
+           mo->tail_off_open, mo->binding_splits, mo->balance_workers, mo->warm_transfer,
+           mo->rins_every, mo->region_stops);
+    printf("# HiGHS: highspy on the exported compact model, first %zu seeds per alpha, %.0f s "
+           "limit, 2 threads, mip_rel_gap %g, mip_abs_gap %g s, its defaults otherwise\n",
+           br.highs.seeds, br.highs.limit_s, br.highs.rel_gap, HIGHS_ABS_GAP_S);
     int failures = 0;
-    for (size_t ai = 0; ai < n_alpha; ++ai) {
-        row_stats_t *r = &rows[ai];
-        size_t n_right = (size_t)lround(alphas[ai] * 50.0);
-        for (size_t seed = 0; seed < n_seeds; ++seed) {
-            hv_instance_t inst;
-            if (bench_instance_make(&cfg, &pm, 50, n_right, first_seed + seed, &inst) != 0) {
-                return 1;
-            }
-            size_t nf = inst.n_fruits - hv_instance_unreachable_count(&inst);
-            hv_assignment_t out, tmp;
-            hv_assignment_alloc(&out, inst.n_fruits);
-            hv_assignment_alloc(&tmp, inst.n_fruits);
-            hv_milp_result_t res;
-            hv_eval_t ev;
-            memset(&ev, 0, sizeof ev);
-            if (hv_milp_solve(&inst, &mo, NULL, &out, &res) != HV_OK) {
-                fprintf(stderr, "bench_milp: solver error on alpha %g seed %zu\n", alphas[ai],
-                        first_seed + seed);
-                failures++;
-                hv_instance_free(&inst);
-                continue;
-            }
-            hv_assignment_eval(&inst, &out, &ev);
-            r->t_milp[r->n] = res.runtime_s;
-            r->n++;
-            r->n_opt += res.status == HV_SOLVE_OPTIMAL;
-            r->gap_max = fmax(r->gap_max, res.gap);
-            r->gap_sum += res.gap;
-            r->stops_milp += (double)ev.stops;
-            r->thr_milp += (double)nf / res.objective_s;
-            if (isfinite(res.incumbent_s)) {
-                r->heur_excess_max =
-                    fmax(r->heur_excess_max, res.incumbent_s / res.objective_s - 1.0);
-            }
-            printf("%-5g %-4zu %4zu %6zu | %-9s %9.3f %9.3f %8.2e %7.2f %7ld %5zu | %9.3f %9.3f |",
-                   alphas[ai], first_seed + seed, nf, inst.n_pairs, status_word(res.status),
-                   res.objective_s, res.bound_s, res.gap, res.runtime_s, res.nodes, ev.stops,
-                   res.root_bound_s, res.incumbent_s);
-            if (seed < plain_seeds) {
-                hv_milp_options_t po;
-                plain_options(&po, plain_limit);
-                hv_milp_result_t pr;
-                if (hv_milp_solve(&inst, &po, NULL, &tmp, &pr) == HV_OK) {
-                    r->t_plain[r->n_plain++] = pr.runtime_s;
-                    r->n_plain_opt += pr.status == HV_SOLVE_OPTIMAL;
-                    /* the plain run's gap against the best bound either run proved */
-                    double b = fmax(pr.bound_s, res.bound_s);
-                    double g =
-                        isfinite(pr.objective_s) ? (pr.objective_s - b) / pr.objective_s : INFINITY;
-                    r->plain_gap_max = fmax(r->plain_gap_max, g);
-                    printf(" %-9s %8.2e %7.2f |", status_word(pr.status), g, pr.runtime_s);
-                }
-            } else {
-                printf(" %-9s %8s %7s |", "-", "-", "-");
-            }
-            if (baselines) {
-                hv_eval_t fe;
-                double st_serial = NAN;
-                if (hv_fov_solve(&inst, HV_FOV_DEFAULT_WIDTH_M, &tmp, NULL) == HV_OK &&
-                    hv_assignment_eval(&inst, &tmp, &fe) == HV_OK) {
-                    r->stops_fov += (double)fe.stops;
-                    r->thr_fov += (double)nf / fe.makespan_s;
-                    printf(" %9.3f %5zu |", fe.makespan_s, fe.stops);
-                }
-                unsigned char *passes = malloc(inst.n_fruits + 1);
-                hv_serial_result_t sr;
-                hv_milp_options_t so;
-                hv_milp_options_default(&so);
-                so.time_limit_s = mo.time_limit_s;
-                if (passes != NULL && hv_serial_solve(&inst, &so, &tmp, passes, &sr) == HV_OK) {
-                    st_serial = sr.makespan_s;
-                    r->thr_serial += (double)nf / sr.makespan_s;
-                    r->n_serial++;
-                }
-                free(passes);
-                printf(" %9.3f", st_serial);
-            }
-            printf("\n");
-            if (given_plan && isfinite(res.objective_s)) {
-                /* the same solve with its own plan as the incumbent from the start */
-                hv_milp_result_t gr;
-                if (hv_milp_solve(&inst, &mo, &out, &tmp, &gr) == HV_OK) {
-                    r->t_given[r->n_given++] = gr.runtime_s;
-                    r->n_given_opt += gr.status == HV_SOLVE_OPTIMAL;
-                    printf("#   given its plan (%.3f s): %s %9.3f, gap %8.2e in %7.2f s, %ld "
-                           "nodes\n",
-                           res.objective_s, status_word(gr.status), gr.objective_s, gr.gap,
-                           gr.runtime_s, gr.nodes);
-                } else {
-                    fprintf(stderr,
-                            "bench_milp: solver error on alpha %g seed %zu, given its "
-                            "plan\n",
-                            alphas[ai], first_seed + seed);
-                    failures++;
-                }
-            }
-            fflush(stdout);
-            hv_assignment_free(&out);
-            hv_assignment_free(&tmp);
-            hv_instance_free(&inst);
-        }
+    for (size_t k = 0; k < n_models; ++k) {
+        failures += run_model(&br, &models[k], stats[k]);
     }
-
-    printf("\n# Summary per alpha (times in s; throughput in fruits/s; plain = the model as the "
-           "paper writes it: aggregated linking, GLPK cuts on, no incumbent, %.0f s limit)\n",
-           plain_limit);
-    printf("%-5s | %7s %7s %7s %8s %8s | %5s %8s | %5s %8s %9s | %9s %5s | %6s %7s %9s\n", "alpha",
-           "median", "max", "optimal", "mean_gap", "max_gap", "stops", "thr", "FOVst", "FOV_thr",
-           "MILP/FOV", "serial", "dual/s", "plain", "p_med", "p_max_gap");
-    for (size_t ai = 0; ai < n_alpha; ++ai) {
-        row_stats_t *r = &rows[ai];
-        double n = (double)(r->n ? r->n : 1);
-        double tmax = max_of(r->t_milp, r->n);
-        size_t np = r->n_plain;
-        double pmed = median(r->t_plain, np);
-        /* the baselines' and the plain model's columns read "-" when they were not run */
-        char fov[64] = "    -        -         -", serial[64] = "        -     -",
-             plain[64] = " -          -         -";
-        if (r->thr_fov > 0) {
-            snprintf(fov, sizeof fov, "%5.2f %8.4f %+8.1f%%", r->stops_fov / n, r->thr_fov / n,
-                     100.0 * (r->thr_milp / r->thr_fov - 1.0));
-        }
-        if (r->n_serial > 0) {
-            snprintf(serial, sizeof serial, "%9.4f %4.2fx", r->thr_serial / (double)r->n_serial,
-                     r->thr_milp / r->thr_serial);
-        }
-        if (np > 0) {
-            snprintf(plain, sizeof plain, "%2zu/%-3zu %7.2f %9.2e", r->n_plain_opt, np, pmed,
-                     r->plain_gap_max);
-        }
-        printf("%-5g | %7.3f %7.3f %3zu/%-3zu %8.2e %8.2e | %5.2f %8.4f | %s | %s | %s\n",
-               alphas[ai], median(r->t_milp, r->n), tmax, r->n_opt, r->n, r->gap_sum / n,
-               r->gap_max, r->stops_milp / n, r->thr_milp / n, fov, serial, plain);
+    for (size_t k = 0; k < n_models; ++k) {
+        print_model_summary(&br, &models[k], stats[k]);
     }
-    if (given_plan) {
-        printf("\n# Given its own plan from the start (the proof alone)\n%-5s | %7s %7s %7s\n",
-               "alpha", "median", "max", "optimal");
-        for (size_t ai = 0; ai < n_alpha; ++ai) {
-            row_stats_t *r = &rows[ai];
-            printf("%-5g | %7.3f %7.3f %3zu/%-3zu\n", alphas[ai], median(r->t_given, r->n_given),
-                   max_of(r->t_given, r->n_given), r->n_given_opt, r->n_given);
-        }
+    if (n_models > 1) {
+        print_side_by_side(&br, models, n_models, stats);
     }
     return failures ? 1 : 0;
 }

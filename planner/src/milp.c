@@ -247,6 +247,29 @@ static void set_iocp(glp_iocp *ip, const hv_milp_options_t *opt, cb_ctx_t *c,
     }
 }
 
+hv_status_t hv_milp_export_lp(const hv_instance_t *inst, const hv_milp_options_t *opt,
+                              const char *path)
+{
+    if (inst == NULL || opt == NULL || path == NULL) {
+        return HV_ERR_ARG;
+    }
+    hv_milp_model_opts_t mo;
+    memset(&mo, 0, sizeof mo);
+    mo.link_disaggregated = opt->link_disaggregated == 1;
+    hv_milp_model_t m;
+    hv_status_t st = hv_milp_model_build(inst, &mo, 1, &m);
+    if (st != HV_OK) {
+        return st;
+    }
+    int term_prev = glp_term_out(opt->verbose >= 2 ? GLP_ON : GLP_OFF);
+    if (glp_write_lp(m.lp, NULL, path) != 0) {
+        st = HV_ERR_MILP_EXPORT;
+    }
+    glp_term_out(term_prev);
+    hv_milp_model_free(&m);
+    return st;
+}
+
 /* One monolithic solve of `inst` (no decomposition). `inc` may be NULL. */
 static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t *opt,
                              const hv_assignment_t *inc, double inc_t, double t_deadline,
@@ -263,23 +286,24 @@ static hv_status_t solve_one(const hv_instance_t *inst, const hv_milp_options_t 
         return hv_price_solve(inst, opt, hv_milp_default_subsolver(), inc, inc_t, t_deadline, out,
                               res);
     }
+    if (opt->export_lp_path != NULL) {
+        hv_status_t se = hv_milp_export_lp(inst, opt, opt->export_lp_path);
+        if (se != HV_OK) {
+            return se;
+        }
+    }
+    if (price) { /* the paper's model was wanted for the file only */
+        res->incumbent_taken = inc != NULL;
+        return hv_price_solve(inst, opt, hv_milp_default_subsolver(), inc, inc_t, t_deadline, out,
+                              res);
+    }
     hv_milp_model_opts_t mo;
     memset(&mo, 0, sizeof mo);
     mo.link_disaggregated = opt->link_disaggregated == 1;
     hv_milp_model_t m;
-    hv_status_t st = hv_milp_model_build(inst, &mo, opt->export_lp_path != NULL, &m);
+    hv_status_t st = hv_milp_model_build(inst, &mo, 0, &m);
     if (st != HV_OK) {
         return st;
-    }
-    if (opt->export_lp_path != NULL && glp_write_lp(m.lp, NULL, opt->export_lp_path) != 0) {
-        hv_milp_model_free(&m);
-        return HV_ERR_MILP_EXPORT;
-    }
-    if (price) { /* the paper's model was wanted for the file only */
-        hv_milp_model_free(&m);
-        res->incumbent_taken = inc != NULL;
-        return hv_price_solve(inst, opt, hv_milp_default_subsolver(), inc, inc_t, t_deadline, out,
-                              res);
     }
     double *x = malloc(((size_t)m.n_cols + 1) * sizeof *x);
     if (x == NULL) {

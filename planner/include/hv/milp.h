@@ -22,6 +22,12 @@ hv_status_t hv_milp_solve(const hv_instance_t *inst, const hv_milp_options_t *op
                           const hv_assignment_t *incumbent, hv_assignment_t *out,
                           hv_milp_result_t *res);
 
+/* Write the compact model of `inst` (the paper's, as `--export-lp` writes it: the linking
+ * opt->link_disaggregated chooses) to `path` in CPLEX LP format, without solving: what an
+ * independent solver re-solves. HV_ERR_MILP_EXPORT when the file cannot be written. */
+hv_status_t hv_milp_export_lp(const hv_instance_t *inst, const hv_milp_options_t *opt,
+                              const char *path);
+
 /* The sub-solver the MILP's own sub-solves go through (milp_subsolve.h): hv_milp_solve and
  * hv_price_bound. Row windows, neighbourhoods, regional bounds and their tests take it. */
 const hv_milp_subsolver_t *hv_milp_default_subsolver(void);
