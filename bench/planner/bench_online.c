@@ -6,7 +6,8 @@
  * plan model (plan.pick_cycle = 1: a stop takes its slower arm's pick cycles plus what
  * the drive loses stopping; the vehicle drives at vehicle.speed between stops). The
  * camera sees [y + camera.lead, y + camera.lead + camera.window] from the vehicle's
- * position y, which changes at each arrival. The planner (hv_online_step, really run) takes
+ * position y, which changes at each arrival. The planner (hv_online_step_ahead, really run,
+ * its limit from the robot time committed ahead when it starts) takes
  * the wall time it measures per horizon; its committed stops are available to the vehicle
  * that long after it started, which is when it was free and the vehicle's last arrival
  * had shown it what it planned with. A vehicle with no committed stop to go to waits.
@@ -42,12 +43,15 @@ static void usage(FILE *f)
             "planner time per horizon (median, max).\n"
             "  --config PATH      harvest config (default %s)\n"
             "  --length M         row length, m (default 50)\n"
-            "  --alphas A,B,..    right/left density ratios, one row each (default 0.25,1);\n"
+            "  --alphas A,B,..    right/left density ratios, one row each (default\n"
+            "                     0.25,1,2.5);\n"
             "                     the left side has the paper's 25 fruits per m\n"
             "  --seed N           fruit seed (default 1)\n"
             "  --window H         horizon solved per step, m (default 2)\n"
             "  --commit M         committed per step, m (default 1)\n"
-            "  --window-limit S   MILP limit per horizon, s (default 10)\n"
+            "  --window-limit S   MILP limit per horizon, s (default: half the robot time\n"
+            "                     committed ahead when the horizon starts, within the config's\n"
+            "                     online.horizon_limit_min and online.horizon_limit_max)\n"
             "  --time-limit S     limit of the offline whole-row solve, s (default 120)\n"
             "  --help             this text\n",
             HV_BENCH_DEFAULT_CONFIG);
@@ -72,22 +76,6 @@ static int by_y(const void *a, const void *b)
     return p->y_m < q->y_m ? -1 : p->y_m > q->y_m;
 }
 
-/* Robot time (s) the vehicle stands at committed stop s: its slower arm's pick costs plus
- * the stop's own cost (tau). */
-static double stop_work_s(const hv_online_t *o, const hv_online_stop_t *s)
-{
-    double c[2] = {0.0, 0.0};
-    for (size_t k = 0; k < s->count; ++k) {
-        const hv_fruit_t *f = &o->fruits[o->fruit_of[s->first + k]];
-        double cost = 0.0;
-        hv_pick_why_t why;
-        if (o->model->cost(o->model->ctx, f, s->y_m, &cost, &why) == HV_OK) {
-            c[f->side == HV_SIDE_LEFT ? 0 : 1] += cost;
-        }
-    }
-    return fmax(c[0], c[1]) + o->params.stop_penalty_s;
-}
-
 typedef struct online_run {
     double makespan_s;   /* virtual: course start to course end, waits included */
     double wait_start_s; /* waiting for the first committed stop */
@@ -95,6 +83,7 @@ typedef struct online_run {
     unsigned waits;      /* times the vehicle waited after the first stop */
     double min_slack_s;  /* least robot time left ahead of the vehicle when a step came */
     double *step_s;      /* wall time per horizon */
+    double *limit_s;     /* its time limit */
     size_t n_steps;
     unsigned empty_advances; /* drives to the commit line with no stop ahead */
 } online_run_t;
@@ -115,14 +104,15 @@ static int reveal(hv_online_t *o, const hv_config_t *cfg, const hv_fruit_t *fr, 
 }
 
 static int run_online(hv_online_t *o, const hv_config_t *cfg, const hv_fruit_t *fr, size_t n,
-                      online_run_t *run)
+                      int fixed_limit, online_run_t *run)
 {
     memset(run, 0, sizeof *run);
     run->min_slack_s = INFINITY;
     size_t cap = 256, next = 0, k = 0;
     double *avail = malloc(cap * sizeof *avail); /* per committed stop */
     run->step_s = malloc(1024 * sizeof *run->step_s);
-    if (avail == NULL || run->step_s == NULL) {
+    run->limit_s = malloc(1024 * sizeof *run->limit_s);
+    if (avail == NULL || run->step_s == NULL || run->limit_s == NULL) {
         free(avail);
         return -1;
     }
@@ -135,15 +125,21 @@ static int run_online(hv_online_t *o, const hv_config_t *cfg, const hv_fruit_t *
     }
     for (;;) {
         while (hv_online_ready(o)) {
+            /* the robot time committed ahead when the step starts (at fmax(tp, t_seen)):
+             * the rest of the stop the vehicle is at (it is done at t) and the stops after */
+            double ahead = fmax(0.0, t + hv_online_ahead_s(o, k, vy, speed) - fmax(tp, t_seen));
             double w0 = now_s();
             hv_online_step_result_t r;
-            if (hv_online_step(o, &r) != HV_OK) {
+            hv_status_t sst =
+                fixed_limit ? hv_online_step(o, &r) : hv_online_step_ahead(o, ahead, &r);
+            if (sst != HV_OK) {
                 fprintf(stderr, "bench_online: a step failed\n");
                 free(avail);
                 return -1;
             }
             double w = now_s() - w0;
             if (run->n_steps < 1024) {
+                run->limit_s[run->n_steps] = r.limit_s;
                 run->step_s[run->n_steps++] = w;
             }
             tp = fmax(tp, t_seen) + w;
@@ -165,7 +161,7 @@ static int run_online(hv_online_t *o, const hv_config_t *cfg, const hv_fruit_t *
             if (k > 0) {
                 double ahead = 0.0, y = vy;
                 for (size_t s = k; s < r.stops_from; ++s) {
-                    ahead += fabs(o->stops[s].y_m - y) / speed + stop_work_s(o, &o->stops[s]);
+                    ahead += fabs(o->stops[s].y_m - y) / speed + hv_online_stop_work_s(o, s);
                     y = o->stops[s].y_m;
                 }
                 double slack = (t + ahead) - tp; /* t: when the vehicle finished stop k-1 */
@@ -188,7 +184,7 @@ static int run_online(hv_online_t *o, const hv_config_t *cfg, const hv_fruit_t *
             if (reveal(o, cfg, fr, n, &next, vy) != 0) {
                 return -1;
             }
-            t += stop_work_s(o, &o->stops[k]);
+            t += hv_online_stop_work_s(o, k);
             k++;
         } else if (o->done) {
             t += fabs(course_end - vy) / speed;
@@ -239,7 +235,7 @@ static int parse_alphas(const char *text, double *out, int *n)
 }
 
 static int bench_row(const hv_config_t *cfg, double alpha, uint64_t seed,
-                     const hv_online_options_t *oo, double time_limit)
+                     const hv_online_options_t *oo, int fixed_limit, double time_limit)
 {
     hv_ik_model_t ik;
     hv_pick_model_t model;
@@ -262,7 +258,7 @@ static int bench_row(const hv_config_t *cfg, double alpha, uint64_t seed,
     memset(&run, 0, sizeof run);
     int rc = hv_online_init(&o, &par, &model, oo) == HV_OK ? 0 : -1;
     if (rc == 0) {
-        rc = run_online(&o, cfg, fr, n, &run);
+        rc = run_online(&o, cfg, fr, n, fixed_limit, &run);
     }
     /* the same fruits planned offline, whole row, and the online plan's makespan on them */
     hv_instance_t inst;
@@ -299,8 +295,11 @@ static int bench_row(const hv_config_t *cfg, double alpha, uint64_t seed,
             hv_assignment_makespan(&inst, &off, &t_off);
         }
         qsort(run.step_s, run.n_steps, sizeof *run.step_s, cmp_double);
+        qsort(run.limit_s, run.n_steps, sizeof *run.limit_s, cmp_double);
         double med = run.n_steps ? run.step_s[run.n_steps / 2] : 0.0;
         double mx = run.n_steps ? run.step_s[run.n_steps - 1] : 0.0;
+        double lmin = run.n_steps ? run.limit_s[0] : 0.0;
+        double lmed = run.n_steps ? run.limit_s[run.n_steps / 2] : 0.0;
         printf("row %.0f m, alpha %.2f, seed %llu: %zu fruits (%u unreachable), %zu stops "
                "committed in %zu horizons (%u optimal)\n",
                cfg->row_length_m, alpha, (unsigned long long)seed, n, o.counts[HV_DET_UNREACHABLE],
@@ -318,7 +317,9 @@ static int bench_row(const hv_config_t *cfg, double alpha, uint64_t seed,
                "when a horizon came: %.1f s; %u drives through a stretch with no fruit\n",
                run.makespan_s, run.wait_start_s, run.wait_row_s, run.waits, run.min_slack_s,
                run.empty_advances);
-        printf("  planner wall time per horizon: median %.3f s, max %.3f s\n", med, mx);
+        printf("  planner wall time per horizon: median %.3f s, max %.3f s; its limit: least "
+               "%.1f s, median %.1f s\n",
+               med, mx, lmin, lmed);
     }
     hv_assignment_free(&on);
     hv_assignment_free(&off);
@@ -326,6 +327,7 @@ static int bench_row(const hv_config_t *cfg, double alpha, uint64_t seed,
     hv_instance_free(&inst);
     hv_online_free(&o);
     free(run.step_s);
+    free(run.limit_s);
     free(fr);
     return rc;
 }
@@ -334,8 +336,9 @@ int main(int argc, char **argv)
 {
     const char *cfg_path = HV_BENCH_DEFAULT_CONFIG;
     double length = 50.0, time_limit = 120.0;
-    double alphas[MAX_ALPHAS] = {0.25, 1.0};
-    int n_alphas = 2;
+    double alphas[MAX_ALPHAS] = {0.25, 1.0, 2.5};
+    int n_alphas = 3;
+    int fixed_limit = 0;
     unsigned long long seed = 1;
     hv_online_options_t oo;
     hv_online_options_default(&oo);
@@ -397,7 +400,10 @@ int main(int argc, char **argv)
         case O_SEED: seed = (unsigned long long)x; break;
         case O_WINDOW: oo.window_m = x; break;
         case O_COMMIT: oo.commit_m = x; break;
-        case O_WINDOW_LIMIT: oo.milp.time_limit_s = x; break;
+        case O_WINDOW_LIMIT:
+            oo.milp.time_limit_s = x;
+            fixed_limit = 1;
+            break;
         default: time_limit = x; break; /* O_TIME_LIMIT */
         }
     }
@@ -417,13 +423,19 @@ int main(int argc, char **argv)
     }
     cfg.row_length_m = length;
     cfg.pick_cycle = 1; /* the robot's time: what the vehicle really spends */
+    oo.limit_min_s = cfg.online_limit_min_s;
+    oo.limit_max_s = cfg.online_limit_max_s;
+    char limit[96];
+    snprintf(limit, sizeof limit,
+             fixed_limit ? "%.0f s per horizon" : "half the work ahead per horizon, %.0f to %.0f s",
+             fixed_limit ? oo.milp.time_limit_s : oo.limit_min_s, oo.limit_max_s);
     printf("bench_online: %s; camera lead %.2f m, window %.2f m; horizon %.2f m, commit %.2f m, "
-           "%.0f s per horizon; offline limit %.0f s\n",
-           cfg_path, cfg.camera_lead_m, cfg.camera_window_m, oo.window_m, oo.commit_m,
-           oo.milp.time_limit_s, time_limit);
+           "%s; offline limit %.0f s\n",
+           cfg_path, cfg.camera_lead_m, cfg.camera_window_m, oo.window_m, oo.commit_m, limit,
+           time_limit);
     int rc = 0;
     for (int i = 0; i < n_alphas && rc == 0; ++i) {
-        rc = bench_row(&cfg, alphas[i], seed, &oo, time_limit);
+        rc = bench_row(&cfg, alphas[i], seed, &oo, fixed_limit, time_limit);
     }
     return rc == 0 ? 0 : 1;
 }

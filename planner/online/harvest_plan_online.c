@@ -59,7 +59,11 @@ static const char k_usage[] =
     "  --lcm-url URL      LCM URL (udpm://...?ttl=0), required\n"
     "  --window H         horizon solved per step, m (default 2)\n"
     "  --commit M         committed per step, m (default 1, at most H)\n"
-    "  --time-limit S     MILP limit per horizon, s (default 10)\n"
+    "  --time-limit S     MILP limit per horizon, s (default: half the robot time committed\n"
+    "                     ahead of the executor when the horizon starts, within the\n"
+    "                     config's online.horizon_limit_min and online.horizon_limit_max;\n"
+    "                     robot time as at time scale 1: a faster simulated run wants a\n"
+    "                     fixed --time-limit)\n"
     "  --threads N        1 or 2 (default): the MILP's second thread; 1 leaves a core to the\n"
     "                     executor and the simulator on a 2-core machine\n"
     "  --progress S       a progress line every S s of wall time (default 5; 0: per horizon\n"
@@ -203,6 +207,17 @@ static void on_exec_state(const lcm_recv_buf_t *rbuf, const char *channel,
     a->exec_picked = m->picked;
     a->exec_vehicle_m = m->vehicle_position_m;
     snprintf(a->exec_phase, sizeof a->exec_phase, "%s", m->phase);
+}
+
+/* Robot time committed ahead of the executor: the committed stops after the one it is at
+ * (that one's rest is not counted), from there; 0 before it is heard. */
+static double work_ahead_s(const app_t *a, const hv_config_t *cfg)
+{
+    if (!a->exec_seen || a->exec_stop < 0 || (size_t)a->exec_stop >= a->o.n_stops) {
+        return 0.0;
+    }
+    size_t k = (size_t)a->exec_stop;
+    return hv_online_ahead_s(&a->o, k + 1, a->o.stops[k].y_m, cfg->vehicle_speed_mps);
 }
 
 /* The committed plan so far, whole (plan_commit_t.lcm says why). */
@@ -398,7 +413,7 @@ static int parse_pos(const char *flag, const char *text, double *out, int zero_o
 int main(int argc, char **argv)
 {
     const char *config = NULL, *url = NULL, *summary = NULL, *out = NULL, *journal_path = NULL;
-    double progress_s = 5.0;
+    double progress_s = 5.0, fixed_limit_s = 0.0; /* 0: the limit follows the work ahead */
     int quiet = 0;
     hv_online_options_t opt;
     hv_online_options_default(&opt);
@@ -447,7 +462,7 @@ int main(int argc, char **argv)
         case O_JOURNAL: journal_path = v; break;
         case O_WINDOW: bad = parse_pos(f, v, &opt.window_m, 0); break;
         case O_COMMIT: bad = parse_pos(f, v, &opt.commit_m, 0); break;
-        case O_TIME_LIMIT: bad = parse_pos(f, v, &opt.milp.time_limit_s, 0); break;
+        case O_TIME_LIMIT: bad = parse_pos(f, v, &fixed_limit_s, 0); break;
         case O_PROGRESS: bad = parse_pos(f, v, &progress_s, 1); break;
         case O_THREADS:
             bad = strcmp(v, "1") != 0 && strcmp(v, "2") != 0;
@@ -495,6 +510,10 @@ int main(int argc, char **argv)
     hv_instance_params_t par;
     hv_instance_params_from_config(&cfg, &model, &par);
     opt.milp.stop = stop_requested;
+    opt.limit_min_s = cfg.online_limit_min_s;
+    opt.limit_max_s = cfg.online_limit_max_s;
+    /* the plan records the longest a horizon may take */
+    opt.milp.time_limit_s = fixed_limit_s > 0.0 ? fixed_limit_s : opt.limit_max_s;
     app_t *a = calloc(1, sizeof *a);
     if (a == NULL || hv_online_init(&a->o, &par, &model, &opt) != HV_OK) {
         fprintf(stderr, "harvest-plan-online: cannot start (out of memory or bad options)\n");
@@ -540,12 +559,20 @@ int main(int argc, char **argv)
     sa.sa_handler = on_signal;
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
+    char limit_text[128];
+    if (fixed_limit_s > 0.0) {
+        snprintf(limit_text, sizeof limit_text, "%.1f s per horizon", fixed_limit_s);
+    } else {
+        snprintf(limit_text, sizeof limit_text,
+                 "a horizon takes half the robot time committed ahead, %.1f to %.1f s",
+                 opt.limit_min_s, opt.limit_max_s);
+    }
     if (!quiet) {
         fprintf(stderr,
                 "harvest-plan-online: row %.2f m, camera %.2f m from %.2f m ahead, "
-                "horizon %.2f m, commit %.2f m, %.1f s per horizon; waiting for the camera\n",
+                "horizon %.2f m, commit %.2f m, %s; waiting for the camera\n",
                 cfg.row_length_m, cfg.camera_window_m, cfg.camera_lead_m, opt.window_m,
-                opt.commit_m, opt.milp.time_limit_s);
+                opt.commit_m, limit_text);
     }
     int rc = EXIT_DONE;
     double last_pub = 0.0, last_progress = now_s();
@@ -557,7 +584,10 @@ int main(int argc, char **argv)
             double t0 = now_s();
             hv_online_step_result_t r;
             size_t pos = a->o.pos;
-            if (hv_online_step(&a->o, &r) != HV_OK) {
+            hv_status_t sst = fixed_limit_s > 0.0
+                                  ? hv_online_step(&a->o, &r)
+                                  : hv_online_step_ahead(&a->o, work_ahead_s(a, &cfg), &r);
+            if (sst != HV_OK) {
                 fprintf(stderr, "harvest-plan-online: a horizon failed to plan\n");
                 rc = EXIT_FAILED;
                 break;
@@ -578,10 +608,10 @@ int main(int argc, char **argv)
             if (!quiet) {
                 char what[160];
                 snprintf(what, sizeof what,
-                         "horizon %zu (%zu fruits, %s%s, %.2f s) committed "
+                         "horizon %zu (%zu fruits, %s%s, %.2f s of %.1f s) committed "
                          "%zu stops",
                          a->n_solves, r.window_fruits, solve_name(r.status),
-                         r.kept_heuristic ? ", kept the FOV plan" : "", dt,
+                         r.kept_heuristic ? ", kept the FOV plan" : "", dt, r.limit_s,
                          r.stops_to - r.stops_from);
                 progress(a, what);
             }

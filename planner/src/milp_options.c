@@ -127,6 +127,9 @@ static const hv_milp_param_t params[] = {
              "other's asks for a node"),
     CONSTANT(ROUND_EVERY, 1, "nodes", 1, INFINITY,
              "nodes between roundings of the master point once the plan is near the root's bound"),
+    CONSTANT(ROUND_TIME_SHARE, 0, "", 0, 1,
+             "the rounding's share of the search's time at most (below depth 2): past it, nodes "
+             "skip it"),
     CONSTANT(WINDOW_SHARE, 0, "", 0, 1,
              "the share of the time left after the root for row windows on the search's thread"),
     CONSTANT(WINDOW_LIMIT_S, 0, "s", 0, INFINITY,

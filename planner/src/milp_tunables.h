@@ -20,6 +20,7 @@
 #define DIVE_EVERY            64
 #define BALANCE_SHARE         0.2
 #define ROUND_EVERY           8
+#define ROUND_TIME_SHARE      0.2
 #define WINDOW_SHARE          0.25
 #define WINDOW_LIMIT_S        0.5
 #define RINS_LIMIT_S          0.3

@@ -23,6 +23,8 @@ void hv_online_options_default(hv_online_options_t *opt)
     opt->commit_m = 1.0;
     hv_milp_options_default(&opt->milp);
     opt->milp.time_limit_s = 10.0;
+    opt->limit_min_s = 10.0;
+    opt->limit_max_s = 60.0;
 }
 
 static double stop_y(const hv_online_t *o, size_t p)
@@ -41,7 +43,8 @@ hv_status_t hv_online_init(hv_online_t *o, const hv_instance_params_t *params,
 {
     if (o == NULL || params == NULL || model == NULL || opt == NULL || !isfinite(opt->window_m) ||
         !isfinite(opt->commit_m) || opt->window_m <= 0 || opt->commit_m <= 0 ||
-        opt->commit_m > opt->window_m) {
+        opt->commit_m > opt->window_m || !(opt->limit_min_s > 0) ||
+        !(opt->limit_max_s >= opt->limit_min_s)) {
         return HV_ERR_ARG;
     }
     memset(o, 0, sizeof *o);
@@ -229,10 +232,13 @@ static hv_status_t record_stops(hv_online_t *o, const uint32_t *fruits, size_t n
     return st;
 }
 
-/* Solve `sub` (the window): the MILP's plan, or the FOV plan when it finds none. */
+/* Solve `sub` (the window) within r->limit_s: the MILP's plan, or the FOV plan when it
+ * finds none. */
 static hv_status_t solve_window(const hv_online_t *o, const hv_instance_t *sub,
                                 hv_assignment_t *use, hv_online_step_result_t *r)
 {
+    hv_milp_options_t mo = o->opt.milp;
+    mo.time_limit_s = r->limit_s;
     hv_assignment_t fov = {0, NULL};
     hv_milp_result_t mr;
     memset(&mr, 0, sizeof mr);
@@ -241,7 +247,7 @@ static hv_status_t solve_window(const hv_online_t *o, const hv_instance_t *sub,
         st = hv_fov_solve(sub, HV_FOV_DEFAULT_WIDTH_M, &fov, NULL);
     }
     if (st == HV_OK) {
-        st = hv_milp_solve(sub, &o->opt.milp, NULL, use, &mr);
+        st = hv_milp_solve(sub, &mo, NULL, use, &mr);
     }
     if (st == HV_OK) {
         r->status = mr.status;
@@ -257,14 +263,61 @@ static hv_status_t solve_window(const hv_online_t *o, const hv_instance_t *sub,
     return st;
 }
 
+double hv_online_horizon_limit_s(const hv_online_t *o, double ahead_s)
+{
+    double t = HV_ONLINE_AHEAD_SHARE * (isfinite(ahead_s) ? ahead_s : 0.0);
+    return fmin(o->opt.limit_max_s, fmax(o->opt.limit_min_s, t));
+}
+
+double hv_online_stop_work_s(const hv_online_t *o, size_t k)
+{
+    const hv_online_stop_t *s = &o->stops[k];
+    double c[2] = {0.0, 0.0};
+    for (size_t i = 0; i < s->count; ++i) {
+        const hv_fruit_t *f = &o->fruits[o->fruit_of[s->first + i]];
+        double cost = 0.0;
+        hv_pick_why_t why;
+        if (o->model->cost(o->model->ctx, f, s->y_m, &cost, &why) == HV_OK) {
+            c[f->side == HV_SIDE_LEFT ? 0 : 1] += cost;
+        }
+    }
+    return fmax(c[0], c[1]) + o->params.stop_penalty_s;
+}
+
+double hv_online_ahead_s(const hv_online_t *o, size_t from, double y_m, double speed_mps)
+{
+    double t = 0.0;
+    for (size_t k = from; k < o->n_stops; ++k) {
+        t += fabs(o->stops[k].y_m - y_m) / speed_mps + hv_online_stop_work_s(o, k);
+        y_m = o->stops[k].y_m;
+    }
+    return t;
+}
+
+static hv_status_t step_within(hv_online_t *o, double limit_s, hv_online_step_result_t *r);
+
 hv_status_t hv_online_step(hv_online_t *o, hv_online_step_result_t *r)
 {
     if (o == NULL || r == NULL) {
         return HV_ERR_ARG;
     }
+    return step_within(o, o->opt.milp.time_limit_s, r);
+}
+
+hv_status_t hv_online_step_ahead(hv_online_t *o, double ahead_s, hv_online_step_result_t *r)
+{
+    if (o == NULL || r == NULL) {
+        return HV_ERR_ARG;
+    }
+    return step_within(o, hv_online_horizon_limit_s(o, ahead_s), r);
+}
+
+static hv_status_t step_within(hv_online_t *o, double limit_s, hv_online_step_result_t *r)
+{
     memset(r, 0, sizeof *r);
     r->stops_from = r->stops_to = o->n_stops;
     r->status = HV_SOLVE_OPTIMAL;
+    r->limit_s = limit_s;
     if (!hv_online_ready(o)) {
         return HV_OK;
     }

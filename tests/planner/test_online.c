@@ -246,12 +246,59 @@ static void test_bad_detections(void **state)
     free(fr);
 }
 
+/* A horizon's limit is half the robot time committed ahead, within the floor and the cap;
+ * the work ahead is the drives and the stops' work (slower arm plus tau) after a stop. */
+static void test_limit_follows_work_ahead(void **state)
+{
+    (void)state;
+    const size_t n = 30;
+    const double length = 3.0;
+    hv_fruit_t *fr = row_fruits(n, length, 5);
+    hv_instance_params_t pr = row_params(length);
+    hv_online_options_t opt = fast_options();
+    opt.limit_min_s = 2.0;
+    opt.limit_max_s = 50.0;
+    hv_online_t o;
+    assert_int_equal(hv_online_init(&o, &pr, &g_fx.model, &opt), HV_OK);
+    assert_float_equal(hv_online_horizon_limit_s(&o, 0.0), 2.0, 1e-12);    /* the floor */
+    assert_float_equal(hv_online_horizon_limit_s(&o, 30.0), 15.0, 1e-12);  /* half */
+    assert_float_equal(hv_online_horizon_limit_s(&o, 500.0), 50.0, 1e-12); /* the cap */
+    size_t next = 0;
+    camera_run(&o, fr, n, 0.5, 2.0, &next);
+    assert_true(o.n_stops >= 2);
+    /* the work ahead of stop 0: the drive to each later stop and its work, summed */
+    double want = 0.0, y = o.stops[0].y_m, speed = length / pr.travel_time_s;
+    for (size_t k = 1; k < o.n_stops; ++k) {
+        double c[2] = {0.0, 0.0};
+        for (size_t i = 0; i < o.stops[k].count; ++i) {
+            const hv_fruit_t *f = &o.fruits[o.fruit_of[o.stops[k].first + i]];
+            double cost;
+            hv_pick_why_t why;
+            assert_int_equal(g_fx.model.cost(g_fx.model.ctx, f, o.stops[k].y_m, &cost, &why),
+                             HV_OK);
+            c[f->side == HV_SIDE_LEFT ? 0 : 1] += cost;
+        }
+        assert_float_equal(hv_online_stop_work_s(&o, k), fmax(c[0], c[1]) + pr.stop_penalty_s,
+                           1e-9);
+        want += (o.stops[k].y_m - y) / speed + fmax(c[0], c[1]) + pr.stop_penalty_s;
+        y = o.stops[k].y_m;
+    }
+    assert_float_equal(hv_online_ahead_s(&o, 1, o.stops[0].y_m, speed), want, 1e-6);
+    assert_float_equal(hv_online_ahead_s(&o, o.n_stops, 0.0, speed), 0.0, 0.0);
+    hv_online_free(&o);
+    /* a floor above the cap is refused */
+    opt.limit_min_s = 60.0;
+    assert_int_equal(hv_online_init(&o, &pr, &g_fx.model, &opt), HV_ERR_ARG);
+    free(fr);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_camera_row_every_fruit_once),
         cmocka_unit_test(test_waits_for_the_camera),
         cmocka_unit_test(test_bad_detections),
+        cmocka_unit_test(test_limit_follows_work_ahead),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -64,6 +64,9 @@ typedef struct hv_config {
     /* online mode: the camera's view along the row, relative to the vehicle's position */
     double camera_lead_m;   /* camera.lead: near edge of the view ahead of the vehicle (m) */
     double camera_window_m; /* camera.window: length of the view along the row (m, > 0) */
+    /* online mode: a horizon's solve may take half the robot time committed ahead, within
+     * [online.horizon_limit_min, online.horizon_limit_max] (s) */
+    double online_limit_min_s, online_limit_max_s;
 
     /* grids */
     double grid_step_m;        /* grid.step: stops and x, y, z of the cost table */

@@ -51,10 +51,20 @@ const char *hv_online_verdict_name(int verdict);
 typedef struct hv_online_options {
     double window_m;        /* horizon H solved per step, > 0 */
     double commit_m;        /* (0, H]: committed per step */
-    hv_milp_options_t milp; /* per window */
+    hv_milp_options_t milp; /* per window (hv_online_step: its time_limit_s) */
+    /* hv_online_step_ahead: a window's limit is HV_ONLINE_AHEAD_SHARE of the robot time
+     * committed ahead when it starts, within [limit_min_s, limit_max_s]
+     * (online.horizon_limit_min / _max) */
+    double limit_min_s, limit_max_s;
 } hv_online_options_t;
 
-/* H = 2 m, commit 1 m, the MILP's defaults with a 10 s limit per window. */
+/* The share of the robot's committed work ahead a window may take to solve: the next
+ * window then still finds the other half, plus what this one commits, ahead of the
+ * robot, so the vehicle never waits on the planner once it has work. */
+#define HV_ONLINE_AHEAD_SHARE 0.5
+
+/* H = 2 m, commit 1 m, the MILP's defaults with a 10 s limit per window; limits by the
+ * work ahead within [10, 60] s. */
 void hv_online_options_default(hv_online_options_t *opt);
 
 /* What one step did. */
@@ -65,6 +75,7 @@ typedef struct hv_online_step_result {
     hv_solve_status_t status;    /* the window's solve; OPTIMAL when it had no fruit */
     double gap;
     double solve_s;     /* the solver's runtime */
+    double limit_s;     /* the window's time limit */
     int kept_heuristic; /* 1: the solve found nothing, the window's FOV plan was kept */
 } hv_online_step_result_t;
 
@@ -120,6 +131,22 @@ int hv_online_ready(const hv_online_t *o);
 
 /* Solve the next window and commit (nothing when not ready: r->stops_from == stops_to). */
 hv_status_t hv_online_step(hv_online_t *o, hv_online_step_result_t *r);
+
+/* The same with the window's limit taken from the robot time committed ahead of the robot
+ * when the step starts, ahead_s (hv_online_ahead_s; 0 when it has none):
+ * HV_ONLINE_AHEAD_SHARE of it, within [opt.limit_min_s, opt.limit_max_s]. */
+hv_status_t hv_online_step_ahead(hv_online_t *o, double ahead_s, hv_online_step_result_t *r);
+
+/* The limit hv_online_step_ahead gives a window when ahead_s of work is committed ahead. */
+double hv_online_horizon_limit_s(const hv_online_t *o, double ahead_s);
+
+/* Robot time (s) the vehicle stands at committed stop k (< o->n_stops): its slower arm's
+ * pick costs plus the stop's own cost (tau). */
+double hv_online_stop_work_s(const hv_online_t *o, size_t k);
+
+/* Robot time (s) of the committed stops [from, o->n_stops) for a vehicle at y_m driving at
+ * speed_mps: the drives between them and their work. 0 when from >= o->n_stops. */
+double hv_online_ahead_s(const hv_online_t *o, size_t from, double y_m, double speed_mps);
 
 /* Restore a horizon committed before a restart, from the planner's own record of it
  * (harvest-plan-online --journal): fruit fruits[k] (an index into o->fruits) at candidate

@@ -375,6 +375,9 @@ hv_status_t bp_helper_finish(bp_t *b, int take);
 /* fixing.c */
 hv_status_t bp_fix_pairs(bp_t *b);
 
+/* dominance.c: fix out the pairs of every dominated stop; returns the number of stops. */
+long bp_fix_dominated_stops(bp_t *b);
+
 /* centre.c */
 void bp_compact_centre(bp_t *b, double limit_s);
 hv_status_t bp_ascent_centre(bp_t *b, int steps);

@@ -241,7 +241,8 @@ int bp_add_start_columns(bp_t *b)
     for (size_t f = 0; f < b->nf; ++f) {
         size_t bk = SIZE_MAX;
         for (size_t k = in->fruit_begin[f]; k < in->fruit_begin[f + 1]; ++k) {
-            if (bk == SIZE_MAX || in->pairs[k].cost_s < in->pairs[bk].cost_s) {
+            if (!b->fix.pair_dead[k] &&
+                (bk == SIZE_MAX || in->pairs[k].cost_s < in->pairs[bk].cost_s)) {
                 bk = k;
             }
         }

@@ -26,6 +26,13 @@ static hv_status_t bp_start(bp_t *b, const hv_instance_t *inst, const hv_milp_op
     b->sub = sub;
     b->t_deadline = b->m.pricer.t_deadline_s = t_deadline_s;
     b->t_start = b->t_print = hv_milp_now_s();
+    if (st == HV_OK) {
+        long n = bp_fix_dominated_stops(b);
+        if (opt->verbose >= 1) {
+            fprintf(stderr, "price: %ld of %zu stops dominated (%ld pairs fixed)\n", n, b->ns,
+                    b->fix.pairs_fixed);
+        }
+    }
     return st;
 }
 
