@@ -323,6 +323,24 @@ def test_end_effector_cut_counts_picks():
     assert a.ee_state == EeState.FAILED and a.picks == 1
 
 
+def test_a_repeated_end_effector_request_is_the_action_under_way():
+    log = Log()
+    a = ArmNode("left_arm", MODEL, log, cut_s=1.5, release_s=0.5, vehicle_position=lambda t: 0.7)
+    a.on_command(0.0, Command.ENABLE, 1)
+    a.on_ee(1.0, EeAction.CUT, 5)
+    a.on_ee(1.2, EeAction.CUT, 5)  # sent again: its status had not reached the executor
+    assert a.ee_state == EeState.BUSY and a.next_event() == pytest.approx(2.5)
+    a.update(3.0)
+    a.on_ee(3.1, EeAction.CUT, 5)  # again after the cut: still the one cut
+    assert a.ee_state == EeState.DONE and a.picks == 1
+    a.on_ee(3.2, EeAction.RELEASE, 6)
+    a.on_ee(3.3, EeAction.RELEASE, 6)
+    a.update(4.0)
+    a.on_ee(4.1, EeAction.RELEASE, 6)
+    assert [e["fruit"] for e in log.of("release")] == [True]
+    assert [e.get("repeat", False) for e in log.of("ee")] == [False, True, True, False, True, True]
+
+
 def test_vehicle_move_and_limits():
     log = Log()
     v = VehicleNode(MODEL, log, travel=(0.0, 2.0))

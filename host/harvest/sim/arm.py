@@ -163,6 +163,19 @@ class ArmNode(Node):
         """Handle <Arm>EeCommand: CUT at the fruit, RELEASE at home."""
         known = member(EeAction, action)
         name = label(EeAction, action)
+        if (
+            seq == self.ee_seq
+            and known is not None
+            and known == self.ee_action
+            and known != EeAction.NONE
+            and self.ee_state in (EeState.BUSY, EeState.DONE)
+        ):
+            # The executor sends a request again while it has not yet seen its status
+            # (a late frame on a loaded bus): it is the action already under way or done,
+            # not a new one; the status frame tells the sender where it stands.
+            self.ee_changed = True
+            self.log(t, "ee", action=name, seq=seq, accepted=True, reason="", repeat=True)
+            return
         self.ee_seq, self.ee_action = seq, EeAction.NONE if known is None else known
         self.ee_changed = True
         if action == EeAction.CUT:
