@@ -17,7 +17,7 @@ import os
 import re
 import sys
 
-from .. import generated
+from .. import generated, resources
 from . import protocol
 
 # enum name, C prefix (HV_CAN_<prefix>_<LABEL>), the (message kind, signal) pairs it types;
@@ -178,11 +178,8 @@ def c_header(proto):
 
 def markdown(proto):
     """docs/CAN_PROTOCOL.md: the protocol's numbers as tables, for people."""
-    dbc = (
-        os.path.relpath(proto.path, protocol._ROOT)
-        if proto.path.startswith(protocol._ROOT)
-        else proto.path
-    )
+    root = resources.source_root()
+    dbc = os.path.relpath(proto.path, root) if root and proto.path.startswith(root) else proto.path
     t = tables(proto)
     by_id = {n.id: (name, n) for name, n in proto.nodes.items()}
     out = [

@@ -10,9 +10,10 @@ import os
 import socket
 import subprocess
 
-from .protocol import _ROOT
+from harvest import resources
 
-RUNNER = os.path.join(_ROOT, "testbed", "run-in-guest")
+# the test-bed is part of the source tree only
+RUNNER = os.path.join(resources.source_root() or "/nonexistent", "testbed", "run-in-guest")
 SKIP_EXIT = 77
 
 

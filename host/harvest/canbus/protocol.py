@@ -29,16 +29,13 @@ from typing import NamedTuple
 import cantools
 from cantools.database.can.c_source import camel_to_snake_case
 
-# host/harvest/canbus/protocol.py -> repository root is four levels up.
-_ROOT = os.path.dirname(
-    os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-)
+from harvest import resources
 
 
 def default_dbc_path():
-    """The DBC to load when none is named: $HV_CAN_DBC, else the repository's
-    executor/can/harvest.dbc. The one place that locates it."""
-    return os.environ.get("HV_CAN_DBC") or os.path.join(_ROOT, "executor", "can", "harvest.dbc")
+    """The DBC to load when none is named: $HV_CAN_DBC, else the project's (harvest.resources:
+    the source tree's executor/can/harvest.dbc or the installed package's copy)."""
+    return os.environ.get("HV_CAN_DBC") or resources.path("dbc")
 
 
 class Node(NamedTuple):

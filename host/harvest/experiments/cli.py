@@ -20,6 +20,7 @@ import os
 import platform
 import sys
 
+from .. import resources
 from ..scenario import fruit_map
 from ..scenario.config import Config, ConfigError, Row, default_config_path
 from . import (
@@ -277,8 +278,8 @@ _DIST_TEXT = {
 
 def _show_path(path):
     """A path relative to the source tree when inside it (the report is read there)."""
-    src = os.path.dirname(os.path.dirname(default_config_path()))
-    rel = os.path.relpath(path, src)
+    src = resources.source_root()
+    rel = os.path.relpath(path, src) if src else ".."
     return path if rel.startswith("..") else rel
 
 

@@ -6,8 +6,9 @@ when one is missing or malformed, so a renamed key cannot be silently replaced b
 """
 
 import math
-import os
 import re
+
+from harvest import resources
 
 
 class ConfigError(ValueError):
@@ -142,8 +143,6 @@ def derived_config_text(path, overrides):
 
 
 def default_config_path():
-    """config/harvest.cfg of the source tree this package lives in (HV_SOURCE_DIR wins)."""
-    src = os.environ.get("HV_SOURCE_DIR")
-    if not src:
-        src = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", ".."))
-    return os.path.join(src, "config", "harvest.cfg")
+    """The project's config (harvest.resources: the source tree's config/harvest.cfg or the
+    installed package's copy)."""
+    return resources.path("config")

@@ -19,8 +19,8 @@ def _parser():
     p.add_argument(
         "--lcm-python",
         default=None,
-        help="folder of the lcm-gen Python output (default: "
-        "$HV_BUILD_DIR/lcm_types/python, else build/lcm_types/python)",
+        help="folder of the lcm-gen Python output (default: $HV_BUILD_DIR/lcm_types/python, "
+        "else the source tree's build/lcm_types/python, else the installed package's copy)",
     )
     sub = p.add_subparsers(dest="cmd", required=True)
     lg = sub.add_parser("log", help="record every message on an LCM URL into a log file")
@@ -61,8 +61,8 @@ def _parser():
     m.add_argument(
         "--lcm-defs",
         default=None,
-        help="folder of the .lcm definitions (default: lcm_types/ of the tree; "
-        "installed: share/harvest/lcm)",
+        help="folder of the .lcm definitions (default: lcm_types/ of the source tree, "
+        "else the installed package's copy)",
     )
     return p
 

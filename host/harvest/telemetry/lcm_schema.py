@@ -10,6 +10,8 @@ ValueError naming the file and line.
 import os
 import re
 
+from harvest import resources
+
 _PRIMITIVE = {
     "int8_t": "integer",
     "int16_t": "integer",
@@ -26,10 +28,7 @@ _STRUCT = re.compile(r"^struct\s+(\w+)\s*\{?$")
 
 
 def default_dir():
-    src = os.environ.get("HV_SOURCE_DIR") or os.path.dirname(
-        os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    )
-    return os.path.join(src, "lcm_types")
+    return resources.path("lcm_defs")
 
 
 def parse(path):

@@ -10,6 +10,8 @@ import importlib
 import os
 import sys
 
+from harvest import resources
+
 TYPES = (
     "plan_pick_t",
     "plan_stop_t",
@@ -40,11 +42,7 @@ class LcmTypesMissing(RuntimeError):
 
 
 def default_dir():
-    src = os.environ.get("HV_SOURCE_DIR") or os.path.dirname(
-        os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    )
-    build = os.environ.get("HV_BUILD_DIR") or os.path.join(src, "build")
-    return os.path.join(build, "lcm_types", "python")
+    return resources.lcm_python_dir()
 
 
 _loaded = {}
