@@ -1,8 +1,9 @@
-"""The wheel carries the project's data beside the code (harvest/data/, found by
-harvest.resources): the DBC, the default config, the LCM definitions and the Python lcm-gen
-makes from them, so an installed harvest-stack needs no source tree and no build. The files
-are copied from the repository this folder sits in at build time (pip builds in place), never
-kept twice in the tree. An editable install reads the tree's own files instead."""
+"""The package's version is the repository's (VERSION, which CMake reads too). The wheel
+carries the project's data beside the code (harvest/data/, found by harvest.resources): the
+DBC, the default config, the LCM definitions and the Python lcm-gen makes from them, so an
+installed harvest-stack needs no source tree and no build. The files are copied from the
+repository this folder sits in at build time (pip builds in place), never kept twice in the
+tree. An editable install reads the tree's own files instead."""
 
 import glob
 import os
@@ -50,4 +51,14 @@ class BuildPyWithData(build_py):
         return path
 
 
-setup(cmdclass={"build_py": BuildPyWithData})
+def project_version():
+    """The repository's one version (VERSION at its top), as CMake reads it."""
+    path = os.path.join(ROOT, "VERSION")
+    try:
+        with open(path, encoding="ascii") as f:
+            return f.readline().strip()
+    except OSError as e:
+        raise SystemExit(f"{path}: cannot read the project's version: {e.strerror}") from e
+
+
+setup(version=project_version(), cmdclass={"build_py": BuildPyWithData})

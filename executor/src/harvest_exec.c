@@ -18,6 +18,7 @@
 #include "hv/exec_telemetry.h"
 #include "hv/file_io.h"
 #include "hv/pick.h"
+#include "hv/version.h"
 
 enum {
     EXIT_ROW_DONE = 0,
@@ -109,6 +110,7 @@ static void usage(FILE *out)
         "  --summary FILE          write a JSON summary of the run here\n"
         "  --quiet                 no progress lines on stderr\n"
         "  -h, --help              this text\n"
+        "  --version               the version and exit\n"
         "\n"
         "exit status: 0 row done (--check-plan: every pick accepted); 1 runtime error; 2 bad "
         "input;\n"
@@ -170,6 +172,7 @@ static int parse_args(int argc, char **argv, opts_t *o)
                                        {"online", no_argument, 0, 'O'},
                                        {"clear-estop", required_argument, 0, 'E'},
                                        {"help", no_argument, 0, 'h'},
+                                       {"version", no_argument, 0, 'V'},
                                        {0, 0, 0, 0}};
     memset(o, 0, sizeof *o);
     o->transport = "udp";
@@ -241,6 +244,7 @@ static int parse_args(int argc, char **argv, opts_t *o)
             o->clear_by = optarg;
             break;
         case 'h': usage(stdout); exit(0);
+        case 'V': printf("harvest-exec %s\n", HV_VERSION); exit(0);
         default: return -1;
         }
     }

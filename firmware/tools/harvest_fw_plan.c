@@ -15,6 +15,7 @@
 #include "hv/exec_status.h"
 #include "hv/file_io.h"
 #include "hv/pick.h"
+#include "hv/version.h"
 #include "plan_image.h"
 
 static void usage(FILE *out)
@@ -36,6 +37,7 @@ static void usage(FILE *out)
         "  --heartbeat-timeout S   wall s without a node's heartbeat = lost (default 0.5)\n"
         "  --startup-timeout S     wall s to see every node (default 10)\n"
         "  -h, --help              this text\n"
+        "  --version               the version and exit\n"
         "exit status: 0 written; 2 bad input (the file and field named).\n",
         (unsigned)HV_FW_MAX_STOPS, (unsigned)HV_FW_MAX_PICKS);
 }
@@ -65,6 +67,7 @@ int main(int argc, char **argv)
                                          {"heartbeat-timeout", required_argument, 0, 'b'},
                                          {"startup-timeout", required_argument, 0, 's'},
                                          {"help", no_argument, 0, 'h'},
+                                         {"version", no_argument, 0, 'V'},
                                          {0, 0, 0, 0}};
     int c;
     while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
@@ -77,6 +80,7 @@ int main(int argc, char **argv)
         case 'b': bad = number("heartbeat-timeout", optarg, &prm.heartbeat_timeout_s); break;
         case 's': bad = number("startup-timeout", optarg, &prm.startup_timeout_s); break;
         case 'h': usage(stdout); return 0;
+        case 'V': printf("harvest-fw-plan %s\n", HV_VERSION); return 0;
         default: usage(stderr); return 2;
         }
         if (bad)

@@ -15,7 +15,8 @@ COMMANDS = {
 
 def _usage(stream):
     print(
-        "usage: harvest-stack <command> [--help] [args...]   (or: python -m harvest ...)\n\n"
+        "usage: harvest-stack <command> [--help] [args...]   (or: python -m harvest ...)\n"
+        "       harvest-stack --version\n\n"
         "commands:",
         file=stream,
     )
@@ -28,6 +29,11 @@ def main(argv=None):
     if not argv or argv[0] in ("-h", "--help"):
         _usage(sys.stdout if argv else sys.stderr)
         return 0 if argv else 2
+    if argv[0] == "--version":
+        from importlib.metadata import version
+
+        print(f"harvest-stack {version('harvest-stack')}")
+        return 0
     name, rest = argv[0], argv[1:]
     if name not in COMMANDS:
         print(f"harvest: unknown command '{name}'", file=sys.stderr)

@@ -21,6 +21,7 @@
 #include "hv/plan_eval.h"
 #include "hv/plan_io.h"
 #include "hv/plan_paths.h"
+#include "hv/version.h"
 
 enum { EXIT_INPUT = 1, EXIT_USAGE = 2, EXIT_NO_SOLUTION = 3, EXIT_CHECK = 4, EXIT_INTERRUPTED = 5 };
 
@@ -58,6 +59,7 @@ static const char k_usage[] =
     "                   compact (GLPK's branch-and-cut on the paper's model); both exact\n"
     "  --quiet          no progress lines on stderr (errors are still printed)\n"
     "  --help           this text\n"
+    "  --version        the version and exit\n"
     "  --help-params    the solver's parameter table (options and constants, Markdown)\n"
     "\n"
     "check: re-reads the fruit map, tables and config (paths default to the plan's inputs,\n"
@@ -160,6 +162,7 @@ static int run_check(int argc, char **argv)
         {"fruits", required_argument, NULL, OPT_FRUITS},
         {"quiet", no_argument, NULL, OPT_QUIET},
         {"help", no_argument, NULL, 'h'},
+        {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
     const char *plan_path = NULL, *config = NULL, *left = NULL, *right = NULL, *fruits = NULL;
@@ -169,6 +172,7 @@ static int run_check(int argc, char **argv)
     while ((opt = getopt_long(argc, argv, ":h", longopts, NULL)) != -1) {
         switch (opt) {
         case 'h': fputs(k_usage, stdout); return 0;
+        case 'V': printf("harvest-plan %s\n", HV_VERSION); return 0;
         case OPT_QUIET: quiet = 1; break;
         case OPT_CONFIG: config = optarg; break;
         case OPT_LEFT: left = optarg; break;
@@ -251,6 +255,7 @@ static int parse_args(int argc, char **argv, args_t *a)
         {"compare-single", no_argument, NULL, OPT_COMPARE_SINGLE},
         {"help-params", no_argument, NULL, OPT_HELP_PARAMS},
         {"help", no_argument, NULL, 'h'},
+        {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
     memset(a, 0, sizeof *a);
@@ -266,6 +271,7 @@ static int parse_args(int argc, char **argv, args_t *a)
         snprintf(f, sizeof f, "--%s", opt >= OPT_CONFIG ? longopts[idx].name : "");
         switch (opt) {
         case 'h': fputs(k_usage, stdout); return 1;
+        case 'V': printf("harvest-plan %s\n", HV_VERSION); return 1;
         case OPT_HELP_PARAMS: hv_milp_params_write(stdout); return 1;
         case OPT_QUIET: a->quiet = 1; break;
         case OPT_COMPARE_SINGLE: a->compare_single = 1; break;

@@ -24,6 +24,7 @@
 #include "hv/plan_io.h"
 #include "hv/plan_paths.h"
 #include "hv/plan_status.h"
+#include "hv/version.h"
 #include "hv/pick_model.h"
 #include "hv/online_journal.h"
 
@@ -80,6 +81,7 @@ static const char k_usage[] =
     "                     `harvest-plan check PLAN.json --fruits MAP.csv` verifies it\n"
     "  --quiet            no progress lines (refusals and errors are still printed)\n"
     "  --help             this text\n"
+    "  --version          the version and exit\n"
     "\n"
     "It ends once the whole row is committed and the executor reports row_done, when the\n"
     "executor reports safe (HARVEST_EXEC_STATE), or on SIGINT / SIGTERM (which also stop a\n"
@@ -443,6 +445,7 @@ int main(int argc, char **argv)
         {"threads", required_argument, NULL, O_THREADS},
         {"quiet", no_argument, NULL, O_QUIET},
         {"help", no_argument, NULL, 'h'},
+        {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
     opterr = 0;
@@ -454,6 +457,7 @@ int main(int argc, char **argv)
         int bad = 0;
         switch (o) {
         case 'h': fputs(k_usage, stdout); return 0;
+        case 'V': printf("harvest-plan-online %s\n", HV_VERSION); return 0;
         case O_QUIET: quiet = 1; break;
         case O_CONFIG: config = v; break;
         case O_LCM_URL: url = v; break;

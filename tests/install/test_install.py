@@ -99,6 +99,17 @@ def test_install_tree_holds_what_a_vehicle_needs(prefix):
     assert not list(prefix.rglob("liblcm*")) and not (prefix / "include" / "lcm").exists()
 
 
+def test_every_program_prints_the_one_version(prefix):
+    with open(os.path.join(SOURCE_DIR, "VERSION"), encoding="ascii") as f:
+        version = f.readline().strip()
+    for prog in PROGRAMS:
+        out = _run([str(prefix / "bin" / prog), "--version"])
+        assert out == f"{prog} {version}\n", (prog, out)
+        assert "--version" in _run([str(prefix / "bin" / prog), "--help"]), prog
+    header = (prefix / "include" / "hv" / "version.h").read_text()
+    assert f'#define HV_VERSION "{version}"' in header
+
+
 def _cmake_consumer(prefix, build, *extra):
     flags = " ".join(_sanitize_flags())
     _run(

@@ -74,6 +74,13 @@ def test_the_wheel_carries_the_data(venv):
         assert want in names, f"{venv['wheel'].name} lacks {want}"
 
 
+def test_the_package_has_the_projects_version(venv):
+    with open(os.path.join(SOURCE_DIR, "VERSION"), encoding="ascii") as f:
+        version = f.readline().strip()
+    assert venv["wheel"].name.startswith(f"harvest_stack-{version}-")
+    assert run(venv, "--version").stdout == f"harvest-stack {version}\n"
+
+
 def test_every_help_runs_away_from_the_tree(venv):
     assert "usage" in run(venv, "--help").stdout
     for cmd in COMMANDS:

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cinttypes>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <random>
 #include <string>
@@ -11,6 +12,7 @@
 #include "cli_args.hpp"
 #include "cost_table_builder.hpp"
 #include "hv/file_io.h"
+#include "hv/version.h"
 #include "progress.hpp"
 #include "tool_config.hpp"
 
@@ -39,6 +41,7 @@ const char kUsage[] =
     "  --seed S          seed of --check's random cells (default: 1)\n"
     "  --quiet           no progress line\n"
     "  --help            this text\n"
+    "  --version         the version and exit\n"
     "\n"
     "Exit status: 0 done, 1 failure (I/O, --check mismatch, nothing reachable),\n"
     "2 bad command line or configuration (one line naming the file and the key).\n";
@@ -66,6 +69,9 @@ Options parse(int argc, char **argv, bool *help)
         if (opt == "--help" || opt == "-h") {
             *help = true;
             return o;
+        } else if (opt == "--version") {
+            std::printf("%s %s\n", "costgen", HV_VERSION);
+            std::exit(0);
         } else if (opt == "--config") {
             o.config = r.value();
         } else if (opt == "--side") {

@@ -5,6 +5,7 @@
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "cli_args.hpp"
 #include "fpa_grid.hpp"
 #include "hv/file_io.h"
+#include "hv/version.h"
 #include "json_writer.hpp"
 #include "mount_search.hpp"
 #include "progress.hpp"
@@ -62,6 +64,7 @@ const char kUsage[] =
     "  --json FILE         write a machine-readable summary with every candidate\n"
     "  --quiet             no progress line\n"
     "  --help              this text\n"
+    "  --version           the version and exit\n"
     "\n"
     "Exit status: 0 done, 1 failure (I/O), 2 bad command line or configuration.\n";
 
@@ -85,6 +88,9 @@ Options parse(int argc, char **argv, bool *help)
         if (opt == "--help" || opt == "-h") {
             *help = true;
             return o;
+        } else if (opt == "--version") {
+            std::printf("%s %s\n", "mountopt", HV_VERSION);
+            std::exit(0);
         } else if (opt == "--config") {
             o.config = r.value();
         } else if (opt == "--side") {

@@ -13,6 +13,7 @@
 
 #include "hv/can_bus.h"
 #include "hv/can_messages.h"
+#include "hv/version.h"
 
 #define EXIT_BUS     1 /* the bus could not be opened or failed */
 #define EXIT_USAGE   2 /* bad command line or input line */
@@ -53,6 +54,7 @@ static const char usage[] =
     "  --rcvbuf BYTES    enlarge the receive socket buffer (forced when root)\n"
     "  --quiet           recv: count frames but do not print them\n"
     "  --help            this text\n"
+    "  --version         the version and exit\n"
     "\n"
     "Readiness: once the bus is open, 'ready <bus name>' is printed on stderr; a summary\n"
     "line 'stats tx=.. rx=.. ...' follows on stderr when the command ends.\n"
@@ -168,6 +170,7 @@ static int parse_args(int argc, char **argv, opts_t *o)
         {"filter", required_argument, NULL, OPT_FILTER},
         {"quiet", no_argument, NULL, OPT_QUIET},
         {"help", no_argument, NULL, 'h'},
+        {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
     memset(o, 0, sizeof *o);
@@ -182,6 +185,10 @@ static int parse_args(int argc, char **argv, opts_t *o)
     while ((opt = getopt_long(argc, argv, "h", longopts, &idx)) != -1) {
         if (opt == 'h') {
             fputs(usage, stdout);
+            exit(0);
+        }
+        if (opt == 'V') {
+            printf("hv-can-tool %s\n", HV_VERSION);
             exit(0);
         }
         if (opt == '?' || opt == ':') {
