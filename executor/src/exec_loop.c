@@ -213,15 +213,16 @@ hv_status_t hv_exec_loop_run(hv_exec_loop_t *L)
     uint64_t tick_ns = (uint64_t)(L->tick_s * 1e9);
     uint64_t end_ns = 0;
     uint64_t next_tick = now_ns(L);
-    int stop_sent = 0;
+    sig_atomic_t stops_sent = 0;
     for (;;) {
         uint64_t now = now_ns(L);
-        if (L->stop && *L->stop && !stop_sent) {
+        /* each signal is one request: the first a controlled stop, the next an e-stop */
+        if (L->stop && *L->stop > stops_sent) {
             hv_exec_event_t ev;
             memset(&ev, 0, sizeof ev);
             ev.kind = HV_EV_STOP_REQUEST;
             step(L, &ev, now);
-            stop_sent = 1;
+            stops_sent++;
         }
         if (hv_exec_finished(L->sm)) {
             if (!end_ns)

@@ -192,6 +192,36 @@ static void enter_safe(ctx_t *c, hv_exec_safe_reason_t why, int node)
     sm->next_hb_ns = c->now + hv_exec_real_ns(sm->prm.heartbeat_period_s);
 }
 
+static void send_command(ctx_t *c, int node, int command);
+
+/* The controlled stop's end: every node disabled (motion off, nothing latched). */
+static void stopped(ctx_t *c)
+{
+    hv_exec_sm_t *sm = c->sm;
+    for (int i = 0; i < HV_EXEC_NODES; i++) {
+        sm->node[i].resend_active = 0;
+        send_command(c, i, HV_CAN_CMD_DISABLE);
+    }
+    if (sm->t_row_start_ns && !sm->t_row_end_ns)
+        sm->t_row_end_ns = c->now;
+    set_phase(c, HV_PH_STOPPED);
+}
+
+/* The operator's stop: at once where nothing moves, else once what is under way ends
+ * (next_stop, the vehicle's arrival, arm_advance and retry_or_give_up look at the flag). */
+static void request_stop(ctx_t *c)
+{
+    hv_exec_sm_t *sm = c->sm;
+    if (sm->stop_requested) {
+        enter_safe(c, HV_SAFE_OPERATOR, -1);
+        return;
+    }
+    sm->stop_requested = 1;
+    if (sm->phase == HV_PH_WAIT_NODES || sm->phase == HV_PH_ENABLE ||
+        (sm->phase == HV_PH_WAIT_PLAN && !sm->advancing))
+        stopped(c);
+}
+
 static void send_command(ctx_t *c, int node, int command)
 {
     hv_exec_node_t *n = &c->sm->node[node];
@@ -333,6 +363,10 @@ static void next_stop(ctx_t *c)
 {
     hv_exec_sm_t *sm = c->sm;
     const hv_exec_plan_t *plan = sm->plan;
+    if (sm->stop_requested) {
+        stopped(c);
+        return;
+    }
     for (int p = sm->stop + 1; p < plan->n_stops; p++) {
         if (stop_has_work(c, p)) {
             sm->stop = p;
@@ -387,6 +421,10 @@ static void wait_plan(ctx_t *c)
             return;
         }
         sm->advancing = 0;
+        if (sm->stop_requested) {
+            stopped(c);
+            return;
+        }
     }
     if (sm->stop + 1 < (int)sm->plan->n_stops || sm->plan_final) {
         uint64_t w = c->now - sm->wait_from_ns;
@@ -456,6 +494,10 @@ static void retry_or_give_up(ctx_t *c, int side, hv_exec_reason_t why)
         arm_advance(c, side);
         return;
     }
+    if (sm->stop_requested) {
+        arm_advance(c, side); /* the fruit stays unfinished: the next run tries it */
+        return;
+    }
     if (arm->attempt <= sm->prm.max_retries) {
         arm->attempt++;
         start_approach(c, side);
@@ -479,7 +521,7 @@ static void arm_advance(ctx_t *c, int side)
     hv_exec_sm_t *sm = c->sm;
     hv_exec_arm_t *arm = &sm->arm[side];
     const hv_exec_stop_t *st = &sm->plan->stops[sm->stop];
-    while (arm->next < st->count[side]) {
+    while (!sm->stop_requested && arm->next < st->count[side]) {
         int i = st->first[side] + (int)arm->next;
         if (sm->prog.pick[i] == HV_PROG_DONE) {
             arm->next++;
@@ -975,6 +1017,10 @@ static void phase_logic(ctx_t *c, const hv_exec_event_t *ev)
                 set_phase(c, HV_PH_ROW_DONE);
                 break;
             }
+            if (sm->stop_requested) {
+                stopped(c); /* arrived; the stop's picks are for the next run */
+                break;
+            }
             journal(c, HV_JR_STOP, -1, sm->stop, 0, 0, 0);
             sm->prog.stop_reached[sm->stop] = 1;
             set_phase(c, HV_PH_HARVEST);
@@ -1020,16 +1066,16 @@ hv_status_t hv_exec_step(hv_exec_sm_t *sm, const hv_exec_event_t *ev, uint64_t n
         sm->next_hb_ns = now_ns;
     }
     apply_event(sm, ev, now_ns);
-    if (sm->phase != HV_PH_SAFE && sm->phase != HV_PH_ROW_DONE) {
+    if (sm->phase != HV_PH_SAFE && sm->phase != HV_PH_ROW_DONE && sm->phase != HV_PH_STOPPED) {
         if (ev->kind == HV_EV_STOP_REQUEST)
-            enter_safe(&c, HV_SAFE_OPERATOR, -1);
+            request_stop(&c);
         else if (ev->kind == HV_EV_JOURNAL_FAILED)
             enter_safe(&c, HV_SAFE_JOURNAL, -1);
         else
             global_checks(&c);
-        if (sm->phase != HV_PH_SAFE)
+        if (sm->phase != HV_PH_SAFE && sm->phase != HV_PH_STOPPED)
             phase_logic(&c, ev);
-        if (sm->phase != HV_PH_SAFE && sm->phase != HV_PH_ROW_DONE)
+        if (sm->phase != HV_PH_SAFE && sm->phase != HV_PH_ROW_DONE && sm->phase != HV_PH_STOPPED)
             resend_unacknowledged(&c);
     }
     if (now_ns >= sm->next_hb_ns) {
@@ -1080,14 +1126,14 @@ void hv_exec_plan_wait_s(const hv_exec_sm_t *sm, uint64_t now_ns, hv_exec_real_t
 
 int hv_exec_finished(const hv_exec_sm_t *sm)
 {
-    return sm->phase == HV_PH_ROW_DONE || sm->phase == HV_PH_SAFE;
+    return sm->phase == HV_PH_ROW_DONE || sm->phase == HV_PH_SAFE || sm->phase == HV_PH_STOPPED;
 }
 
 const char *hv_exec_phase_name(int phase)
 {
-    static const char *const names[HV_PH_COUNT] = {"wait_nodes", "enable",  "homing",
-                                                   "driving",    "harvest", "final_drive",
-                                                   "row_done",   "safe",    "wait_plan"};
+    static const char *const names[HV_PH_COUNT] = {
+        "wait_nodes",  "enable",   "homing", "driving",   "harvest",
+        "final_drive", "row_done", "safe",   "wait_plan", "stopped"};
     return phase >= 0 && phase < HV_PH_COUNT ? names[phase] : "unknown";
 }
 

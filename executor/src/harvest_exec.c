@@ -26,7 +26,8 @@ enum {
     EXIT_USAGE = 2,
     EXIT_SAFE = 3,
     EXIT_ESTOP_LATCHED = 4,
-    EXIT_REFUSED = 5
+    EXIT_REFUSED = 5,
+    EXIT_STOPPED = 6
 };
 
 /* The only mutable global: a signal handler can reach nothing else. */
@@ -35,7 +36,8 @@ static volatile sig_atomic_t stop_requested;
 static void on_signal(int sig)
 {
     (void)sig;
-    stop_requested = 1;
+    if (stop_requested < 2)
+        stop_requested++; /* the first: a controlled stop; the second: e-stop */
 }
 
 static void usage(FILE *out)
@@ -51,8 +53,11 @@ static void usage(FILE *out)
         "any fault. Every outcome is journalled before the next action; restarting with the same\n"
         "plan and journal resumes without picking a fruit twice.\n"
         "\n"
-        "A stop in the safe state (a fault, a node's e-stop, SIGINT/SIGTERM) leaves every node\n"
-        "holding an e-stop. Only an operator releases it: a restart finds it latched and stays\n"
+        "SIGTERM or SIGINT is a controlled stop: no new pick or drive starts, the picks under way\n"
+        "finish, the vehicle arrives, every node is disabled (exit 6); a plain restart resumes.\n"
+        "A second signal before that, a fault or a node's e-stop is a stop in the safe state: "
+        "every\n"
+        "node holds an e-stop. Only an operator releases it: a restart finds it latched and stays\n"
         "safe (exit 4) until it is given --clear-estop.\n"
         "\n"
         "input:\n"
@@ -119,7 +124,8 @@ static void usage(FILE *out)
         "the cause is dealt with); 4 not started: a node reports a latched e-stop and "
         "--clear-estop\n"
         "was not given (nothing but e-stop frames and heartbeats was sent; the summary's\n"
-        "estop_latched names the nodes); 5 --check-plan: the IK refuses a planned pick.\n"
+        "estop_latched names the nodes); 5 --check-plan: the IK refuses a planned pick;\n"
+        "6 stopped on request (SIGTERM/SIGINT), nothing latched: a plain restart resumes.\n"
         "Expected makespan (compared with the executed one): per stop the slower arm's sum of\n"
         "pick cycles (2 x IK move time home->fruit + pick.cut_time + pick.release_time of the\n"
         "config) plus trapezoid vehicle moves\n"
@@ -595,6 +601,7 @@ int main(int argc, char **argv)
 
     int rc = st != HV_OK                                  ? EXIT_RUNTIME
              : w->sm.phase == HV_PH_ROW_DONE              ? EXIT_ROW_DONE
+             : w->sm.phase == HV_PH_STOPPED               ? EXIT_STOPPED
              : w->sm.safe_reason == HV_SAFE_ESTOP_LATCHED ? EXIT_ESTOP_LATCHED
                                                           : EXIT_SAFE;
     /* an online plan has no objective of its own: the planner's horizons each had one */

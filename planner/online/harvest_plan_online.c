@@ -34,7 +34,8 @@ enum {
     EXIT_USAGE = 2,
     EXIT_FAILED = 3,
     EXIT_EXEC_SAFE = 4,
-    EXIT_INTERRUPTED = 5
+    EXIT_INTERRUPTED = 5,
+    EXIT_EXEC_STOPPED = 6
 };
 #define MAX_HORIZONS 4096
 #define REPUBLISH_S  2.0 /* wall s between repeats of the committed plan (a lost one heals) */
@@ -84,11 +85,12 @@ static const char k_usage[] =
     "  --version          the version and exit\n"
     "\n"
     "It ends once the whole row is committed and the executor reports row_done, when the\n"
-    "executor reports safe (HARVEST_EXEC_STATE), or on SIGINT / SIGTERM (which also stop a\n"
-    "horizon's solve).\n"
+    "executor reports safe or stopped (HARVEST_EXEC_STATE), or on SIGINT / SIGTERM (which\n"
+    "also stop a horizon's solve).\n"
     "exit codes: 0 done, 1 bad input (a journal too), 2 usage, 3 planning failed (or the journal\n"
     "could not be written), 4 the executor stopped in\n"
-    "the safe state, 5 interrupted before the row was planned.\n";
+    "the safe state, 5 interrupted before the row was planned, 6 the executor made a\n"
+    "controlled stop (SIGTERM to it: both resume on a plain restart).\n";
 
 static atomic_int g_stop; /* set by SIGINT / SIGTERM: the only process-wide state */
 
@@ -638,6 +640,11 @@ int main(int argc, char **argv)
         if (a->exec_seen && strcmp(a->exec_phase, "safe") == 0) {
             fprintf(stderr, "harvest-plan-online: the executor stopped in the safe state\n");
             rc = EXIT_EXEC_SAFE;
+            break;
+        }
+        if (a->exec_seen && strcmp(a->exec_phase, "stopped") == 0) {
+            fprintf(stderr, "harvest-plan-online: the executor made a controlled stop\n");
+            rc = EXIT_EXEC_STOPPED;
             break;
         }
         if (a->o.done && a->exec_seen && strcmp(a->exec_phase, "row_done") == 0) {

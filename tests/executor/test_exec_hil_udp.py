@@ -246,7 +246,7 @@ def test_fatal_fault_ends_safe_with_journal_intact(tmp_path, sim_factory, name):
     assert sim.events("estop_frame"), "no e-stop frame on the bus"
 
 
-def test_operator_stop_is_an_estop(tmp_path, sim_factory):
+def _run_until_an_outcome(tmp_path, sim_factory):
     H.make_plan(tmp_path / "plan.json", stops=3, per_arm=3, seed=9)
     sim = sim_factory(FAULT_SCALE)
     p = H.start_exec(
@@ -259,13 +259,35 @@ def test_operator_stop_is_an_estop(tmp_path, sim_factory):
         ),
         60,
     )
+    return sim, p
+
+
+def test_operator_stop_is_a_controlled_stop(tmp_path, sim_factory):
+    sim, p = _run_until_an_outcome(tmp_path, sim_factory)
+    p.send_signal(signal.SIGTERM)
+    out, err = p.communicate(timeout=60)
+    assert p.returncode == 6, out + err
+    assert out.startswith("harvest-exec: stopped:"), out
+    _, recs = H.read_journal(tmp_path / "j.journal")
+    # every cut issued has its outcome: the picks under way finished
+    assert {(r[1], r[2]) for r in recs if r[0] == "C"} <= set(H.outcomes(recs)), recs
+    # the simulator's record: each node's last command was DISABLE, accepted, and no e-stop
+    last = {}
+    for node, command, accepted in H.sim_commands(sim):
+        last[node] = (command, accepted)
+    assert last == {n: ("DISABLE", True) for n in ("vehicle", "left_arm", "right_arm")}, last
+    assert not sim.events("estop_frame")
+
+
+def test_a_second_stop_request_is_an_estop(tmp_path, sim_factory):
+    sim, p = _run_until_an_outcome(tmp_path, sim_factory)
+    p.send_signal(signal.SIGTERM)
     p.send_signal(signal.SIGTERM)
     out, err = p.communicate(timeout=30)
     assert p.returncode == 3, err
     assert "operator_stop" in out
     H.read_journal(tmp_path / "j.journal")
-    time.sleep(0.3)
-    assert sim.events("estop_frame")
+    assert H.wait_for(lambda: sim.events("estop_frame"), 5), "no e-stop frame on the bus"
 
 
 @pytest.mark.parametrize("kill_after_outcomes", [3, 8])

@@ -419,8 +419,9 @@ static void test_loop_journals_the_stop_before_the_setpoints(void **state)
     rig_t *r = rig_new(1);
     r->t.stop_at_setpoint = &r->stop; /* SIGTERM once the arms are sent to the fruit */
     assert_int_equal(hv_exec_loop_run(&r->loop), HV_OK);
-    assert_int_equal(r->fx.sm.phase, HV_PH_SAFE);
-    assert_int_equal(r->fx.sm.safe_reason, HV_SAFE_OPERATOR);
+    /* a controlled stop: the picks under way finish, then every node is disabled */
+    assert_int_equal(r->fx.sm.phase, HV_PH_STOPPED);
+    assert_int_equal(r->fx.sm.safe_reason, HV_SAFE_NONE);
     assert_int_equal(r->t.n_moves, 1);
     assert_true(r->t.n_jr >= 1);
     assert_int_equal(r->t.jr[0], HV_JR_STOP);

@@ -86,16 +86,28 @@ def restart_until_done(tmp_path, path, plan, sim):
 
 
 def test_resume_after_sigterm(tmp_path, row):
+    """SIGTERM (systemctl stop) is a controlled stop: a plain restart, no operator, finishes."""
     path, plan, start_sim = row
     sim = start_sim()
     journal = tmp_path / "j.journal"
     p = H.start_exec(path, journal, tmp_path / "s1.json", SCALE)
     assert H.wait_for(lambda: journal.exists() and journal.read_bytes().count(b"\nF ") >= 3, 60)
     p.send_signal(signal.SIGTERM)
-    out, err = p.communicate(timeout=30)
-    assert p.returncode == 3, err
-    assert "operator_stop" in out
-    restart_until_done(tmp_path, path, plan, sim)
+    out, err = p.communicate(timeout=60)
+    assert p.returncode == 6, out + err
+    assert out.startswith("harvest-exec: stopped:"), out
+    _, before = H.read_journal(journal)
+    assert 0 < len(H.outcomes(before)) < len(H.plan_order(plan)["L"]) * 2
+    proc, summary = H.run_exec(path, journal, tmp_path / "s2.json", SCALE)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert summary["phase"] == "row_done" and summary["estop_cleared"] is False
+    outs = H.outcomes(H.read_journal(journal)[1])  # one outcome per fruit across the runs
+    assert len(outs) == len(H.plan_order(plan)["L"]) * 2
+    assert all(o[0] == "picked" for o in outs.values()), outs
+    # the simulator's word: no e-stop in either run, every fruit cut once, the row's end
+    assert not sim.events("estop_frame")
+    H.assert_every_fruit_cut_once(plan, sim)
+    assert H.row_end_reached(plan, sim)
 
 
 def test_resume_after_a_node_estop_and_the_operators_clear(tmp_path, row):

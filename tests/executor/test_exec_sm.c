@@ -386,17 +386,82 @@ static void test_homing_fails(void **state)
     free(fx);
 }
 
-static void test_operator_and_journal_stop(void **state)
+static void stop_request(fx_t *fx)
+{
+    hv_exec_event_t ev;
+    memset(&ev, 0, sizeof ev);
+    ev.kind = HV_EV_STOP_REQUEST;
+    fx_event(fx, &ev);
+}
+
+/* SIGTERM mid-row: the picks under way finish, every node is disabled, nothing is latched,
+ * and a plain restart picks the rest, none twice. */
+static void test_operator_stop_is_controlled_and_resumable(void **state)
 {
     (void)state;
+    fx_t *fx = new_fx(3, 2);
+    fx->motion_ns = 300000000ull; /* a slower row, so it is still running */
+    fx_start(fx, NULL);
+    fx_run(fx, 1.5);
+    assert_int_equal(fx->sm.phase, HV_PH_HARVEST);
+    int from = fx->nlog;
+    stop_request(fx);
+    assert_false(hv_exec_finished(&fx->sm)); /* a pick was under way */
+    fx_run(fx, 30.0);
+    assert_int_equal(fx->sm.phase, HV_PH_STOPPED);
+    assert_true(hv_exec_finished(&fx->sm));
+    assert_int_equal(fx_count(fx, HV_ACT_ESTOP, -1), 0);
+    for (int i = 0; i < HV_EXEC_NODES; i++)
+        assert_int_equal(fx->node[i].estop, 0);
+    /* every cut issued has its outcome: no pick left half done */
+    assert_int_equal(fx_count(fx, HV_ACT_JOURNAL, HV_JR_CUT),
+                     fx_count(fx, HV_ACT_JOURNAL, HV_JR_OUTCOME));
+    assert_int_equal(fx_count(fx, HV_ACT_JOURNAL, HV_JR_DONE), 0);
+    unsigned picked = fx->sm.picked;
+    assert_true(picked > 0 && picked < (unsigned)fx->plan.n_picks);
+    /* after the request: no move, and each node's last command is DISABLE */
+    assert_true(fx_find(fx, from, HV_ACT_MOVE, -1) < 0);
+    for (int i = 0; i < HV_EXEC_NODES; i++) {
+        int last = -1;
+        for (int k = from; k < fx->nlog; k++)
+            if (fx->log[k].a.kind == HV_ACT_COMMAND && fx->log[k].a.node == i)
+                last = fx->log[k].a.u.cmd.command;
+        assert_int_equal(last, HV_CAN_CMD_DISABLE);
+    }
+
+    int run2 = fx_restart(fx); /* no --clear-estop: none is needed */
+    fx_run(fx, 60.0);
+    assert_int_equal(fx->sm.phase, HV_PH_ROW_DONE);
+    assert_int_equal(picked + fx->sm.picked, fx->plan.n_picks);
+    for (int p = 0; p < fx->plan.n_picks; p++)
+        assert_int_equal(fx->cuts_done[fx->plan.picks[p].side][p], 1);
+    assert_true(fx_find(fx, run2, HV_ACT_COMMAND, HV_CAN_CMD_CLEAR_ESTOP) < 0);
+    free(fx);
+}
+
+/* Where nothing moves (waiting for the nodes), the stop is at once; a second request
+ * before a controlled stop ends is an e-stop; a journal failure always is. */
+static void test_second_stop_and_journal_failure_are_estops(void **state)
+{
+    (void)state;
+    fx_t *fx = new_fx(1, 2);
+    fx_start(fx, NULL);
+    stop_request(fx); /* the first step: no node seen yet */
+    assert_int_equal(fx->sm.phase, HV_PH_STOPPED);
+    assert_int_equal(fx_count(fx, HV_ACT_ESTOP, -1), 0);
+    free(fx);
     for (int which = 0; which < 2; which++) {
-        fx_t *fx = new_fx(1, 2);
-        fx->motion_ns = 300000000ull; /* a slower row, so it is still running */
+        fx = new_fx(1, 2);
+        fx->motion_ns = 300000000ull;
         fx_start(fx, NULL);
         fx_run(fx, 1.0);
         hv_exec_event_t ev;
         memset(&ev, 0, sizeof ev);
         ev.kind = which ? HV_EV_JOURNAL_FAILED : HV_EV_STOP_REQUEST;
+        if (!which) {
+            stop_request(fx);
+            assert_false(hv_exec_finished(&fx->sm));
+        }
         hv_exec_actions_t out = {0};
         assert_int_equal(hv_exec_step(&fx->sm, &ev, fx->now_ns, &out), HV_OK);
         assert_true(out.n >= 1);
@@ -829,7 +894,8 @@ int main(void)
         cmocka_unit_test(test_vehicle_faults),
         cmocka_unit_test(test_recovery_fails),
         cmocka_unit_test(test_homing_fails),
-        cmocka_unit_test(test_operator_and_journal_stop),
+        cmocka_unit_test(test_operator_stop_is_controlled_and_resumable),
+        cmocka_unit_test(test_second_stop_and_journal_failure_are_estops),
         cmocka_unit_test(test_latched_estop_keeps_a_start_safe),
         cmocka_unit_test(test_estop_then_restarts),
         cmocka_unit_test(test_stale_estop_reports_after_a_clear_do_not_count),

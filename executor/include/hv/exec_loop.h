@@ -38,7 +38,8 @@ typedef struct hv_exec_loop {
     hv_exec_journal_t *journal;  /* the port's journal file, or NULL: the committed stops
                                     online (hv_exec_journal_stops), its path in messages */
     hv_exec_telemetry_t *tm;     /* may be NULL */
-    volatile sig_atomic_t *stop; /* set by a signal handler: stop safely */
+    volatile sig_atomic_t *stop; /* counted up by a signal handler: each count is one stop
+                                    request (HV_EV_STOP_REQUEST: controlled, then e-stop) */
     FILE *progress;              /* phase changes and outcomes, or NULL */
     const char *clear_by;        /* the operator named in the progress line of an e-stop
                                     clear (the port journals it), or NULL */

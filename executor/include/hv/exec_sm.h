@@ -30,7 +30,7 @@
  * Faults and their safe states:
  *   - e-stop reported by a node, lost heartbeat (heartbeat_timeout_s), a node reporting
  *     that it lost ours, a vehicle fault or move timeout, a fault during start-up or
- *     recovery, a journal write failure, an operator stop: SAFE (terminal). Actions: an
+ *     recovery, a journal write failure, a second operator stop: SAFE (terminal). Actions: an
  *     e-stop frame at once and every 100 ms, heartbeats with Health = ESTOP. Every node
  *     stops motion and latches; the journal keeps what was done.
  *   - on one arm, during its cycle: a joint fault, an end-effector fault, a rejected
@@ -40,6 +40,12 @@
  *     skipped and goes on with its next fruit; the other arm keeps working. A fruit whose
  *     cut was confirmed is never approached again (still held: released and picked; not
  *     held: failed, "dropped").
+ * The operator's stop (HV_EV_STOP_REQUEST: SIGTERM, SIGINT) is a controlled stop, not an
+ * e-stop: no new pick, drive or homing starts; what is under way ends as it would (an arm
+ * finishes the pick in progress through its release; a fault in it recovers to home and the
+ * fruit stays for the next run; the vehicle arrives where it was sent); then DISABLE to every
+ * node and STOPPED (terminal). Nothing latches: a plain restart resumes from the journal. A
+ * second request before STOPPED is an e-stop (SAFE, operator).
  * Timeouts: planned time * (1 + margin) + slack, in plan time, divided by the time scale,
  * plus latency_s of real time for the bus.
  */
@@ -92,6 +98,7 @@ typedef enum hv_exec_phase {
     HV_PH_ROW_DONE,
     HV_PH_SAFE,
     HV_PH_WAIT_PLAN, /* online: every committed stop done, waiting for the planner's next */
+    HV_PH_STOPPED,   /* the operator's controlled stop is complete (terminal, resumable) */
     HV_PH_COUNT
 } hv_exec_phase_t;
 
@@ -128,7 +135,7 @@ typedef enum hv_exec_safe_reason {
     HV_SAFE_TIMEOUT,       /* start-up, vehicle move or recovery did not finish in time */
     HV_SAFE_FAULT,         /* a node faulted during start-up or recovery */
     HV_SAFE_JOURNAL,       /* the journal could not be written */
-    HV_SAFE_OPERATOR,      /* stop requested (signal) */
+    HV_SAFE_OPERATOR,      /* a second stop request before the controlled stop ended */
     HV_SAFE_ESTOP_LATCHED, /* a node reports a latched e-stop at start-up, no operator clear */
     HV_SAFE_COUNT
 } hv_exec_safe_reason_t;
@@ -171,7 +178,7 @@ typedef enum hv_exec_event_kind {
     HV_EV_VEHICLE_STATUS,
     HV_EV_ARM_STATUS,
     HV_EV_EE_STATUS,
-    HV_EV_STOP_REQUEST,   /* operator: stop now (SIGINT/SIGTERM) */
+    HV_EV_STOP_REQUEST,   /* operator: a controlled stop (SIGTERM, SIGINT); again: e-stop */
     HV_EV_JOURNAL_FAILED, /* the program could not write a journal record */
     HV_EV_PLAN_GROWN      /* online: the program appended stops to the plan (u.plan) */
 } hv_exec_event_kind_t;
@@ -356,6 +363,7 @@ typedef struct hv_exec_sm {
     unsigned faults;                  /* recoverable arm faults seen in this run */
     unsigned resends;                 /* frames sent again for want of an acknowledgement */
     int started;                      /* first step done */
+    int stop_requested;               /* the operator's controlled stop is under way */
     /* online (params.online) */
     int plan_final;           /* the planner said no stop will follow */
     hv_exec_real_t advance_m; /* the course is committed up to here (m) */

@@ -35,7 +35,7 @@ class Logger:
         self.channels[channel] = self.channels.get(channel, 0) + 1
         if self.stop_on_end and channel == "HARVEST_EXEC_STATE" and self.types:
             st = self.types["exec_state_t"].decode(data)
-            if st.phase in ("row_done", "safe"):
+            if st.phase in ("row_done", "safe", "stopped"):  # hv_exec_finished()
                 self.final_phase = st.phase
                 if self.end_seen_at is None:
                     self.end_seen_at = time.monotonic()
