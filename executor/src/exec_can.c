@@ -132,6 +132,15 @@ hv_exec_rx_kind_t hv_exec_can_decode(const hv_can_frame_t *f, hv_exec_event_t *e
         DECODE_VELOCITIES(left_arm_joint_velocity, LEFT_ARM_JOINT_VELOCITY, HV_SIDE_LEFT);
     case HARVEST_CAN_RIGHT_ARM_JOINT_VELOCITY_FRAME_ID:
         DECODE_VELOCITIES(right_arm_joint_velocity, RIGHT_ARM_JOINT_VELOCITY, HV_SIDE_RIGHT);
+    case HARVEST_CAN_EXECUTOR_STOP_REQUEST_FRAME_ID: {
+        struct harvest_can_executor_stop_request_t m;
+        UNPACK(executor_stop_request, EXECUTOR_STOP_REQUEST);
+        if (!m.stop_requested)
+            return HV_RX_NONE;
+        ev->kind = HV_EV_STOP_REQUEST;
+        ev->u.stop.from_bus = 1;
+        return HV_RX_EVENT;
+    }
     default: return HV_RX_NONE;
     }
 }

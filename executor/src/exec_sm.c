@@ -209,11 +209,12 @@ static void stopped(ctx_t *c)
 
 /* The operator's stop: at once where nothing moves, else once what is under way ends
  * (next_stop, the vehicle's arrival, arm_advance and retry_or_give_up look at the flag). */
-static void request_stop(ctx_t *c)
+static void request_stop(ctx_t *c, const hv_exec_event_t *ev)
 {
     hv_exec_sm_t *sm = c->sm;
     if (sm->stop_requested) {
-        enter_safe(c, HV_SAFE_OPERATOR, -1);
+        if (!ev->u.stop.from_bus)
+            enter_safe(c, HV_SAFE_OPERATOR, -1); /* the operator insists */
         return;
     }
     sm->stop_requested = 1;
@@ -709,8 +710,8 @@ static int event_ok(const hv_exec_event_t *ev)
 {
     switch (ev->kind) {
     case HV_EV_TICK:
-    case HV_EV_STOP_REQUEST:
     case HV_EV_JOURNAL_FAILED: return 1;
+    case HV_EV_STOP_REQUEST: return ev->u.stop.from_bus == 0 || ev->u.stop.from_bus == 1;
     case HV_EV_PLAN_GROWN:
         return (ev->u.plan.final == 0 || ev->u.plan.final == 1) && isfinite(ev->u.plan.advance_m);
     case HV_EV_HEARTBEAT:
@@ -1068,7 +1069,7 @@ hv_status_t hv_exec_step(hv_exec_sm_t *sm, const hv_exec_event_t *ev, uint64_t n
     apply_event(sm, ev, now_ns);
     if (sm->phase != HV_PH_SAFE && sm->phase != HV_PH_ROW_DONE && sm->phase != HV_PH_STOPPED) {
         if (ev->kind == HV_EV_STOP_REQUEST)
-            request_stop(&c);
+            request_stop(&c, ev);
         else if (ev->kind == HV_EV_JOURNAL_FAILED)
             enter_safe(&c, HV_SAFE_JOURNAL, -1);
         else

@@ -193,11 +193,35 @@ static void test_decode_statuses(void **state)
     assert_int_equal(hv_exec_can_decode(&f, &ev, samples), HV_RX_NONE);
 }
 
+/* ExecutorStopRequest: the bus's controlled stop; StopRequested=0 says nothing. */
+static void test_decode_the_stop_request(void **state)
+{
+    (void)state;
+    hv_can_frame_t f;
+    hv_exec_event_t ev;
+    hv_exec_arm_sample_t samples[2];
+    struct harvest_can_executor_stop_request_t m;
+    harvest_can_executor_stop_request_init(&m);
+    m.stop_requested = 1;
+    memset(&f, 0, sizeof f);
+    f.id = HARVEST_CAN_EXECUTOR_STOP_REQUEST_FRAME_ID;
+    f.dlc = (uint8_t)harvest_can_executor_stop_request_pack(f.data, &m, sizeof f.data);
+    assert_int_equal(f.dlc, 1);
+    assert_int_equal(hv_exec_can_decode(&f, &ev, samples), HV_RX_EVENT);
+    assert_int_equal(ev.kind, HV_EV_STOP_REQUEST);
+    assert_int_equal(ev.u.stop.from_bus, 1);
+    f.data[0] = 0;
+    assert_int_equal(hv_exec_can_decode(&f, &ev, samples), HV_RX_NONE);
+    f.dlc = 2;
+    assert_int_equal(hv_exec_can_decode(&f, &ev, samples), HV_RX_MALFORMED);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_encode_actions),
         cmocka_unit_test(test_decode_statuses),
+        cmocka_unit_test(test_decode_the_stop_request),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

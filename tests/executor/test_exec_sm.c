@@ -439,6 +439,30 @@ static void test_operator_stop_is_controlled_and_resumable(void **state)
     free(fx);
 }
 
+/* The bus's stop request, repeated as a panel repeats it, stays one controlled stop. */
+static void test_a_repeated_bus_stop_request_is_one_request(void **state)
+{
+    (void)state;
+    fx_t *fx = new_fx(2, 2);
+    fx->motion_ns = 300000000ull;
+    fx_start(fx, NULL);
+    fx_run(fx, 1.5);
+    hv_exec_event_t ev;
+    memset(&ev, 0, sizeof ev);
+    ev.kind = HV_EV_STOP_REQUEST;
+    ev.u.stop.from_bus = 1;
+    for (int i = 0; i < 5; i++)
+        fx_event(fx, &ev);
+    assert_false(hv_exec_finished(&fx->sm));
+    fx_run(fx, 30.0);
+    assert_int_equal(fx->sm.phase, HV_PH_STOPPED);
+    assert_int_equal(fx_count(fx, HV_ACT_ESTOP, -1), 0);
+    ev.u.stop.from_bus = 2; /* neither bus nor signal: refused */
+    hv_exec_actions_t out = {0};
+    assert_int_equal(hv_exec_step(&fx->sm, &ev, fx->now_ns, &out), HV_ERR_EXEC_EVENT);
+    free(fx);
+}
+
 /* Where nothing moves (waiting for the nodes), the stop is at once; a second request
  * before a controlled stop ends is an e-stop; a journal failure always is. */
 static void test_second_stop_and_journal_failure_are_estops(void **state)
@@ -896,6 +920,7 @@ int main(void)
         cmocka_unit_test(test_homing_fails),
         cmocka_unit_test(test_operator_stop_is_controlled_and_resumable),
         cmocka_unit_test(test_second_stop_and_journal_failure_are_estops),
+        cmocka_unit_test(test_a_repeated_bus_stop_request_is_one_request),
         cmocka_unit_test(test_latched_estop_keeps_a_start_safe),
         cmocka_unit_test(test_estop_then_restarts),
         cmocka_unit_test(test_stale_estop_reports_after_a_clear_do_not_count),

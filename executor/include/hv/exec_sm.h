@@ -45,7 +45,8 @@
  * finishes the pick in progress through its release; a fault in it recovers to home and the
  * fruit stays for the next run; the vehicle arrives where it was sent); then DISABLE to every
  * node and STOPPED (terminal). Nothing latches: a plain restart resumes from the journal. A
- * second request before STOPPED is an e-stop (SAFE, operator).
+ * second signal before STOPPED is an e-stop (SAFE, operator); the bus's ExecutorStopRequest,
+ * repeated, stays one request.
  * Timeouts: planned time * (1 + margin) + slack, in plan time, divided by the time scale,
  * plus latency_s of real time for the bus.
  */
@@ -178,7 +179,7 @@ typedef enum hv_exec_event_kind {
     HV_EV_VEHICLE_STATUS,
     HV_EV_ARM_STATUS,
     HV_EV_EE_STATUS,
-    HV_EV_STOP_REQUEST,   /* operator: a controlled stop (SIGTERM, SIGINT); again: e-stop */
+    HV_EV_STOP_REQUEST,   /* operator: a controlled stop (SIGTERM, SIGINT, the bus) (u.stop) */
     HV_EV_JOURNAL_FAILED, /* the program could not write a journal record */
     HV_EV_PLAN_GROWN      /* online: the program appended stops to the plan (u.plan) */
 } hv_exec_event_kind_t;
@@ -220,6 +221,11 @@ typedef struct hv_exec_event {
             int final;
             hv_exec_real_t advance_m;
         } plan;
+        /* HV_EV_STOP_REQUEST: 1 from the bus (ExecutorStopRequest): its repeats are the
+         * same request; 0 a signal: a second one before the stop ends is an e-stop */
+        struct {
+            int from_bus;
+        } stop;
     } u;
 } hv_exec_event_t;
 

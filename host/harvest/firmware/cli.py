@@ -125,7 +125,7 @@ def run(a):
         )
         end = time.monotonic() + a.timeout
         while time.monotonic() < end:
-            if rig.last_status(qemu.uart_log).get("phase") in ("row_done", "safe"):
+            if rig.last_status(qemu.uart_log).get("phase") in ("row_done", "safe", "stopped"):
                 break
             time.sleep(1.0)
         time.sleep(1.5)  # the final status line
