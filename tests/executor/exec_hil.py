@@ -5,7 +5,6 @@ The udp bus is python-can's udp_multicast on loopback; callers run inside a priv
 network namespace (harvest.canbus.netns) so nothing leaves the machine.
 """
 
-import collections
 import json
 import os
 import signal
@@ -13,6 +12,8 @@ import subprocess
 import sys
 import time
 import zlib
+
+import fk_check
 
 SOURCE = os.environ.get(
     "HV_SOURCE_DIR", os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -110,13 +111,8 @@ def make_plan(path, stops, per_arm, seed=1):
         return json.load(f)
 
 
-def plan_order(plan):
-    """Fruit ids of each side ("L", "R") in the order the plan picks them."""
-    out = {"L": [], "R": []}
-    for st in plan["stops"]:
-        out["L"] += [k["id"] for k in st["left"]]
-        out["R"] += [k["id"] for k in st["right"]]
-    return out
+# Fruit ids of each side ("L", "R") in the order the plan picks them.
+plan_order = fk_check.plan_order
 
 
 def env():
@@ -261,17 +257,13 @@ def sim_picks(sim):
 
 
 def assert_every_fruit_cut_once(plan, sim):
-    """From the simulator's own record: per arm and stop, as many cuts as the plan has
-    fruits there, and no two cuts at the same joint positions (the same fruit). Together:
-    every planned fruit cut exactly once, none twice."""
-    want = collections.Counter()
-    for st in plan["stops"]:
-        y = round(st["y_m"], 3)
-        want[("left_arm", y)] += len(st["left"])
-        want[("right_arm", y)] += len(st["right"])
-    picks = sim_picks(sim)
-    assert collections.Counter((node, y) for node, _, y in picks) == want, picks
-    assert len(set(picks)) == len(picks), f"a fruit was cut twice: {picks}"
+    """From the simulator's own record: each cut is a planned fruit of its arm at its stop
+    (the end effector's pose by fk_check's forward kinematics, within the DBC's
+    resolution), in the plan's order, and every planned fruit is cut exactly once."""
+    order = plan_order(plan)
+    fk_check.assert_cuts_on_plan(
+        plan, sim.events("pick"), picked={(s, i) for s in order for i in order[s]}
+    )
 
 
 def row_end_reached(plan, sim):

@@ -83,3 +83,4 @@ def test_row_completes_with_bad_input_counted_and_dropped(tmp_path):
         garbage
     )
     assert sum(a for a in stop["picks"].values()) == n
+    H.assert_every_fruit_cut_once(plan, sim)

@@ -13,6 +13,7 @@ import pytest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import exec_hil as H  # noqa: E402
+import fk_check  # noqa: E402
 
 from harvest.canbus import guest  # noqa: E402
 
@@ -91,7 +92,10 @@ def _run_row(tmp_path, iface):
     import json
 
     picks = [json.loads(line) for line in open(record) if '"event":"pick"' in line.replace(" ", "")]
-    assert len(picks) == len(order["L"]) + len(order["R"])
+    # each cut a planned fruit (forward kinematics of the recorded joints), each once
+    fk_check.assert_cuts_on_plan(
+        plan, picks, picked={(side, i) for side in order for i in order[side]}
+    )
 
 
 def test_whole_row_on_vcan(tmp_path):

@@ -33,18 +33,18 @@ def journal_lines(rig):
     ]
 
 
-def fruit_key(e):
-    return (e["node"], round(e["vehicle_position"], 3), tuple(round(q, 3) for q in e["positions"]))
-
-
-def count(sim):
-    """From the simulator's record: fruits cut (by arm, vehicle position and joint
-    positions) and those released into the container by the arm holding them."""
+def count(plan, sim):
+    """From the simulator's record: fruits cut, each known by forward kinematics of the
+    recorded joints as the planned fruit there (a cut at no planned fruit fails), and
+    those released into the container by the arm holding them."""
+    events = sim.events()
+    ids = iter(H.fk_check.Judge().cut_fruits(plan, [e for e in events if e["event"] == "pick"]))
     cuts, released, held = collections.Counter(), set(), {}
-    for e in sim.events():
+    for e in events:
         if e["event"] == "pick":
-            cuts[fruit_key(e)] += 1
-            held[e["node"]] = fruit_key(e)
+            key = next(ids)
+            cuts[key] += 1
+            held[e["node"]] = key
         elif e["event"] == "release" and e.get("fruit") and e["node"] in held:
             released.add(held.pop(e["node"]))
     return cuts, released
@@ -60,7 +60,7 @@ def test_sigkill_mid_row_resumes_from_the_journal(tmp_path, rig_factory):
     second_cut = fw_hil.wait_until(lambda: len(H.sim_picks(rig.sim)) >= 2, 240, period=0.05)
     assert second_cut, uart_phases(rig)
     rig.kill_firmware()
-    cuts_before, _ = count(rig.sim)
+    cuts_before, _ = count(plan, rig.sim)
     journal_bytes = os.path.getsize(rig.qemu.journal)
     assert 2 <= sum(cuts_before.values()) < planned
     # the nodes notice the executor's silence (FAULT, comm bit), as after any crash
@@ -75,7 +75,7 @@ def test_sigkill_mid_row_resumes_from_the_journal(tmp_path, rig_factory):
     assert int(second["records"]) > 1, second  # more than the header: the row resumed
     assert int(second["records"]) == journal_bytes // 16, (second, journal_bytes)
     # judged by the simulator's record
-    cuts, released = count(rig.sim)
+    cuts, released = count(plan, rig.sim)
     twice = sum(1 for n in cuts.values() if n > 1)
     lost = planned - len(released)
     print(

@@ -3,14 +3,16 @@ the simulator (python -m harvest sim) over udp_multicast in a private network na
 once without faults and once per fault, each run resumed from its journal until the row is
 done. Judged only from the simulator's record (--record JSONL):
 
-  picked   fruits cut and then released into the container by the arm that cut them
-  lost     fruits of the fault-free row never picked
+  picked   planned fruits cut and then released into the container by the arm that cut them
+  lost     planned fruits never picked
   twice    fruits cut more than once
-  stray    cuts at a pose that is no fruit of the fault-free row
+  stray    cuts at no planned fruit
 
-A fruit is known by what the simulator saw when it was cut: the arm, the vehicle's
-position and the arm's joint positions. The fault-free row gives the set of fruits; it
-must hold every planned fruit once, or the campaign stops.
+A cut is known by what the simulator saw when it was done: the arm's joint positions and
+the vehicle's position, turned into the end effector's pose by the test's own forward
+kinematics (tests/executor/fk_check.py) and matched to the plan's fruit of that arm at that
+stop within the DBC's resolution. The fault-free row must pick every planned fruit once, or
+the campaign stops.
 
 Faults: kill -9 of harvest-exec at seeded moments (during a move, an approach, a cut, a
 release, or at a random time) each followed by a plain restart; the simulator killed at a
@@ -67,8 +69,22 @@ def read_record(path):
     return out
 
 
-def fruit_key(e):
-    return (e["node"], round(e["vehicle_position"], 3), tuple(round(q, 3) for q in e["positions"]))
+def planned_fruits(plan):
+    """(side, id) of every fruit the plan picks."""
+    order = H.plan_order(plan)
+    return {(side, i) for side in order for i in order[side]}
+
+
+def fruit_keys(judge, plan, picks):
+    """Each cut as the planned fruit it is, by forward kinematics of the recorded joints
+    and vehicle position (tests/executor/fk_check.py): (side, id); a cut at no planned
+    fruit is a stray, known by where it was."""
+    return [
+        (side, fid)
+        if fid is not None
+        else ("stray", e["node"], e["vehicle_position"], tuple(e["positions"]))
+        for e, (side, fid, *_) in zip(picks, judge.identify(plan, picks))
+    ]
 
 
 class Row:
@@ -79,7 +95,9 @@ class Row:
         os.makedirs(self.dir, exist_ok=True)
         self.name, self.plan_path, self.scale = name, plan_path, scale
         with open(plan_path) as f:
-            p = json.load(f)["params"]
+            self.plan = json.load(f)
+        p = self.plan["params"]
+        self.judge = H.fk_check.Judge()
         self.vehicle_start = p["row_start_m"] - p["stop_margin_m"]
         self.journal = os.path.join(self.dir, "run.journal")
         self.sims, self.runs, self.notes = [], [], []
@@ -148,9 +166,12 @@ class Row:
         picked = set()
         for events in self.lives():
             held = {}
+            keys = iter(
+                fruit_keys(self.judge, self.plan, [e for e in events if e["event"] == "pick"])
+            )
             for e in events:
                 if e["event"] == "pick":
-                    k = fruit_key(e)
+                    k = next(keys)
                     cuts[k] += 1
                     held[e["node"]] = k
                 elif e["event"] == "release" and e.get("fruit") and e["node"] in held:
@@ -203,19 +224,12 @@ def baseline(work, plan_path, scale):
     try:
         row.start_sim()
         row.run()
-        fruits = set()
-        for events in row.lives():
-            for e in events:
-                if e["event"] == "pick":
-                    fruits.add(fruit_key(e))
-        with open(plan_path) as f:
-            plan = json.load(f)
-        n_planned = sum(len(s["left"]) + len(s["right"]) for s in plan["stops"])
-        if row.runs[-1][1] != "row_done" or len(fruits) != n_planned:
+        fruits = planned_fruits(row.plan)
+        c = row.count(fruits)
+        if row.runs[-1][1] != "row_done" or (c["lost"], c["twice"], c["stray"]) != (0, 0, 0):
             raise RuntimeError(
-                f"the fault-free row did not pick each of the {n_planned} planned "
-                f"fruits once ({len(fruits)} distinct cuts, end {row.runs[-1][1]}): "
-                f"see {row.dir}"
+                f"the fault-free row did not pick each of the {len(fruits)} planned "
+                f"fruits once ({c}, end {row.runs[-1][1]}): see {row.dir}"
             )
         return row, fruits
     finally:
