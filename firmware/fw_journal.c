@@ -11,7 +11,7 @@
 #define BODY 12u /* bytes the CRC covers */
 
 /* kind letters <-> the state machine's journal kinds, in hv_exec_journal_kind_t order */
-static const char kind_letter[] = {'S', 'C', 'R', 'F', 'D', 'E'};
+static const char kind_letter[] = {'S', 'C', 'R', 'F', 'D', 'E', 'H'}; /* by HV_JR_* */
 #define N_KINDS  (sizeof kind_letter)
 #define K_HEADER 'H'
 
@@ -70,6 +70,11 @@ hv_status_t hv_fw_journal_encode(const hv_exec_action_t *rec, hv_exec_real_t t_s
             return HV_ERR_ARG;
         out[6] = (uint8_t)rec->u.jr.nodes;
     }
+    if (k == HV_JR_HALT) {
+        if (!fits(rec->u.jr.reason, 0xFF))
+            return HV_ERR_ARG;
+        out[5] = (uint8_t)rec->u.jr.reason;
+    }
     hv_fw_put_u32(out + 8, t_ms_of(t_s));
     seal(out);
     return HV_OK;
@@ -109,6 +114,10 @@ hv_status_t hv_fw_journal_decode(const uint8_t in[HV_FW_JOURNAL_RECORD], hv_exec
     if (kind == HV_JR_ESTOP_CLEAR) {
         rec->u.jr.nodes = in[6];
         used = 0x40u;
+    }
+    if (kind == HV_JR_HALT) {
+        rec->u.jr.reason = in[5];
+        used = 0x20u;
     }
     for (unsigned i = 1; i < 8; i++)
         if (!(used & (1u << i)) && in[i] != 0)

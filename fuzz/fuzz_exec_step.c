@@ -75,7 +75,7 @@ static void check_actions(run_t *R, hv_exec_phase_t before, const hv_exec_action
             hv_fuzz_fail("command to a latched node without the operator's clear");
         R->commanded |= commanding;
         if (a->kind == HV_ACT_JOURNAL && a->u.jr.kind != HV_JR_STOP && a->u.jr.kind != HV_JR_DONE &&
-            a->u.jr.kind != HV_JR_ESTOP_CLEAR) {
+            a->u.jr.kind != HV_JR_ESTOP_CLEAR && a->u.jr.kind != HV_JR_HALT) {
             int p = a->u.jr.pick;
             if (p < 0 || p >= R->sm.plan->n_picks)
                 hv_fuzz_fail("journal record of pick %d", p);

@@ -65,6 +65,7 @@ static const key_spec_t keys[] = {
     {"camera.window", F(camera_window_m), 1, POS, 100.0, K_REAL},
     {"online.horizon_limit_min", F(online_limit_min_s), 1, 0.1, 3600.0, K_REAL},
     {"online.horizon_limit_max", F(online_limit_max_s), 1, 0.1, 3600.0, K_REAL},
+    {"online.wait_plan_timeout", F(online_wait_plan_timeout_s), 1, 0.1, 86400.0, K_REAL},
     {"grid.step", F(grid_step_m), 1, 0.001, 1.0, K_REAL},
     {"grid.yaw_step_deg", F(grid_yaw_step_rad), 1, 0.1, 90.0, K_DEG},
     {"grid.y_half_span", F(grid_y_half_span_m), 1, POS, 10.0, K_REAL},
@@ -175,6 +176,10 @@ static hv_status_t check_relations(const hv_config_t *c, hv_diag_t *diag)
     if (c->online_limit_min_s > c->online_limit_max_s) {
         return cfg_fail(diag, HV_ERR_CFG_RANGE, "online.horizon_limit_max", 0,
                         "must be >= online.horizon_limit_min");
+    }
+    if (c->online_wait_plan_timeout_s < c->online_limit_max_s) {
+        return cfg_fail(diag, HV_ERR_CFG_RANGE, "online.wait_plan_timeout", 0,
+                        "must be >= online.horizon_limit_max (a horizon may take that long)");
     }
     if (c->search_theta_min_rad > c->search_theta_max_rad) {
         return cfg_fail(diag, HV_ERR_CFG_RANGE, "search.theta_max_deg", 0,

@@ -150,6 +150,13 @@ hv_status_t hv_exec_journal_done(hv_exec_journal_t *j, double t_s)
     return fmt_append(j, "D t=%.3f", t_s);
 }
 
+hv_status_t hv_exec_journal_halt(hv_exec_journal_t *j, int reason, double t_s)
+{
+    if (!j || reason <= HV_STOP_NONE || reason >= HV_STOP_COUNT)
+        return HV_ERR_ARG;
+    return fmt_append(j, "H %s t=%.3f", hv_exec_stop_reason_name(reason), t_s);
+}
+
 #define OPERATOR_MAX 32
 
 int hv_exec_journal_operator_ok(const char *name)
@@ -417,6 +424,13 @@ static hv_status_t replay_line(replay_t *r, char *line, size_t len)
         if (sscanf(line, "D t=%lf", &t) != 1)
             return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "bad row-done record");
         return apply(r, HV_JR_DONE, -1, -1, 0, "bad row-done record");
+    case 'H': {
+        int end = 0;
+        if (sscanf(line, "H %31s t=%lf%n", d, &t, &end) != 2 || line[end] != '\0')
+            return bad(r, HV_ERR_EXEC_JOURNAL_FORMAT, "bad halt record");
+        r->reason = hv_exec_stop_reason_parse(d);
+        return apply(r, HV_JR_HALT, -1, -1, 0, "halt: unknown reason");
+    }
     case 'E': {
         int end = 0;
         if (sscanf(line, "E %39s nodes=%39s t=%lf%n", a, b, &t, &end) != 3 || line[end] != '\0')

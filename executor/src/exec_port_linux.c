@@ -18,6 +18,7 @@ hv_status_t hv_exec_journal_action(hv_exec_journal_t *j, const hv_exec_action_t 
                                        a->u.jr.attempt, t_s);
     case HV_JR_DONE: return hv_exec_journal_done(j, t_s);
     case HV_JR_ESTOP_CLEAR: return hv_exec_journal_estop_clear(j, clear_by, a->u.jr.nodes, t_s);
+    case HV_JR_HALT: return hv_exec_journal_halt(j, a->u.jr.reason, t_s);
     }
     return HV_ERR_ARG;
 }

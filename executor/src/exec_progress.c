@@ -45,6 +45,10 @@ hv_status_t hv_exec_progress_apply(hv_exec_progress_t *progress, const hv_exec_p
         return HV_OK;
     }
     case HV_JR_DONE: progress->row_done = 1; return HV_OK;
+    case HV_JR_HALT: /* the run stopped under control: nothing to undo, the next resumes */
+        return record->u.jr.reason > HV_STOP_NONE && record->u.jr.reason < HV_STOP_COUNT
+                   ? HV_OK
+                   : HV_ERR_EXEC_JOURNAL_FORMAT;
     case HV_JR_ESTOP_CLEAR:
         if (record->u.jr.nodes == 0 || (record->u.jr.nodes & ~HV_EXEC_ALL_NODES) != 0)
             return HV_ERR_EXEC_JOURNAL_FORMAT;

@@ -27,6 +27,8 @@ void hv_exec_params_default(hv_exec_params_t *p)
     p->max_retries = 2;
     p->resend_s = 0.25; /* 5 status periods at time scale 1 (DBC: status every 50 ms) */
     p->clear_estop = 0; /* only an operator clears an e-stop */
+    /* twice online.horizon_limit_max's default: a horizon's solve plus as much again */
+    p->wait_plan_timeout_s = 120.0;
 }
 
 double hv_exec_home_max_s(const hv_arm_t *arm)
@@ -58,7 +60,9 @@ static int params_ok(const hv_exec_params_t *p)
     return p->time_scale >= zero && isfinite(p->time_scale) && p->margin >= zero &&
            isfinite(p->margin) && p->slack_s >= zero && isfinite(p->slack_s) &&
            p->latency_s >= zero && isfinite(p->latency_s) && p->max_retries < 100 &&
-           (p->clear_estop == 0 || p->clear_estop == 1) && (p->online == 0 || p->online == 1);
+           (p->clear_estop == 0 || p->clear_estop == 1) &&
+           (p->online == 0 ||
+            (p->online == 1 && p->wait_plan_timeout_s > zero && isfinite(p->wait_plan_timeout_s)));
 }
 
 hv_status_t hv_exec_init(hv_exec_sm_t *sm, const hv_exec_plan_t *plan,
@@ -195,9 +199,13 @@ static void enter_safe(ctx_t *c, hv_exec_safe_reason_t why, int node)
 static void send_command(ctx_t *c, int node, int command);
 
 /* The controlled stop's end: every node disabled (motion off, nothing latched). */
+static hv_exec_action_t *journal(ctx_t *c, hv_exec_journal_kind_t kind, int pick, int stop,
+                                 int attempt, int outcome, int reason);
+
 static void stopped(ctx_t *c)
 {
     hv_exec_sm_t *sm = c->sm;
+    journal(c, HV_JR_HALT, -1, -1, 0, 0, (int)sm->stop_reason);
     for (int i = 0; i < HV_EXEC_NODES; i++) {
         sm->node[i].resend_active = 0;
         send_command(c, i, HV_CAN_CMD_DISABLE);
@@ -207,7 +215,7 @@ static void stopped(ctx_t *c)
     set_phase(c, HV_PH_STOPPED);
 }
 
-/* The operator's stop: at once where nothing moves, else once what is under way ends
+/* A controlled stop: at once where nothing moves, else once what is under way ends
  * (next_stop, the vehicle's arrival, arm_advance and retry_or_give_up look at the flag). */
 static void request_stop(ctx_t *c, const hv_exec_event_t *ev)
 {
@@ -218,6 +226,7 @@ static void request_stop(ctx_t *c, const hv_exec_event_t *ev)
         return;
     }
     sm->stop_requested = 1;
+    sm->stop_reason = HV_STOP_OPERATOR;
     if (sm->phase == HV_PH_WAIT_NODES || sm->phase == HV_PH_ENABLE ||
         (sm->phase == HV_PH_WAIT_PLAN && !sm->advancing))
         stopped(c);
@@ -426,6 +435,14 @@ static void wait_plan(ctx_t *c)
             stopped(c);
             return;
         }
+    }
+    if (sm->stop + 1 >= (int)sm->plan->n_stops && !sm->plan_final &&
+        c->now - sm->wait_from_ns >= hv_exec_real_ns(sm->prm.wait_plan_timeout_s)) {
+        /* the planner is silent, refused or gone: say so and stop, resumable */
+        sm->stop_requested = 1;
+        sm->stop_reason = HV_STOP_PLAN_TIMEOUT;
+        stopped(c);
+        return;
     }
     if (sm->stop + 1 < (int)sm->plan->n_stops || sm->plan_final) {
         uint64_t w = c->now - sm->wait_from_ns;

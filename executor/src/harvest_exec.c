@@ -318,6 +318,7 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
     int n = snprintf(
         buf, sizeof buf,
         "{\n  \"phase\": \"%s\",\n  \"safe_reason\": \"%s\",\n  \"safe_node\": %d,\n"
+        "  \"stop_reason\": \"%s\",\n"
         "  \"fruits_planned\": %u,\n  \"picked\": %u,\n  \"failed\": %u,\n  \"skipped\": %u,\n"
         "  \"remaining\": %u,\n  \"picked_this_run\": %u,\n  \"failed_this_run\": %u,\n"
         "  \"skipped_this_run\": %u,\n  \"faults\": %u,\n"
@@ -334,11 +335,11 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
         "  \"plan_final\": %s,\n  \"plan_wait_first_s\": %.6f,\n  \"plan_wait_row_s\": %.6f,\n"
         "  \"plan_waits\": %u,\n  \"plan_messages\": %u,\n  \"plan_refused\": %u\n}\n",
         hv_exec_phase_name(sm->phase), hv_exec_safe_reason_name(sm->safe_reason), sm->safe_node,
-        (unsigned)w->plan.n_picks, outcome[HV_OUT_PICKED], outcome[HV_OUT_FAILED],
-        outcome[HV_OUT_SKIPPED], hv_exec_remaining(sm), sm->picked, sm->failed, sm->skipped,
-        sm->faults, w->plan.planned_makespan_s, w->plan.expected_makespan_s,
-        hv_exec_executed_s(sm, now), sm->time_scale, wall_s, cpu_s, peak_rss_kb,
-        (unsigned long long)st->steps,
+        hv_exec_stop_reason_name(sm->stop_reason), (unsigned)w->plan.n_picks,
+        outcome[HV_OUT_PICKED], outcome[HV_OUT_FAILED], outcome[HV_OUT_SKIPPED],
+        hv_exec_remaining(sm), sm->picked, sm->failed, sm->skipped, sm->faults,
+        w->plan.planned_makespan_s, w->plan.expected_makespan_s, hv_exec_executed_s(sm, now),
+        sm->time_scale, wall_s, cpu_s, peak_rss_kb, (unsigned long long)st->steps,
         st->steps ? (double)st->step_ns_total / (double)st->steps : 0.0,
         (unsigned long long)st->step_ns_max, (unsigned long long)st->frames_rx,
         (unsigned long long)st->io.frames_tx, (unsigned long long)st->io.send_failures,
@@ -501,6 +502,7 @@ int main(int argc, char **argv)
     prm.max_retries = (unsigned)o.max_retries;
     prm.clear_estop = o.clear_by != NULL;
     prm.online = o.online;
+    prm.wait_plan_timeout_s = cfg.online_wait_plan_timeout_s;
     double h0 = hv_exec_home_max_s(&arms[0]), h1 = hv_exec_home_max_s(&arms[1]);
     prm.home_max_s = h0 > h1 ? h0 : h1;
     if ((st = hv_exec_init(&w->sm, &w->plan, &prm, &w->prog)) != HV_OK) {
@@ -612,10 +614,13 @@ int main(int argc, char **argv)
     else
         snprintf(objective, sizeof objective, "plan's objective %.2f s",
                  w->plan.planned_makespan_s);
+    int safe = w->sm.phase == HV_PH_SAFE, halted = w->sm.phase == HV_PH_STOPPED;
     printf("harvest-exec: %s%s%s: picked %u, failed %u, skipped %u this run (%u remaining), "
            "faults %u; executed %.2f s vs expected %.2f s (%s)\n",
-           hv_exec_phase_name(w->sm.phase), w->sm.phase == HV_PH_SAFE ? " " : "",
-           w->sm.phase == HV_PH_SAFE ? hv_exec_safe_reason_name(w->sm.safe_reason) : "",
+           hv_exec_phase_name(w->sm.phase), safe || halted ? " " : "",
+           safe     ? hv_exec_safe_reason_name(w->sm.safe_reason)
+           : halted ? hv_exec_stop_reason_name(w->sm.stop_reason)
+                    : "",
            w->sm.picked, w->sm.failed, w->sm.skipped, hv_exec_remaining(&w->sm), w->sm.faults,
            hv_exec_executed_s(&w->sm, t_end), w->plan.expected_makespan_s, objective);
     if (rc == EXIT_ESTOP_LATCHED) {

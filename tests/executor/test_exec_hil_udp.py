@@ -291,7 +291,7 @@ def test_operator_stop_is_a_controlled_stop(tmp_path, sim_factory, how):
         _send_stop_requests(3)
     out, err = p.communicate(timeout=60)
     assert p.returncode == 6, out + err
-    assert out.startswith("harvest-exec: stopped:"), out
+    assert out.startswith("harvest-exec: stopped operator:"), out
     _, recs = H.read_journal(tmp_path / "j.journal")
     # every cut issued has its outcome: the picks under way finished
     assert {(r[1], r[2]) for r in recs if r[0] == "C"} <= set(H.outcomes(recs)), recs

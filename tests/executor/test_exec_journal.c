@@ -232,6 +232,33 @@ static void test_estop_clear_record(void **state)
     free(fx);
 }
 
+/* A controlled stop's record: written with its reason, replayed as nothing to undo; a bad
+ * reason is refused when written and when read. */
+static void test_halt_record(void **state)
+{
+    (void)state;
+    char path[160], err[256];
+    hv_exec_journal_t j;
+    hv_exec_progress_t prog;
+    fx_t *fx = one_picked("h.journal", path, sizeof path, &j);
+    assert_int_equal(hv_exec_journal_halt(&j, HV_STOP_OPERATOR, 4.25), HV_OK);
+    assert_int_equal(hv_exec_journal_halt(&j, HV_STOP_NONE, 5.0), HV_ERR_ARG);
+    assert_int_equal(hv_exec_journal_halt(&j, HV_STOP_COUNT, 5.0), HV_ERR_ARG);
+    hv_exec_journal_close(&j);
+    assert_int_equal(hv_exec_journal_open(&j, path, &fx->plan, &prog, err, sizeof err), HV_OK);
+    assert_int_equal(prog.pick[0], HV_PROG_DONE);
+    assert_int_equal(prog.row_done, 0);
+    hv_exec_journal_close(&j);
+    append_record(path, "H plan_timeout t=9.000");
+    assert_int_equal(hv_exec_journal_open(&j, path, &fx->plan, &prog, err, sizeof err), HV_OK);
+    hv_exec_journal_close(&j);
+    append_record(path, "H tired t=9.500");
+    assert_int_equal(hv_exec_journal_open(&j, path, &fx->plan, &prog, err, sizeof err),
+                     HV_ERR_EXEC_JOURNAL_FORMAT);
+    assert_non_null(strstr(err, "halt"));
+    free(fx);
+}
+
 /* Carry out the journal actions of a fake run into a real journal. */
 static void write_journal(const fx_t *fx, hv_exec_journal_t *j, int upto)
 {
@@ -254,6 +281,7 @@ static void write_journal(const fx_t *fx, hv_exec_journal_t *j, int upto)
         case HV_JR_ESTOP_CLEAR:
             st = hv_exec_journal_estop_clear(j, "test", a->u.jr.nodes, 0.0);
             break;
+        case HV_JR_HALT: st = hv_exec_journal_halt(j, a->u.jr.reason, 0.0); break;
         }
         assert_int_equal(st, HV_OK);
     }
@@ -590,6 +618,7 @@ int main(void)
         cmocka_unit_test(test_torn_and_corrupt),
         cmocka_unit_test(test_other_plan),
         cmocka_unit_test(test_estop_clear_record),
+        cmocka_unit_test(test_halt_record),
         cmocka_unit_test(test_kill_and_resume),
         cmocka_unit_test(test_unreadable_ids_never_written),
         cmocka_unit_test(test_online_stops_rebuilt),

@@ -23,6 +23,35 @@ static void grown(fx_t *fx, int final, double advance_m)
     fx_event(fx, &ev);
 }
 
+/* A planner that never commits (refused, dead without its journal): WAIT_PLAN ends after
+ * wait_plan_timeout_s in a controlled stop journalled as plan_timeout, no e-stop. */
+static void test_a_silent_planner_ends_in_a_controlled_stop(void **state)
+{
+    (void)state;
+    fx_t *fx = malloc(sizeof *fx);
+    assert_non_null(fx);
+    fx_plan(fx, 1, 1);
+    fx->plan.n_stops = 0;
+    fx->plan.n_picks = 0;
+    fx->prm.online = 1;
+    fx->prm.wait_plan_timeout_s = 3.0;
+    fx_start(fx, NULL);
+    fx_run(fx, 2.0);
+    assert_int_equal(fx->sm.phase, HV_PH_WAIT_PLAN);
+    fx_run(fx, 10.0);
+    assert_int_equal(fx->sm.phase, HV_PH_STOPPED);
+    assert_int_equal(fx->sm.stop_reason, HV_STOP_PLAN_TIMEOUT);
+    int h = fx_find(fx, 0, HV_ACT_JOURNAL, HV_JR_HALT);
+    assert_true(h >= 0);
+    assert_int_equal(fx->log[h].a.u.jr.reason, HV_STOP_PLAN_TIMEOUT);
+    assert_int_equal(fx_count(fx, HV_ACT_ESTOP, -1), 0);
+    assert_true(fx_find(fx, h, HV_ACT_COMMAND, HV_CAN_CMD_DISABLE) > h);
+    /* a timeout of 0 is no timeout at all: refused */
+    fx->prm.wait_plan_timeout_s = 0.0;
+    assert_int_equal(hv_exec_init(&fx->sm, &fx->plan, &fx->prm, NULL), HV_ERR_EXEC_PARAMS);
+    free(fx);
+}
+
 static void test_plan_grows_while_running(void **state)
 {
     (void)state;
@@ -92,6 +121,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_plan_grows_while_running),
+        cmocka_unit_test(test_a_silent_planner_ends_in_a_controlled_stop),
         cmocka_unit_test(test_offline_never_waits),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -73,7 +73,7 @@ class Row:
         self.procs.append(p)
         return p
 
-    def executor(self, n, stderr=subprocess.PIPE):
+    def executor(self, n, stderr=subprocess.PIPE, cfg=None):
         p = subprocess.Popen(
             [
                 H.EXEC,
@@ -81,7 +81,7 @@ class Row:
                 "--lcm-url",
                 URL,
                 "--config",
-                str(self.cfg),
+                str(cfg or self.cfg),
                 "--journal",
                 str(self.dir / "exec.journal"),
                 "--summary",
@@ -214,20 +214,28 @@ def stop_records(path):
 
 def test_a_planner_that_forgot_is_refused(row):
     """The planner restarted without its journal commits from scratch: the restarted
-    executor refuses its plan by name and never grows its journalled one."""
+    executor refuses its plan by name, never grows its journalled one, and, the wait for a
+    stop it can take over, makes a controlled stop journalled as plan_timeout."""
+    from harvest.scenario.config import derived_config_text
+
     kill_both(row)
     before = stop_records(row.dir / "exec.journal")
+    # the executor's wait for the planner cut short (it must not be below the horizon limit)
+    cfg2 = row.dir / "exec2.cfg"
+    limits = {"online.horizon_limit_min": "1.0", "online.horizon_limit_max": "4.0"}
+    cfg2.write_text(derived_config_text(row.cfg, {**limits, "online.wait_plan_timeout": "4.0"}))
     pl2 = row.planner(2, journal="fresh.journal")
     err_path = row.dir / "exec2.err"
     with open(err_path, "w") as err:
-        ex2 = row.executor(2, stderr=err)
-        said = H.wait_for(lambda: "HV_ERR_EXEC_PLAN_CONFLICT" in err_path.read_text(), 60)
-        ex2.send_signal(signal.SIGTERM)
-        ex2.communicate(timeout=30)
+        ex2 = row.executor(2, stderr=err, cfg=cfg2)
+        out, _ = ex2.communicate(timeout=120)
     pl2.communicate(timeout=30)
     assert pl2.returncode == 6  # it ends with the executor's controlled stop
-    assert said, err_path.read_text()[-2000:]
-    assert ex2.returncode == 6  # the signal: a controlled stop, nothing was under way
+    assert "HV_ERR_EXEC_PLAN_CONFLICT" in err_path.read_text(), err_path.read_text()[-2000:]
+    assert ex2.returncode == 6, out
+    assert out.startswith("harvest-exec: stopped plan_timeout:"), out
+    with open(row.dir / "exec.journal") as f:
+        assert [ln.split()[1] for ln in f if ln.startswith("H ")] == ["plan_timeout"]
     assert stop_records(row.dir / "exec.journal") == before
     with open(row.dir / "exec2.json") as f:
         assert json.load(f)["plan_refused"] > 0

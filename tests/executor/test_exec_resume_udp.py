@@ -95,9 +95,10 @@ def test_resume_after_sigterm(tmp_path, row):
     p.send_signal(signal.SIGTERM)
     out, err = p.communicate(timeout=60)
     assert p.returncode == 6, out + err
-    assert out.startswith("harvest-exec: stopped:"), out
+    assert out.startswith("harvest-exec: stopped operator:"), out
     _, before = H.read_journal(journal)
     assert 0 < len(H.outcomes(before)) < len(H.plan_order(plan)["L"]) * 2
+    assert [r[:2] for r in before if r[0] == "H"] == [["H", "operator"]]
     proc, summary = H.run_exec(path, journal, tmp_path / "s2.json", SCALE)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     assert summary["phase"] == "row_done" and summary["estop_cleared"] is False

@@ -411,6 +411,11 @@ static void test_operator_stop_is_controlled_and_resumable(void **state)
     assert_int_equal(fx->sm.phase, HV_PH_STOPPED);
     assert_true(hv_exec_finished(&fx->sm));
     assert_int_equal(fx_count(fx, HV_ACT_ESTOP, -1), 0);
+    /* journalled, with its reason, before the DISABLEs */
+    int h = fx_find(fx, from, HV_ACT_JOURNAL, HV_JR_HALT);
+    assert_true(h >= 0);
+    assert_int_equal(fx->log[h].a.u.jr.reason, HV_STOP_OPERATOR);
+    assert_true(fx_find(fx, h, HV_ACT_COMMAND, HV_CAN_CMD_DISABLE) > h);
     for (int i = 0; i < HV_EXEC_NODES; i++)
         assert_int_equal(fx->node[i].estop, 0);
     /* every cut issued has its outcome: no pick left half done */

@@ -87,9 +87,9 @@ static hv_exec_action_t jr(hv_exec_journal_kind_t kind, int pick, int stop, int 
     return a;
 }
 
-/* a row cut short: stop 0 done (pick 0 picked, pick 1 failed), stop 1 reached, pick 2's
- * cut issued; the e-stop clear of two nodes before it all */
-#define N_ROW 9
+/* a row cut short: stop 0 done (pick 0 picked, pick 1 failed), a controlled stop and the
+ * restart, stop 1 reached, pick 2's cut issued; the e-stop clear of two nodes before it all */
+#define N_ROW 10
 static void row_records(hv_exec_action_t r[N_ROW])
 {
     r[0] = jr(HV_JR_ESTOP_CLEAR, -1, -1, 0, 0);
@@ -99,9 +99,10 @@ static void row_records(hv_exec_action_t r[N_ROW])
     r[3] = jr(HV_JR_RELEASE, 0, -1, 0, 0);
     r[4] = jr(HV_JR_OUTCOME, 0, -1, HV_OUT_PICKED, HV_RSN_OK);
     r[5] = jr(HV_JR_OUTCOME, 1, -1, HV_OUT_FAILED, HV_RSN_TIMEOUT);
-    r[6] = jr(HV_JR_STOP, -1, 1, 0, 0);
-    r[7] = jr(HV_JR_CUT, 3, -1, 0, 0);
-    r[8] = jr(HV_JR_CUT, 2, -1, 0, 0);
+    r[6] = jr(HV_JR_HALT, -1, -1, 0, HV_STOP_OPERATOR);
+    r[7] = jr(HV_JR_STOP, -1, 1, 0, 0);
+    r[8] = jr(HV_JR_CUT, 3, -1, 0, 0);
+    r[9] = jr(HV_JR_CUT, 2, -1, 0, 0);
 }
 
 /* a fresh journal holding the first n records of the row */

@@ -67,6 +67,9 @@ typedef struct hv_config {
     /* online mode: a horizon's solve may take half the robot time committed ahead, within
      * [online.horizon_limit_min, online.horizon_limit_max] (s) */
     double online_limit_min_s, online_limit_max_s;
+    /* online mode: the executor's longest wait for the planner's next stop before it makes a
+     * controlled stop (real s, >= online.horizon_limit_max) */
+    double online_wait_plan_timeout_s;
 
     /* grids */
     double grid_step_m;        /* grid.step: stops and x, y, z of the cost table */

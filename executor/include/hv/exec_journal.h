@@ -10,6 +10,8 @@
  *   D t=<s>                             row done
  *   E <operator> nodes=<node>[,<node>] t=<s>   an operator cleared the e-stop latched on
  *                                       these nodes (vehicle, left_arm, right_arm)
+ *   H <operator|plan_timeout> t=<s>     a controlled stop and why (hv_exec_stop_reason_t):
+ *                                       nothing latched, the next run resumes
  * <operator>: 1 to 32 of A-Z a-z 0-9 . _ - (hv_exec_journal_operator_ok).
  *
  * Online (harvest-exec --online) the plan is not a file: it grows from the planner's
@@ -96,6 +98,8 @@ hv_status_t hv_exec_journal_release(hv_exec_journal_t *j, int pick, int attempt,
 hv_status_t hv_exec_journal_outcome(hv_exec_journal_t *j, int pick, int outcome, int reason,
                                     int attempt, double t_s);
 hv_status_t hv_exec_journal_done(hv_exec_journal_t *j, double t_s);
+/* A controlled stop ("H <reason>"): `reason` an hv_exec_stop_reason_t other than NONE. */
+hv_status_t hv_exec_journal_halt(hv_exec_journal_t *j, int reason, double t_s);
 /* `nodes`: 1 << HV_EXEC_* of the nodes cleared (not 0); HV_ERR_ARG for a bad operator name. */
 hv_status_t hv_exec_journal_estop_clear(hv_exec_journal_t *j, const char *operator_name,
                                         unsigned nodes, double t_s);

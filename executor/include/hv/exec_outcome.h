@@ -31,6 +31,14 @@ typedef enum hv_exec_reason {
     HV_RSN_COUNT
 } hv_exec_reason_t;
 
+/* Why a run made a controlled stop (journalled "H <name>"; the run is resumable). */
+typedef enum hv_exec_stop_reason {
+    HV_STOP_NONE = 0,
+    HV_STOP_OPERATOR,     /* SIGTERM / SIGINT, or the bus's ExecutorStopRequest */
+    HV_STOP_PLAN_TIMEOUT, /* online: no stop from the planner within wait_plan_timeout_s */
+    HV_STOP_COUNT
+} hv_exec_stop_reason_t;
+
 /* Progress of one pick, as known from the journal and the running state machine. */
 typedef enum hv_exec_pick_progress {
     HV_PROG_PENDING = 0, /* nothing recorded */
@@ -53,6 +61,8 @@ const char *hv_exec_reason_name(int reason);   /* "ok", "ik_unreachable", ... */
 /* Parse the names back; -1 when unknown. */
 int hv_exec_outcome_parse(const char *name);
 int hv_exec_reason_parse(const char *name);
+const char *hv_exec_stop_reason_name(int reason); /* "none", "operator", "plan_timeout" */
+int hv_exec_stop_reason_parse(const char *name);  /* -1 when unknown */
 
 #ifdef __cplusplus
 }

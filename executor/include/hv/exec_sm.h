@@ -46,7 +46,9 @@
  * fruit stays for the next run; the vehicle arrives where it was sent); then DISABLE to every
  * node and STOPPED (terminal). Nothing latches: a plain restart resumes from the journal. A
  * second signal before STOPPED is an e-stop (SAFE, operator); the bus's ExecutorStopRequest,
- * repeated, stays one request.
+ * repeated, stays one request. Online, a wait for the planner's next stop longer than
+ * wait_plan_timeout_s ends the same way (plan_timeout). The stop is journalled with its
+ * reason (HV_JR_HALT) before the DISABLEs.
  * Timeouts: planned time * (1 + margin) + slack, in plan time, divided by the time scale,
  * plus latency_s of real time for the bus.
  */
@@ -162,12 +164,14 @@ typedef struct hv_exec_params {
                                            found at start-up is released; 0: it keeps us in SAFE */
     int online;                         /* 1: the plan grows while the row runs (HV_EV_PLAN_GROWN)
                                            until an event says it is final; 0: the plan is whole */
+    hv_exec_real_t wait_plan_timeout_s; /* online: real time in WAIT_PLAN with no new stop before
+                                           a controlled stop, plan_timeout (> 0) */
 } hv_exec_params_t;
 
 /* Defaults: margin 0.5, slack 1 s, latency 0.3 s, heartbeat 0.5 s / 0.1 s, start-up 10 s,
  * command 1 s, cut 1 s, release 0.5 s, 0.1 m/s, 0.1 m/s^2, 2 retries, resend 0.25 s,
- * time scale 0, no e-stop clear, whole plan (not online); every field is set; home_max_s is
- * the arm's business: set it (hv_exec_home_max_s). */
+ * time scale 0, no e-stop clear, whole plan (not online), wait for the plan 120 s; every
+ * field is set; home_max_s is the arm's business: set it (hv_exec_home_max_s). */
 void hv_exec_params_default(hv_exec_params_t *p);
 
 /* The longest rest-to-rest move of an arm to its home pose from anywhere in its range. */
@@ -242,12 +246,13 @@ typedef enum hv_exec_action_kind {
 } hv_exec_action_kind_t;
 
 typedef enum hv_exec_journal_kind {
-    HV_JR_STOP = 0,   /* stop reached */
-    HV_JR_CUT,        /* cut issued for a pick */
-    HV_JR_RELEASE,    /* release issued for a pick */
-    HV_JR_OUTCOME,    /* a pick's outcome */
-    HV_JR_DONE,       /* row done */
-    HV_JR_ESTOP_CLEAR /* the operator's e-stop clear, of the nodes in u.jr.nodes */
+    HV_JR_STOP = 0,    /* stop reached */
+    HV_JR_CUT,         /* cut issued for a pick */
+    HV_JR_RELEASE,     /* release issued for a pick */
+    HV_JR_OUTCOME,     /* a pick's outcome */
+    HV_JR_DONE,        /* row done */
+    HV_JR_ESTOP_CLEAR, /* the operator's e-stop clear, of the nodes in u.jr.nodes */
+    HV_JR_HALT         /* a controlled stop, why in u.jr.reason (hv_exec_stop_reason_t) */
 } hv_exec_journal_kind_t;
 
 typedef enum hv_exec_fruit_event_kind {
@@ -369,7 +374,8 @@ typedef struct hv_exec_sm {
     unsigned faults;                  /* recoverable arm faults seen in this run */
     unsigned resends;                 /* frames sent again for want of an acknowledgement */
     int started;                      /* first step done */
-    int stop_requested;               /* the operator's controlled stop is under way */
+    int stop_requested;               /* a controlled stop is under way (why: stop_reason) */
+    hv_exec_stop_reason_t stop_reason;
     /* online (params.online) */
     int plan_final;           /* the planner said no stop will follow */
     hv_exec_real_t advance_m; /* the course is committed up to here (m) */
