@@ -8,36 +8,16 @@ prefix the build used.
 
 import os
 import shutil
-import subprocess
+import sys
 
 import pytest
 
-SOURCE_DIR = os.environ.get("HV_SOURCE_DIR", "")
-BUILD_DIR = os.environ.get("HV_BUILD_DIR", "")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from install_tree import BUILD_DIR, PROGRAMS, SOURCE_DIR  # noqa: E402
+from install_tree import cache as _cache  # noqa: E402
+from install_tree import run as _run  # noqa: E402
+
 CONSUMER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "consumer")
-PROGRAMS = [
-    "harvest-plan",
-    "harvest-plan-online",
-    "harvest-exec",
-    "hv-can-tool",
-    "harvest-fw-plan",
-    "costgen",
-    "mountopt",
-]
-
-
-def _cache(key):
-    with open(os.path.join(BUILD_DIR, "CMakeCache.txt")) as f:
-        for line in f:
-            if line.startswith(key + ":"):
-                return line.split("=", 1)[1].strip()
-    return ""
-
-
-def _run(cmd, **kw):
-    res = subprocess.run(cmd, capture_output=True, text=True, **kw)
-    assert res.returncode == 0, f"{cmd}\n{res.stdout}\n{res.stderr}"
-    return res.stdout
 
 
 @pytest.fixture(scope="module")
