@@ -156,9 +156,12 @@ hv_status_t hv_slcan_parse(const char *line, size_t len, hv_slcan_cmd_t *cmd, hv
 
 size_t hv_slcan_format(const hv_can_frame_t *f, char *buf, size_t len)
 {
-    if (!f || !buf || f->dlc > HV_CAN_MAX_DLC)
+    if (!f || !buf || f->dlc > HV_CAN_MAX_DLC || (f->flags & HV_CAN_FLAG_ERR))
         return 0;
     int ext = (f->flags & HV_CAN_FLAG_EXT) != 0;
+    /* the line holds 3 or 8 hex digits: a larger id would go out as another frame's */
+    if (f->id > (ext ? HV_CAN_EFF_MASK : HV_CAN_SFF_MASK))
+        return 0;
     int rtr = (f->flags & HV_CAN_FLAG_RTR) != 0;
     unsigned id_digits = ext ? 8u : 3u;
     size_t need = 1u + id_digits + 1u + (rtr ? 0u : 2u * f->dlc) + 1u;

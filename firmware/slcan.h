@@ -57,8 +57,9 @@ void hv_slcan_reset(hv_slcan_rx_t *rx);
 hv_status_t hv_slcan_parse(const char *line, size_t len, hv_slcan_cmd_t *cmd,
                            hv_can_frame_t *frame);
 
-/* The t/T line of a frame, CR included, into buf; returns its length, 0 when buf is too
- * small (HV_SLCAN_LINE_MAX + 1 is always enough) or the frame has no valid DLC. */
+/* The t/T (r/R) line of a frame, CR included, into buf; returns its length, 0 when buf is
+ * too small (HV_SLCAN_LINE_MAX + 1 is always enough) or the frame has no line: a DLC
+ * above 8, an id beyond 11 bits (29 with HV_CAN_FLAG_EXT), an error frame. */
 size_t hv_slcan_format(const hv_can_frame_t *frame, char *buf, size_t len);
 
 #endif /* HV_SLCAN_H */

@@ -18,6 +18,20 @@ void hv_fuzz_fail(const char *fmt, ...)
     abort();
 }
 
+int hv_fuzz_next(hv_fuzz_reader_t *r)
+{
+    if (r->n == 0)
+        return -1;
+    r->n--;
+    return *r->p++;
+}
+
+uint8_t hv_fuzz_byte(hv_fuzz_reader_t *r)
+{
+    int b = hv_fuzz_next(r);
+    return b < 0 ? 0 : (uint8_t)b;
+}
+
 void hv_fuzz_source_path(const char *rel, char *buf, size_t len)
 {
     snprintf(buf, len, "%s/%s", HV_SOURCE_DIR, rel);

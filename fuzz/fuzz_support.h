@@ -25,6 +25,17 @@ const hv_config_t *hv_fuzz_config(void);
 /* "<source>/<rel>" into buf. */
 void hv_fuzz_source_path(const char *rel, char *buf, size_t len);
 
+/* An input read byte by byte. */
+typedef struct hv_fuzz_reader {
+    const uint8_t *p;
+    size_t n;
+} hv_fuzz_reader_t;
+
+/* The next input byte, -1 at the end. */
+int hv_fuzz_next(hv_fuzz_reader_t *r);
+/* The next input byte, 0 at the end. */
+uint8_t hv_fuzz_byte(hv_fuzz_reader_t *r);
+
 /* A property the target checks does not hold: print why and abort. */
 void hv_fuzz_fail(const char *fmt, ...) __attribute__((format(printf, 1, 2), noreturn));
 

@@ -50,6 +50,30 @@ static void test_round_trip(void **state)
     }
 }
 
+/* A frame with no SLCAN line is refused, never sent as another frame (found by fuzz_slcan:
+ * a 12-bit id went out as its low 3 hex digits). */
+static void test_frames_without_a_line(void **state)
+{
+    (void)state;
+    static const struct {
+        uint32_t id;
+        uint8_t dlc, flags;
+    } cases[] = {{0x800, 1, 0},
+                 {0xABCDEF00, 1, 0},
+                 {0x20000000, 0, HV_CAN_FLAG_EXT},
+                 {0x021, 9, 0},
+                 {0x021, 0, HV_CAN_FLAG_ERR}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        hv_can_frame_t f;
+        memset(&f, 0, sizeof f);
+        f.id = cases[i].id;
+        f.dlc = cases[i].dlc;
+        f.flags = cases[i].flags;
+        char line[HV_SLCAN_LINE_MAX + 1];
+        assert_int_equal(hv_slcan_format(&f, line, sizeof line), 0);
+    }
+}
+
 static void test_known_line(void **state)
 {
     (void)state;
@@ -130,7 +154,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_round_trip),          cmocka_unit_test(test_known_line),
         cmocka_unit_test(test_bad_lines_are_named), cmocka_unit_test(test_commands),
-        cmocka_unit_test(test_feed_lines),
+        cmocka_unit_test(test_feed_lines),          cmocka_unit_test(test_frames_without_a_line),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
