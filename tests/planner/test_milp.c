@@ -1121,5 +1121,12 @@ int main(void)
         cmocka_unit_test(test_decomposition),
         cmocka_unit_test(test_export_lp_resolved_by_glpsol),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    int failed = cmocka_run_group_tests(tests, NULL, NULL);
+    /* a case cmocka skipped leaves the suite "passed": say so, and let ctest show it */
+    if (failed == 0 && system("glpsol --version >/dev/null 2>&1") != 0) {
+        printf("SKIPPED: glpsol not installed (Debian glpk-utils): "
+               "test_export_lp_resolved_by_glpsol did not run\n");
+        return 77;
+    }
+    return failed;
 }
