@@ -107,10 +107,19 @@ void fx_latch_estop(fx_t *fx, int node)
     n->pending = 0;
 }
 
+/* A full table would drop what the state machine did or was told: the test then checks
+ * less than it says, so it stops there (abort: cmocka reports the test failed). */
+static void overflow(const char *what, int cap)
+{
+    fprintf(stderr, "fixture: more than %d %s: raise the capacity (exec_fixture.h)\n", cap, what);
+    abort();
+}
+
 static void enqueue(fx_t *fx, const hv_exec_event_t *ev)
 {
-    if (fx->nq < FX_MAX_EVENTS)
-        fx->q[fx->nq++] = *ev;
+    if (fx->nq >= FX_MAX_EVENTS)
+        overflow("events in flight", FX_MAX_EVENTS);
+    fx->q[fx->nq++] = *ev;
 }
 
 static void status_event(fx_t *fx, int i)
@@ -151,11 +160,11 @@ static void status_event(fx_t *fx, int i)
 /* The fake nodes carry out one action of the state machine. */
 static void node_act(fx_t *fx, const hv_exec_action_t *a)
 {
-    if (fx->nlog < FX_MAX_LOG) {
-        fx->log[fx->nlog].a = *a;
-        fx->log[fx->nlog].t_ns = fx->now_ns;
-        fx->nlog++;
-    }
+    if (fx->nlog >= FX_MAX_LOG)
+        overflow("logged actions", FX_MAX_LOG);
+    fx->log[fx->nlog].a = *a;
+    fx->log[fx->nlog].t_ns = fx->now_ns;
+    fx->nlog++;
     if (a->kind == HV_ACT_ESTOP) {
         for (int i = 0; i < HV_EXEC_NODES; i++)
             fx_latch_estop(fx, i);

@@ -277,6 +277,29 @@ def sim_commands(sim):
     return [(e["node"], e["command"], e["accepted"]) for e in sim.events("command")]
 
 
+# A CAN id of a node the DBC does not have (1..4 are ours), command 3 (status)
+UNKNOWN_ID = (7 << 5) | 3
+
+
+def bus_barrier(sim, timeout=30.0):
+    """Put a frame of an id the DBC does not have, with data of its own, on the bus and
+    wait until the simulator's record refuses it: every frame sent before it is then in
+    the record too (one bus, one socket, frames taken in the order they came). True when
+    it came back within the timeout."""
+    import can
+
+    mark = os.urandom(8)
+    with can.Bus(interface="udp_multicast", channel=GROUP) as bus:
+        bus.send(can.Message(arbitration_id=UNKNOWN_ID, data=mark, is_extended_id=False))
+    return wait_for(
+        lambda: any(
+            e["reason"] == "unknown_id" and e.get("data") == mark.hex()
+            for e in sim.events("rx_rejected")
+        ),
+        timeout,
+    )
+
+
 def wait_for(pred, timeout, period=0.05):
     t0 = time.monotonic()
     while time.monotonic() - t0 < timeout:

@@ -62,9 +62,16 @@ def test_whole_row_in_plan_order_within_5_percent(tmp_path, sim_factory):
     stop_y = [round(s["y_m"], 3) for s in plan["stops"]]
     seen_y = [p[2] for p in picks]
     assert sorted(set(seen_y)) == stop_y and seen_y == sorted(seen_y)
-    # the executed makespan within 5 % of the executor's expected one
-    rel = summary["executed_makespan_s"] / summary["expected_makespan_s"] - 1.0
-    assert abs(rel) < 0.05, summary
+    # the executed makespan by the simulator's clock (from the first move it accepted to
+    # its arrival at the course's end) within 5 % of the executor's expected one
+    prm = plan["params"]
+    end = prm["row_start_m"] + prm["row_length_m"] + prm["stop_margin_m"]
+    moves = [e["t"] for e in sim.events("move") if e.get("accepted")]
+    ends = [e["t"] for e in sim.events("arrived") if abs(e["position"] - end) < 1e-3]
+    assert moves and ends, "the simulator recorded no move or no arrival at the course end"
+    executed = ends[-1] - moves[0]
+    rel = executed / summary["expected_makespan_s"] - 1.0
+    assert abs(rel) < 0.05, (executed, summary)
 
 
 def test_telemetry_logged_and_plotted(tmp_path, sim_factory):
@@ -207,11 +214,16 @@ def test_recoverable_fault_row_completes(tmp_path, sim_factory, name):
     # journal calls picked
     picked = {k for k, o in outs.items() if o[0] == "picked"}
     fk_check.assert_cuts_on_plan(plan, sim.events("pick"), picked=picked)
-    if name != "dropped_frames":
+    assert summary["picked"] == n and len(picked) == n, outs
+    if name == "dropped_frames":
+        # the fault happened: the simulator's final stats, written once it stopped
+        sim.stop()
+        stats = sim.events("stop")[-1]["stats"]
+        assert stats["tx_dropped"] > 0 and stats["rx_dropped"] > 0, stats
+    else:
         assert summary["faults"] >= 1
         retried = [o for o in outs.values() if o[2] > 1]
         assert retried and all(o[0] == "picked" for o in retried), outs
-        assert summary["picked"] == n
 
 
 # A node that falls silent altogether is caught by whichever comes first: its heartbeat
@@ -248,8 +260,7 @@ def test_fatal_fault_ends_safe_with_journal_intact(tmp_path, sim_factory, name):
     cuts = fk_check.assert_cuts_on_plan(plan, sim.events("pick"))
     assert {k for k, o in outs.items() if o[0] == "picked"} <= set(cuts)
     # the nodes were told: e-stop frames reached the simulator
-    time.sleep(0.3)
-    assert sim.events("estop_frame"), "no e-stop frame on the bus"
+    assert H.wait_for(lambda: sim.events("estop_frame"), 30), "no e-stop frame on the bus"
 
 
 def _run_until_an_outcome(tmp_path, sim_factory):
@@ -318,7 +329,7 @@ def test_a_second_stop_request_is_an_estop(tmp_path, sim_factory):
     assert p.returncode == 3, err
     assert "operator_stop" in out
     H.read_journal(tmp_path / "j.journal")
-    assert H.wait_for(lambda: sim.events("estop_frame"), 5), "no e-stop frame on the bus"
+    assert H.wait_for(lambda: sim.events("estop_frame"), 30), "no e-stop frame on the bus"
 
 
 @pytest.mark.parametrize("kill_after_outcomes", [3, 8])

@@ -11,7 +11,6 @@ then with --clear-estop (it must resume and finish the row).
 import os
 import signal
 import sys
-import time
 
 import pytest
 
@@ -61,7 +60,9 @@ def restart_until_done(tmp_path, path, plan, sim):
     assert summary["phase"] == "safe" and summary["safe_reason"] == "estop_latched"
     assert summary["safe_node_name"] in NODE_NAMES
     assert "--clear-estop" in proc.stdout and summary["picked_this_run"] == 0
-    time.sleep(0.3)  # whatever it sent has reached the simulator's record by now
+    # a frame sent after the restart ended, back in the record: whatever the restart sent
+    # is in the record by then
+    assert H.bus_barrier(sim), "the simulator never recorded the test's own frame"
     assert H.sim_commands(sim) == commands, "a restart without the clear sent a command"
     assert [r for r in H.read_journal(journal)[1] if r[0] == "E"] == []
 

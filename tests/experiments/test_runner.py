@@ -3,8 +3,8 @@
 import csv
 import json
 import os
-import re
 import signal
+import statistics
 import subprocess
 import sys
 import time
@@ -120,8 +120,49 @@ def test_plots_and_report_are_written(quick_run):
     ):
         assert heading in text
     assert "figures/boxplot_stops.png" in text
-    # the report's numbers are the CSV's: the MILP median makespan at alpha 1 appears
-    assert re.search(r"\| 1 \| milp \| 2/2 \|", text)
+    # every number of the results table is the CSV's, computed here again
+    table = _results_table(text)
+    rows = results.read(str(out / "results.csv"))
+    groups = {}
+    for r in rows:
+        groups.setdefault((float(r["alpha"]), r["method"]), []).append(r)
+    assert table.keys() == groups.keys()
+    for key, rs in groups.items():
+        plans, stops, span, tput, runtime, status, unreachable = table[key]
+        ok = [r for r in rs if r["status"] != "error" and r["makespan_s"] is not None]
+        assert ok, key
+        assert plans == f"{len(ok)}/{len(rs)}", key
+        # each printed to its digits: one unit of the last digit apart at most
+        med = statistics.median
+        assert float(stops) == pytest.approx(med(r["stops"] for r in ok), abs=0.051), key
+        assert float(span) == pytest.approx(med(r["makespan_s"] for r in ok), abs=0.051), key
+        assert float(tput) == pytest.approx(
+            med(r["throughput_fruit_per_s"] for r in ok), abs=0.00051
+        ), key
+        rt_med, rt_max = (float(x) for x in runtime.split(" / "))
+        assert rt_med == pytest.approx(med(r["runtime_s"] for r in ok), abs=0.0051), key
+        assert rt_max == pytest.approx(max(r["runtime_s"] for r in ok), abs=0.0051), key
+        counts = {}
+        for r in rs:
+            counts[r["status"]] = counts.get(r["status"], 0) + 1
+        assert (
+            dict((k, int(v)) for k, v in (c.rsplit(" ", 1) for c in status.split(", "))) == counts
+        ), key
+        assert int(unreachable) == sum(r["fruits_unreachable"] or 0 for r in ok), key
+
+
+def _results_table(text):
+    """The report's "Results by alpha and method" table: {(alpha, method): other cells}."""
+    lines = text.splitlines()
+    head = next(i for i, ln in enumerate(lines) if ln.startswith("| alpha | method | plans |"))
+    out = {}
+    for ln in lines[head + 2 :]:
+        if not ln.startswith("|"):
+            break
+        cells = [c.strip() for c in ln.strip().strip("|").split("|")]
+        assert len(cells) == 9, ln
+        out[(float(cells[0]), cells[1])] = cells[2:]
+    return out
 
 
 def _data_rows(path):

@@ -116,5 +116,15 @@ def test_bad_upload_is_refused_by_name(tmp_path, rig_factory, damage):
     errors = [ln for ln in fw_qemu.uart_lines(rig.qemu.uart_log) if "error" in ln]
     assert any(ln.endswith(want) for ln in errors), errors
     if damage != "truncated":
-        time.sleep(1.5)  # a status line comes once a second
-        assert uart_phases(rig)[-1] == "NO_PLAN"
+        # the first status line the firmware wrote after naming the error: still no plan
+        def phases_after_the_error():
+            lines = fw_qemu.uart_lines(rig.qemu.uart_log)
+            at = max(i for i, ln in enumerate(lines) if ln.endswith(want))
+            return [
+                fw_qemu.status_fields(ln)["phase"]
+                for ln in lines[at + 1 :]
+                if ln.startswith("harvest-fw: status")
+            ]
+
+        assert fw_hil.wait_until(phases_after_the_error, 30, period=0.1), "no status line came"
+        assert phases_after_the_error()[0] == "NO_PLAN", phases_after_the_error()
