@@ -90,6 +90,25 @@ def test_every_program_prints_the_one_version(prefix):
     assert f'#define HV_VERSION "{version}"' in header
 
 
+def test_installed_tools_find_the_installed_config(prefix, tmp_path):
+    """costgen and mountopt, run from an empty folder with no --config, read
+    PREFIX/share/harvest/harvest.cfg (found from the program's own path)."""
+    cfg = str(prefix / "share" / "harvest" / "harvest.cfg")
+    for tool in ("costgen", "mountopt"):
+        assert f"(default: {cfg})" in _run([str(prefix / "bin" / tool), "--help"]), tool
+    import subprocess
+
+    res = subprocess.run(
+        [str(prefix / "bin" / "costgen"), "--side", "left", "--out-dir", str(tmp_path), "--quiet"],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+    )
+    assert res.returncode == 0, res.stderr
+    assert f"config {cfg}," in res.stdout + res.stderr
+    assert (tmp_path / "costtab_left.bin").stat().st_size > 0
+
+
 def _cmake_consumer(prefix, build, *extra):
     flags = " ".join(_sanitize_flags())
     _run(

@@ -27,7 +27,7 @@ const char kUsage[] =
     "cell is the slowest joint's time (ms) from the home pose to the IK solution of the\n"
     "cell's pose, or 'unreachable'. Prints cells, reachable fraction, bytes and time.\n"
     "\n"
-    "  --config FILE     configuration (default: config/harvest.cfg)\n"
+    "  --config FILE     configuration (default: %s)\n"
     "  --side S          left | right | both (default: both)\n"
     "  --out-dir DIR     write DIR/costtab_left.bin and/or DIR/costtab_right.bin (default: .)\n"
     "  --out FILE        output file; only with --side left or --side right\n"
@@ -47,7 +47,7 @@ const char kUsage[] =
     "2 bad command line or configuration (one line naming the file and the key).\n";
 
 struct Options {
-    std::string config = "config/harvest.cfg";
+    std::string config = default_config_path();
     std::vector<hv_side_t> sides = {HV_SIDE_LEFT, HV_SIDE_RIGHT};
     std::string out_dir = ".";
     std::string out;
@@ -257,7 +257,7 @@ int main(int argc, char **argv)
     try {
         o = parse(argc, argv, &help);
         if (help) {
-            std::fputs(kUsage, stdout);
+            std::printf(kUsage, default_config_path().c_str());
             return kExitOk;
         }
         return run(o);

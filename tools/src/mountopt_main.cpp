@@ -50,7 +50,7 @@ const char kUsage[] =
     "(x, y, z, yaw) the arm reaches within its joint limits; report the best pose, its\n"
     "coverage in each pick mode, and the paper's pose (D = 0.26 m, 43.5 deg) under our model.\n"
     "\n"
-    "  --config FILE       configuration (default: config/harvest.cfg)\n"
+    "  --config FILE       configuration (default: %s)\n"
     "  --side S            left | right | both (default: both)\n"
     "  --objective O       what the search maximises (default: points):\n"
     "                        points   reachable (x, y, z, yaw) points, yaw on the stem-\n"
@@ -69,7 +69,7 @@ const char kUsage[] =
     "Exit status: 0 done, 1 failure (I/O), 2 bad command line or configuration.\n";
 
 struct Options {
-    std::string config = "config/harvest.cfg";
+    std::string config = default_config_path();
     std::vector<hv_side_t> sides = {HV_SIDE_LEFT, HV_SIDE_RIGHT};
     Objective objective = Objective::Points;
     bool elbow_free = false;
@@ -389,7 +389,7 @@ int main(int argc, char **argv)
     try {
         Options o = parse(argc, argv, &help);
         if (help) {
-            std::fputs(kUsage, stdout);
+            std::printf(kUsage, default_config_path().c_str());
             return kExitOk;
         }
         return run(o);

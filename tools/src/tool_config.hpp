@@ -10,6 +10,12 @@
 namespace hv::tools
 {
 
+// The config used when --config is not given: PREFIX/share/harvest/harvest.cfg beside the
+// running program (PREFIX/bin/<tool>, found from /proc/self/exe, so a moved prefix still
+// works) when that file exists, else config/harvest.cfg of the current folder (the source
+// tree's root, where the build's programs are run from).
+std::string default_config_path();
+
 // Load and validate `path`. Throws InputError with the core's one-line message
 // "<path>:<line>: <key>: <message>" (or "<path>: open: ..." when unreadable).
 hv_config_t load_config(const std::string &path);
