@@ -557,7 +557,7 @@ def write(
         "## The paper's claims beside ours",
         "",
         "Each claim is read on the main run, planned with the costs above; the tables after "
-        "claims 2 and 3 add the derived runs (other FOV widths, the other cost model).",
+        "claims 2 and 3 add the derived runs (other FOV windows, the other cost model).",
         "",
         "### 1. Fewest stops",
         "",

@@ -139,7 +139,7 @@ def figure(tables, out_dir, main_window=None):
     tables = {pc: rows for pc, rows in sorted(tables.items()) if rows}
     if not tables:
         return []
-    fig, axes = plt.subplots(1, len(tables), figsize=(4.2 * len(tables), 3.4), squeeze=False)
+    fig, axes = plt.subplots(1, len(tables), figsize=(5.0 * len(tables), 3.4), squeeze=False)
     for ax, (pc, rows) in zip(axes[0], tables.items()):
         widths = sorted({t["width_m"] for t in rows})
         offsets = sorted({t["offset_m"] for t in rows})
@@ -175,5 +175,6 @@ def figure(tables, out_dir, main_window=None):
         ax.set_xlabel("window centre from the arm's base, outward (m)")
         ax.set_ylabel("window width (m)")
         ax.set_title(f"plan.pick_cycle = {int(pc)}", fontsize=9)
-        fig.colorbar(im, ax=ax, label="median gain over FOV (%)")
+        fig.colorbar(im, ax=ax, label="median gain (%)")
+    fig.tight_layout()
     return save(fig, out_dir, FIGURE_STEM)
