@@ -63,6 +63,8 @@ static const key_spec_t keys[] = {
     {"plan.pick_cycle", F(pick_cycle), 1, 0.0, 1.0, K_BOOL},
     {"camera.lead", F(camera_lead_m), 1, 0.0, 100.0, K_REAL},
     {"camera.window", F(camera_window_m), 1, POS, 100.0, K_REAL},
+    {"fov.width", F(fov_width_m), 1, POS, 2.0, K_REAL},
+    {"fov.offset", F(fov_offset_m), 1, -1.0, 1.0, K_REAL},
     {"online.horizon_limit_min", F(online_limit_min_s), 1, 0.1, 3600.0, K_REAL},
     {"online.horizon_limit_max", F(online_limit_max_s), 1, 0.1, 3600.0, K_REAL},
     {"online.wait_plan_timeout", F(online_wait_plan_timeout_s), 1, 0.1, 86400.0, K_REAL},

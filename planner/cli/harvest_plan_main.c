@@ -44,7 +44,10 @@ static const char k_usage[] =
     "                   named in the plan's inputs\n"
     "  --time-limit S   solver time limit per solve, s (default 60)\n"
     "  --gap G          relative gap at which the MILP stops (default 1e-6)\n"
-    "  --fov-width M    FOV baseline: camera field of view along the row, m (default 0.25)\n"
+    "  --fov-width M    fov: each arm's camera window along the row, m (default: fov.width\n"
+    "                   of the config)\n"
+    "  --fov-offset M   fov: window centre from its arm's base along the row, outward, m\n"
+    "                   (default: fov.offset of the config; docs/FRAMES.md)\n"
     "  --horizon H      milp: receding horizon, plan H m windows (commit H/2 each)\n"
     "  --commit M       with --horizon: length committed per window, m (default H/2)\n"
     "  --compare-single with --horizon: also solve the whole row in one window and print\n"
@@ -76,7 +79,7 @@ static const char k_usage[] =
 
 typedef struct args {
     const char *config, *left, *right, *fruits, *method, *out, *export_lp, *algorithm;
-    double time_limit_s, gap, fov_width_m, horizon_m, commit_m, row_length_m;
+    double time_limit_s, gap, fov_width_m, fov_offset_m, horizon_m, commit_m, row_length_m;
     int quiet;
     int compare_single;
     int threads; /* 0: the default */
@@ -226,6 +229,7 @@ static int parse_args(int argc, char **argv, args_t *a)
         OPT_TIME_LIMIT,
         OPT_GAP,
         OPT_FOV_WIDTH,
+        OPT_FOV_OFFSET,
         OPT_HORIZON,
         OPT_COMMIT,
         OPT_ROW_LENGTH,
@@ -246,6 +250,7 @@ static int parse_args(int argc, char **argv, args_t *a)
         {"time-limit", required_argument, NULL, OPT_TIME_LIMIT},
         {"gap", required_argument, NULL, OPT_GAP},
         {"fov-width", required_argument, NULL, OPT_FOV_WIDTH},
+        {"fov-offset", required_argument, NULL, OPT_FOV_OFFSET},
         {"horizon", required_argument, NULL, OPT_HORIZON},
         {"commit", required_argument, NULL, OPT_COMMIT},
         {"row-length", required_argument, NULL, OPT_ROW_LENGTH},
@@ -261,7 +266,7 @@ static int parse_args(int argc, char **argv, args_t *a)
     memset(a, 0, sizeof *a);
     a->time_limit_s = 60.0;
     a->gap = 1e-6;
-    a->fov_width_m = HV_FOV_DEFAULT_WIDTH_M;
+    a->fov_offset_m = NAN; /* 0 width and NAN offset: the config's */
     opterr = 0;
     int opt, idx = 0;
     while ((opt = getopt_long(argc, argv, ":h", longopts, &idx)) != -1) {
@@ -307,6 +312,16 @@ static int parse_args(int argc, char **argv, args_t *a)
             if (parse_pos(f, v, &a->fov_width_m))
                 return EXIT_USAGE;
             break;
+        case OPT_FOV_OFFSET: {
+            char *end = NULL;
+            a->fov_offset_m = strtod(v, &end);
+            if (end == v || *end != '\0' || !isfinite(a->fov_offset_m)) {
+                fprintf(stderr, "harvest-plan: --fov-offset: expected a number (m), got \"%s\"\n",
+                        v);
+                return EXIT_USAGE;
+            }
+            break;
+        }
         case OPT_HORIZON:
             if (parse_pos(f, v, &a->horizon_m))
                 return EXIT_USAGE;
@@ -566,14 +581,25 @@ static int run_plan(const args_t *a)
         hv_status_t st = HV_OK;
         if (strcmp(a->method, "fov") == 0) {
             hv_fov_stats_t fs;
-            st = hv_fov_solve(&inst, a->fov_width_m, &sol, &fs);
+            hv_config_t fcfg = cfg;
+            if (a->fov_width_m > 0) {
+                fcfg.fov_width_m = a->fov_width_m;
+            }
+            if (!isnan(a->fov_offset_m)) {
+                fcfg.fov_offset_m = a->fov_offset_m;
+            }
+            hv_fov_params_t fp;
+            hv_fov_params_from_config(&fcfg, &fp);
+            st = hv_fov_solve_params(&inst, &fp, &sol, &fs);
             meta.solver_status = "heuristic";
             meta.time_limit_s = 0.0;
             if (st == HV_OK && !a->quiet) {
                 fprintf(stderr,
-                        "harvest-plan: fov %.3f m: %zu windows, %zu stops, %zu fruits picked "
-                        "at another window's stop, %zu extra stops\n",
-                        a->fov_width_m, fs.windows, fs.stops, fs.moved, fs.extra_stops);
+                        "harvest-plan: fov width %.3f m, offset %.3f m: %zu windows, %zu stops, "
+                        "%zu fruits moved (in view, out of reach of their stop), %zu extra "
+                        "stops\n",
+                        fcfg.fov_width_m, fcfg.fov_offset_m, fs.windows, fs.stops, fs.moved,
+                        fs.extra_stops);
             }
         } else if (strcmp(a->method, "serial") == 0) {
             hv_serial_result_t sr;

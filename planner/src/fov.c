@@ -28,30 +28,61 @@ static uint32_t nearest_stop(const hv_instance_t *inst, double y)
     return (uint32_t)lo;
 }
 
+void hv_fov_params_from_config(const hv_config_t *cfg, hv_fov_params_t *params)
+{
+    double half = 0.5 * cfg->base_spacing_m;
+    params->width_m = cfg->fov_width_m;
+    params->centre_y_m[HV_SIDE_LEFT] = half + cfg->fov_offset_m;
+    params->centre_y_m[HV_SIDE_RIGHT] = -half - cfg->fov_offset_m;
+}
+
 hv_status_t hv_fov_solve(const hv_instance_t *inst, double fov_width_m, hv_assignment_t *out,
                          hv_fov_stats_t *stats)
 {
-    if (inst == NULL || out == NULL || out->n_fruits != inst->n_fruits || !isfinite(fov_width_m) ||
-        fov_width_m <= 0 || inst->n_stops == 0) {
+    hv_fov_params_t p = {fov_width_m, {0.0, 0.0}};
+    return hv_fov_solve_params(inst, &p, out, stats);
+}
+
+/* The fruit's window: where its side's camera sees it, from position s0. */
+static size_t window_of(const hv_fruit_t *fr, const hv_fov_params_t *p, double s0)
+{
+    double k = floor((fr->y_m - p->centre_y_m[fr->side] - s0 + 0.5 * p->width_m) / p->width_m);
+    return k > 0 ? (size_t)k : 0; /* >= 0 by s0's choice; guards the rounding */
+}
+
+hv_status_t hv_fov_solve_params(const hv_instance_t *inst, const hv_fov_params_t *params,
+                                hv_assignment_t *out, hv_fov_stats_t *stats)
+{
+    if (inst == NULL || params == NULL || out == NULL || out->n_fruits != inst->n_fruits ||
+        !isfinite(params->width_m) || params->width_m <= 0 || !isfinite(params->centre_y_m[0]) ||
+        !isfinite(params->centre_y_m[1]) || inst->n_stops == 0) {
         return HV_ERR_ARG;
     }
+    const double w = params->width_m;
     hv_fov_stats_t stt;
     memset(&stt, 0, sizeof stt);
-    double y0 = INFINITY, y1 = -INFINITY;
+    /* s0: the first vehicle position at which a window starts at its side's first fruit */
+    double s0 = INFINITY;
     for (size_t f = 0; f < inst->n_fruits; ++f) {
         out->fruit_stop[f] = HV_NO_STOP;
         if (inst->fruit_begin[f] != inst->fruit_begin[f + 1]) {
-            y0 = fmin(y0, inst->fruits[f].y_m);
-            y1 = fmax(y1, inst->fruits[f].y_m);
+            const hv_fruit_t *fr = &inst->fruits[f];
+            s0 = fmin(s0, fr->y_m - params->centre_y_m[fr->side] + 0.5 * w);
         }
     }
-    if (y0 > y1) { /* nothing reachable: an empty plan */
+    if (s0 == INFINITY) { /* nothing reachable: an empty plan */
         if (stats) {
             *stats = stt;
         }
         return HV_OK;
     }
-    size_t nw = (size_t)floor((y1 - y0) / fov_width_m) + 1;
+    size_t nw = 0;
+    for (size_t f = 0; f < inst->n_fruits; ++f) {
+        if (inst->fruit_begin[f] != inst->fruit_begin[f + 1]) {
+            size_t k = window_of(&inst->fruits[f], params, s0);
+            nw = k + 1 > nw ? k + 1 : nw;
+        }
+    }
     uint32_t *wstop = malloc(nw * sizeof *wstop);
     unsigned char *used = calloc(inst->n_stops, 1);
     if (wstop == NULL || used == NULL) {
@@ -60,22 +91,20 @@ hv_status_t hv_fov_solve(const hv_instance_t *inst, double fov_width_m, hv_assig
         return HV_ERR_PLAN_NOMEM;
     }
     for (size_t k = 0; k < nw; ++k) {
-        wstop[k] = nearest_stop(inst, y0 + ((double)k + 0.5) * fov_width_m);
+        wstop[k] = nearest_stop(inst, s0 + (double)k * w);
     }
     for (size_t f = 0; f < inst->n_fruits; ++f) {
         if (inst->fruit_begin[f] == inst->fruit_begin[f + 1]) {
             continue;
         }
         const hv_fruit_t *fr = &inst->fruits[f];
-        size_t k = (size_t)floor((fr->y_m - y0) / fov_width_m);
-        if (k >= nw) {
-            k = nw - 1;
-        }
+        size_t k = window_of(fr, params, s0);
         double c;
         if (hv_instance_pair_cost(inst, (uint32_t)f, wstop[k], &c) == HV_OK) {
             out->fruit_stop[f] = wstop[k];
             continue;
         }
+        stt.moved++;
         /* nearest window stop that reaches it (later one on a tie) */
         double best_d = INFINITY;
         uint32_t best = HV_NO_STOP;
@@ -91,7 +120,6 @@ hv_status_t hv_fov_solve(const hv_instance_t *inst, double fov_width_m, hv_assig
         }
         if (best != HV_NO_STOP) {
             out->fruit_stop[f] = best;
-            stt.moved++;
             continue;
         }
         /* an extra stop: the nearest reaching candidate stop, cheaper on a tie */

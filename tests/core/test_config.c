@@ -81,6 +81,7 @@ static void test_project_config_parses(void **state)
     assert_float_equal(cfg.theta_rad[0], 43.5 * M_PI / 180.0, 1e-12);
     assert_float_equal(cfg.stop_penalty_s, 5.0, 0);
     assert_true(cfg.camera_window_m > 0 && cfg.camera_lead_m >= 0);
+    assert_true(cfg.fov_width_m > 0 && fabs(cfg.fov_offset_m) < 1.0);
     /* a stop costs the paper's tau, or in the robot's time what the drive loses stopping */
     cfg.pick_cycle = 0;
     assert_float_equal(hv_config_stop_time_s(&cfg), 5.0, 1e-12);
@@ -114,6 +115,9 @@ static void test_missing_key(void **state)
     t = edited("camera.window", NULL); /* the online mode's keys are required like any */
     expect(t, HV_ERR_CFG_MISSING, "camera.window");
     free(t);
+    t = edited("fov.offset", NULL);
+    expect(t, HV_ERR_CFG_MISSING, "fov.offset");
+    free(t);
 }
 
 static void test_out_of_range_and_nan(void **state)
@@ -133,6 +137,9 @@ static void test_out_of_range_and_nan(void **state)
     free(t);
     t = edited("camera.window", "camera.window = 0");
     expect(t, HV_ERR_CFG_RANGE, "camera.window");
+    free(t);
+    t = edited("fov.width", "fov.width = 0");
+    expect(t, HV_ERR_CFG_RANGE, "fov.width");
     free(t);
     t = edited("joint1.max", "joint1.max = -1");
     expect(t, HV_ERR_CFG_RANGE, "joint1.max");

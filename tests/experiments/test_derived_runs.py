@@ -1,6 +1,6 @@
 """`experiments fov-width` and `experiments cost-models`: runs derived from the main run
-(FOV at other window widths, the other cost model), on the quick set with the real planner,
-and the report's tables made from them."""
+(FOV at other window placements and widths, the other cost model), on the quick set with
+the real planner, and the report's tables made from them."""
 
 import filecmp
 import json
@@ -16,8 +16,12 @@ from harvest.experiments import cost_models, report, results, sensitivity
 from harvest.experiments.runner import METHODS, QUICK_ALPHAS, QUICK_SEEDS
 
 TIME_LIMIT_S = "20"
-WIDTHS = (0.1, 0.25, 1.0)
-MAIN_WIDTH = "0.25"
+WIDTHS = (0.2, 0.4)
+# -0.235: the window centred on the vehicle (the bases are 0.235 m ahead and behind it);
+# 0.065: inside each arm's reach
+OFFSETS = (-0.235, 0.065)
+MAIN_WIDTH, MAIN_OFFSET = "0.4", "0.065"
+WINDOWS = [(w, o) for w in WIDTHS for o in OFFSETS]
 
 
 def _exp(step, out, *extra):
@@ -33,6 +37,8 @@ def _exp(step, out, *extra):
         TIME_LIMIT_S,
         "--fov-width",
         MAIN_WIDTH,
+        "--fov-offset",
+        MAIN_OFFSET,
         "--no-progress",
         *extra,
     )
@@ -47,7 +53,15 @@ def derived(tmp_path_factory):
     for step, extra in (
         ("run", ()),
         ("cost-models", ()),
-        ("fov-width", ("--fov-widths", ",".join(map(str, WIDTHS)))),
+        (
+            "fov-width",
+            (
+                "--fov-widths",
+                ",".join(map(str, WIDTHS)),
+                # "=": a list starting with a minus sign is not an option
+                "--fov-offsets=" + ",".join(map(str, OFFSETS)),
+            ),
+        ),
         ("report", ()),
     ):
         r = _exp(step, out, *extra)
@@ -64,16 +78,16 @@ def _model_dirs(derived):
 
 
 @pytest.mark.parametrize("pc", (0, 1))
-def test_fov_is_planned_at_every_width_on_each_models_inputs(derived, pc):
+def test_fov_is_planned_at_every_window_on_each_models_inputs(derived, pc):
     model = dict(_model_dirs(derived))[pc]
     sweep = sensitivity.load(str(model))
-    assert sorted(sweep) == list(WIDTHS)
+    assert sorted(sweep) == WINDOWS
     want = {(a, s) for a in QUICK_ALPHAS for s in QUICK_SEEDS}
-    for w, rows in sweep.items():
+    for (w, o), rows in sweep.items():
         assert {r["method"] for r in rows} == {"fov"}
         assert {(r["alpha"], r["seed"]) for r in rows} == want
-        assert all(r["status"] != "error" for r in rows), rows
-        d = model / sensitivity.SUBDIR / f"w{w:g}"
+        assert all(r["status"] != "error" and r["fov_moved"] is not None for r in rows), rows
+        d = model / sensitivity.SUBDIR / f"w{w:g}_o{o:g}"
         # that model's config, and the main run's tables and fruit maps
         assert filecmp.cmp(d / "planner.cfg", model / "planner.cfg", shallow=False)
         assert f"plan.pick_cycle = {pc}" in (d / "planner.cfg").read_text()
@@ -84,24 +98,29 @@ def test_fov_is_planned_at_every_width_on_each_models_inputs(derived, pc):
                 assert filecmp.cmp(d / sub / n, derived / sub / n, shallow=False)
 
 
-def test_the_main_width_reproduces_the_main_runs_fov_plans(derived):
+def test_the_main_window_reproduces_the_main_runs_fov_plans(derived):
     main = _by_key(results.read(str(derived / "results.csv")), "fov")
-    again = _by_key(sensitivity.load(str(derived))[float(MAIN_WIDTH)], "fov")
+    again = _by_key(sensitivity.load(str(derived))[(float(MAIN_WIDTH), float(MAIN_OFFSET))], "fov")
     assert main.keys() == again.keys()
     for k in main:
         assert again[k]["stops"] == main[k]["stops"], k
         assert again[k]["makespan_s"] == pytest.approx(main[k]["makespan_s"], rel=1e-12), k
+        assert again[k]["fov_moved"] == main[k]["fov_moved"], k
 
 
 @pytest.mark.parametrize("pc", (0, 1))
-def test_the_width_changes_fov_and_a_proven_milp_beats_it_at_every_width(derived, pc):
+def test_the_window_changes_fov_and_a_proven_milp_beats_it_at_every_window(derived, pc):
     model = dict(_model_dirs(derived))[pc]
     milp = _by_key(results.read(str(model / "results.csv")), "milp")
     sweep = sensitivity.load(str(model))
     spans = {
         w: sorted((r["alpha"], r["seed"], r["stops"]) for r in rows) for w, rows in sweep.items()
     }
-    assert spans[0.1] != spans[1.0], "FOV's plans do not depend on the window width"
+    assert spans[(0.2, 0.065)] != spans[(0.4, 0.065)], "FOV's plans do not depend on the width"
+    for w in WIDTHS:
+        # a window centred on the vehicle sees mostly fruit its stop's arms cannot reach
+        centred = sensitivity.moved_share(sweep[(w, -0.235)])
+        assert centred > 2 * sensitivity.moved_share(sweep[(w, 0.065)]), w
     for w, rows in sweep.items():
         proven = 0
         for r in rows:
@@ -113,27 +132,38 @@ def test_the_width_changes_fov_and_a_proven_milp_beats_it_at_every_width(derived
         assert proven > 0, f"width {w}: no MILP result of the {len(rows)} instances is optimal"
 
 
-def test_the_reports_width_table_is_the_csvs(derived):
+def test_the_reports_window_table_is_the_csvs(derived):
     text = (derived / "report.md").read_text()
-    assert "#### The gain over FOV by FOV window width" in text
+    assert "#### The gain over FOV by FOV window placement and width" in text
     for pc, model in _model_dirs(derived):
         milp = _by_key(results.read(str(model / "results.csv")), "milp")
-        for w, rows in sensitivity.load(str(model)).items():
-            gains = [
-                milp[(r["alpha"], r["seed"])]["throughput_fruit_per_s"]
-                / r["throughput_fruit_per_s"]
-                - 1.0
-                for r in rows
-            ]
-            med = 100.0 * statistics.median(gains)
+        sweep = sensitivity.load(str(model))
+        for w in WIDTHS:
+            med = {}
+            for o in OFFSETS:
+                gains = [
+                    milp[(r["alpha"], r["seed"])]["throughput_fruit_per_s"]
+                    / r["throughput_fruit_per_s"]
+                    - 1.0
+                    for r in sweep[(w, o)]
+                ]
+                med[o] = 100.0 * statistics.median(gains)
+            best = min(med, key=med.get)
+            moved = 100.0 * sensitivity.moved_share(sweep[(w, best)])
             row = (
-                rf"^\| plan\.pick_cycle = {pc} \| {re.escape(f'{w:g}')} \| {len(rows)} \| "
-                rf"[0-9.]+ \| {re.escape(f'{med:+.1f}')} % \|"
+                rf"^\| plan\.pick_cycle = {pc} \| {re.escape(f'{w:g}')} \| "
+                rf"{re.escape(f'{best:g}')} \| [0-9.]+ \| {re.escape(f'{moved:.1f}')} % \| "
+                rf"{re.escape(f'{med[best]:+.1f}')} % \|"
             )
             assert re.search(row, text, re.M), row
-    assert f"The main run's FOV uses {MAIN_WIDTH} m." in text
-    assert "With plan.pick_cycle = 0, the median gain is" in text
-    assert "With plan.pick_cycle = 1, the median gain is" in text
+    assert (
+        f"The main run's FOV uses {MAIN_WIDTH} m wide windows {MAIN_OFFSET} m from the base" in text
+    )
+    assert "With plan.pick_cycle = 0, FOV does best at width" in text
+    assert "With plan.pick_cycle = 1, FOV does best at width" in text
+    fov = [r for r in results.read(str(derived / "results.csv")) if r["method"] == "fov"]
+    moved = sum(r["fov_moved"] for r in fov)
+    assert f"FOV moved {moved} of its {sum(r['fruits_planned'] for r in fov)} fruits" in text
 
 
 def test_the_other_cost_model_plans_the_same_instances_in_the_robots_time(derived):
@@ -207,8 +237,18 @@ def test_derived_runs_need_the_main_run_with_the_same_options(tmp_path):
     assert not (out / cost_models.subdir(False)).exists()
 
 
-@pytest.mark.parametrize("text", ["0,0.25", "abc", "", "0.1,inf"])
-def test_bad_widths_are_refused_before_anything_runs(tmp_path, text):
+@pytest.mark.parametrize(
+    "option, text",
+    [
+        ("--fov-widths", "0,0.25"),
+        ("--fov-widths", "abc"),
+        ("--fov-widths", ""),
+        ("--fov-widths", "0.1,inf"),
+        ("--fov-offsets", "0.1,nan"),
+        ("--fov-offsets", ""),
+    ],
+)
+def test_bad_windows_are_refused_before_anything_runs(tmp_path, option, text):
     r = harvest(
         "experiments",
         "fov-width",
@@ -216,18 +256,18 @@ def test_bad_widths_are_refused_before_anything_runs(tmp_path, text):
         str(tmp_path / "x"),
         "--config",
         CONFIG,
-        "--fov-widths",
+        option,
         text,
         "--planner",
         "/bin/true",
         "--costgen",
         "/bin/true",
     )
-    assert r.returncode == 1 and "--fov-widths" in r.stderr, r.stderr
+    assert r.returncode == 1 and option in r.stderr, r.stderr
     assert not (tmp_path / "x").exists()
 
 
-def _row(alpha, seed, method, thr, stops=3):
+def _row(alpha, seed, method, thr, stops=3, moved=None):
     return {
         "distribution": "uniform",
         "alpha": alpha,
@@ -237,22 +277,29 @@ def _row(alpha, seed, method, thr, stops=3):
         "makespan_s": 10.0 / thr,
         "throughput_fruit_per_s": thr,
         "stops": stops,
+        "fruits_planned": 10,
+        "fov_moved": moved,
     }
 
 
-def test_gain_by_width_and_its_verdict_on_known_numbers():
+def test_gain_table_and_its_verdict_on_known_numbers():
     main = [_row(1.0, s, "milp", 1.2) for s in range(3)]
     sweep = {
-        0.2: [_row(1.0, s, "fov", 0.6) for s in range(3)],  # +100 %
-        0.5: [_row(1.0, s, "fov", t) for s, t in enumerate((1.05, 1.07, 0.96))],
+        (0.2, 0.0): [_row(1.0, s, "fov", 0.6, moved=1) for s in range(3)],  # +100 %
+        (0.2, 0.1): [_row(1.0, s, "fov", t, moved=0) for s, t in enumerate((1.05, 1.07, 0.96))],
+        (0.4, 0.1): [_row(1.0, s, "fov", 0.8, moved=2) for s in range(3)],  # +50 %
     }
-    table = sensitivity.gain_by_width(main, sweep)
-    assert [t["width_m"] for t in table] == [0.2, 0.5]
+    table = sensitivity.gain_table(main, sweep)
+    assert [(t["width_m"], t["offset_m"]) for t in table] == sorted(sweep)
     assert table[0]["median_gain"] == pytest.approx(1.0) and table[0]["in_band"] == 0
+    assert table[0]["moved_share"] == pytest.approx(0.1)
     assert table[1]["median_gain"] == pytest.approx(1.2 / 1.05 - 1.0) and table[1]["in_band"] == 2
     assert table[1]["min_gain"] == pytest.approx(1.2 / 1.07 - 1.0)
     assert table[1]["max_gain"] == pytest.approx(0.25)
-    text = report.fov_width_section({False: table}, False, "0.25 m")
-    assert "inside the paper's band at FOV width 0.5 m" in text
-    text = report.fov_width_section({False: table[:1]}, False, "0.25 m")
-    assert "at no width tried: it is above the band everywhere" in text
+    assert sensitivity.best_at_width(table, 0.2)["offset_m"] == 0.1
+    assert sensitivity.best_at_width(table, 0.3) is None
+    text = report.fov_window_section({False: table}, False, (0.2, 0.0))
+    assert "FOV does best at width 0.2 m, offset 0.1 m (median gain +14.3 %)" in text
+    assert "inside the paper's band at 1 of 3 windows" in text
+    assert "the main run's window (0.2 m wide, 0 m from the base) gives +100.0 %" in text
+    assert re.search(r"^\| plan\.pick_cycle = 0 \| 0\.4 \| 0\.1 \| 3\.0 \| 20\.0 % \|", text, re.M)

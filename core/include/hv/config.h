@@ -64,6 +64,11 @@ typedef struct hv_config {
     /* online mode: the camera's view along the row, relative to the vehicle's position */
     double camera_lead_m;   /* camera.lead: near edge of the view ahead of the vehicle (m) */
     double camera_window_m; /* camera.window: length of the view along the row (m, > 0) */
+    /* the FOV baseline (planner fov.h, docs/FRAMES.md): each arm's camera window */
+    double fov_width_m;  /* fov.width: window length along the row, also the vehicle's
+                            advance between FOV stops (m, > 0) */
+    double fov_offset_m; /* fov.offset: window centre from its arm's base along the row,
+                            outward (ahead of the left base, behind the right), m */
     /* online mode: a horizon's solve may take half the robot time committed ahead, within
      * [online.horizon_limit_min, online.horizon_limit_max] (s) */
     double online_limit_min_s, online_limit_max_s;

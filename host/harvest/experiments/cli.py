@@ -4,9 +4,9 @@ run       plan every (alpha, seed, method) with the planner CLI -> OUT/results.c
 cost-models
           plan the same instances in the other cost model -> OUT/pick_cycle_<0|1>/
           (the dual-arm / single-arm ratio and the gain over FOV in both)
-fov-width plan FOV again at each --fov-widths on the same instances, in each cost model
-          planned -> OUT/fov_width/, OUT/pick_cycle_<0|1>/fov_width/ (the MILP's gain
-          over FOV as a function of FOV's window width)
+fov-width plan FOV again at each --fov-widths x --fov-offsets on the same instances, in
+          each cost model planned -> OUT/fov_width/, OUT/pick_cycle_<0|1>/fov_width/ (the
+          MILP's gain over FOV as a function of where FOV's windows lie and how wide)
 plots     box plots (stops, throughput, runtime) and a top view of one plan
 analysis  the cost-G and coverage figures from cost tables made by costgen
 report    OUT/report.md: our numbers beside each claim of the paper
@@ -95,12 +95,25 @@ def build_parser():
         "--fov-width",
         type=float,
         default=None,
-        help="planner --fov-width in m (default: the planner's own)",
+        help="planner --fov-width in m (default: fov.width of the config)",
+    )
+    p.add_argument(
+        "--fov-offset",
+        type=float,
+        default=None,
+        help="planner --fov-offset in m (default: fov.offset of the config)",
     )
     p.add_argument(
         "--fov-widths",
         default=",".join(f"{w:g}" for w in sensitivity.DEFAULT_WIDTHS_M),
         help="fov-width step: FOV window widths in m, comma-separated (default: %(default)s)",
+    )
+    p.add_argument(
+        "--fov-offsets",
+        default=",".join(f"{o:g}" for o in sensitivity.DEFAULT_OFFSETS_M),
+        help="fov-width step: FOV window centres from the arm's base along the row, outward, "
+        "in m, comma-separated; a list starting with a minus sign needs '=' "
+        "(--fov-offsets=-0.1,0) (default: %(default)s)",
     )
     p.add_argument(
         "--jobs",
@@ -166,6 +179,7 @@ def _settings(args, need_planner):
         raise RunError("--time-limit must be > 0")
     try:
         sensitivity.parse_widths(args.fov_widths)
+        sensitivity.parse_offsets(args.fov_offsets)
     except ValueError as e:
         raise RunError(str(e)) from None
     planner = find(PLANNER, args.planner, args.build_dir) if need_planner else ""
@@ -181,6 +195,7 @@ def _settings(args, need_planner):
         distribution=args.distribution,
         time_limit_s=args.time_limit,
         fov_width_m=args.fov_width,
+        fov_offset_m=args.fov_offset,
         jobs=args.jobs,
         stops_beyond_ends=args.stops_beyond_ends,
         pick_cycle=args.pick_cycle,
@@ -196,6 +211,18 @@ def _rows(out):
     return rows
 
 
+def _main_window(out):
+    """(width, offset) in m of the main run's FOV windows: its options, else its config's."""
+    info = _run_info(out)
+    cfg = Config.load(info.get("config") or default_config_path())
+    width = info.get("fov_width_m")
+    offset = info.get("fov_offset_m")
+    return (
+        cfg.positive("fov.width") if width is None else width,
+        cfg.float("fov.offset") if offset is None else offset,
+    )
+
+
 def _pick_plan(out, rows):
     """The plan to draw: MILP at the alpha nearest 1, lowest seed (the balanced case)."""
     cands = [r for r in rows if r["method"] == "milp" and r["plan"] and r["status"] != "error"]
@@ -207,9 +234,9 @@ def _pick_plan(out, rows):
 
 
 def _width_tables(out):
-    """{pick_cycle: gain by FOV width} of each cost model planned and swept."""
+    """{pick_cycle: gain by FOV window} of each cost model planned and swept."""
     return {
-        pc: sensitivity.gain_by_width(
+        pc: sensitivity.gain_table(
             results_mod.read(os.path.join(d, "results.csv")), sensitivity.load(d)
         )
         for pc, d in cost_models.dirs(out).items()
@@ -221,7 +248,7 @@ def do_plots(args):
     rows = _rows(out)
     fig_dir = os.path.join(out, "figures")
     paths = box_plots.write_all(rows, fig_dir)
-    paths += sensitivity.figure(_width_tables(out), fig_dir, _run_info(out).get("fov_width_m"))
+    paths += sensitivity.figure(_width_tables(out), fig_dir, _main_window(out))
     r = _pick_plan(out, rows)
     if r is not None:
         # the plan's own fruit map and config, wherever they were when it was planned
@@ -305,9 +332,9 @@ def do_report(args, s):
         "boxplot_stops": "Number of stops by alpha and method" + costs,
         "boxplot_throughput": "Throughput by alpha and method" + costs,
         "boxplot_runtime": "Planner runtime by alpha and method" + costs,
-        sensitivity.FIGURE_STEM: "MILP throughput gain over FOV by FOV window width"
-        " (costs: per curve, plan.pick_cycle = 0 the paper's, "
-        "= 1 the robot's pick cycle)",
+        sensitivity.FIGURE_STEM: "Median MILP throughput gain over FOV (%) by FOV window "
+        "placement and width, the main run's window framed (costs: per panel, "
+        "plan.pick_cycle = 0 the paper's, = 1 the robot's pick cycle)",
         "plan_top_view": "Top view of one plan: fruits, stops, arms, busy and idle time" + costs,
         "cost_G_joint3": "Cost G with joint 3 unlimited and limited" + table_costs,
         "coverage_pick_modes": "Coverage per pick mode; single-sided coverage" + table_costs,
@@ -357,12 +384,7 @@ def do_report(args, s):
         if r["method"] == "milp" and r["plan"] and r["status"] != "error":
             for u in plan_file.load(os.path.join(out, r["plan"])).get("unreachable", []):
                 reasons[u.get("reason", "?")] = reasons.get(u.get("reason", "?"), 0) + 1
-    main_width = (
-        f"{info['fov_width_m']:g} m"
-        if info.get("fov_width_m") is not None
-        else "the planner's default width (harvest-plan --help)"
-    )
-    fov_width = report.fov_width_section(_width_tables(out), pick_cycle, main_width)
+    fov_width = report.fov_window_section(_width_tables(out), pick_cycle, _main_window(out))
     models = {pc: cost_models.ratios(rs) for pc, rs in cost_models.load(out).items()}
     path = report.write(
         os.path.join(out, "report.md"),
@@ -401,7 +423,10 @@ def main(argv):
         if args.step in ("fov-width", "all"):
             for ss in cost_models.planned(s):
                 ran = sensitivity.run_sweep(
-                    ss, sensitivity.parse_widths(args.fov_widths), retry_errors=args.retry_errors
+                    ss,
+                    sensitivity.parse_widths(args.fov_widths),
+                    sensitivity.parse_offsets(args.fov_offsets),
+                    retry_errors=args.retry_errors,
                 )
                 print(
                     f"experiments: {ran} FOV plan(s) computed now in "

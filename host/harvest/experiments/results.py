@@ -26,6 +26,7 @@ COLUMNS = KEY + (
     "idle_s",
     "fruits_planned",
     "fruits_unreachable",
+    "fov_moved",
     "time_limit_s",
     "wall_s",
     "plan",
@@ -45,7 +46,15 @@ FLOAT_COLUMNS = (
     "time_limit_s",
     "wall_s",
 )
-INT_COLUMNS = ("seed", "n_left", "n_right", "stops", "fruits_planned", "fruits_unreachable")
+INT_COLUMNS = (
+    "seed",
+    "n_left",
+    "n_right",
+    "stops",
+    "fruits_planned",
+    "fruits_unreachable",
+    "fov_moved",
+)
 
 
 class ResultsError(ValueError):

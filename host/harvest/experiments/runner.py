@@ -18,6 +18,7 @@ import datetime
 import hashlib
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -36,6 +37,8 @@ from .results import ResultsFile, row_key
 from .results import read as read_results
 
 METHODS = ("fov", "serial", "milp")
+# harvest-plan --method fov's progress line: fruits in view out of reach of their stop
+FOV_MOVED_RE = re.compile(r"(\d+) fruits moved")
 PAPER_ALPHAS = (0.25, 0.4, 1.0, 2.5, 4.0)
 PAPER_SEEDS = tuple(range(10))
 QUICK_ALPHAS = (0.25, 1.0)
@@ -77,7 +80,8 @@ class Settings:
     distribution: str = "uniform"
     n_left: int = generate.PAPER_LEFT_FRUITS
     time_limit_s: float = None  # None: the planner's own default
-    fov_width_m: float = None  # None: the planner's own default
+    fov_width_m: float = None  # None: the config's fov.width
+    fov_offset_m: float = None  # None: the config's fov.offset
     jobs: int = 1
     stops_beyond_ends: bool = False  # False: the paper's candidate stops, over the row only
     pick_cycle: bool = False  # False: the paper's costs (G one way, tau)
@@ -102,6 +106,7 @@ def _manifest(s):
         "config_sha256": _sha256(s.config),
         "time_limit_s": s.time_limit_s,
         "fov_width_m": s.fov_width_m,
+        "fov_offset_m": s.fov_offset_m,
         "n_left": s.n_left,
         "distribution": s.distribution,
         "stops_beyond_ends": s.stops_beyond_ends,
@@ -318,12 +323,16 @@ def run_one(s, children, planner_cfg, tables, inst, map_path, method):
         method,
         "--out",
         tmp,
-        "--quiet",
     ]
+    # FOV's progress line is its only report of the fruits moved to another stop
+    if method != "fov":
+        cmd.append("--quiet")
     if s.time_limit_s is not None:
         cmd += ["--time-limit", f"{s.time_limit_s:g}"]
     if s.fov_width_m is not None:
         cmd += ["--fov-width", f"{s.fov_width_m:g}"]
+    if s.fov_offset_m is not None:
+        cmd += ["--fov-offset", f"{s.fov_offset_m:g}"]
     n_right = generate.right_count(inst.n_left, inst.alpha)
     row = {
         "distribution": inst.distribution,
@@ -344,6 +353,7 @@ def run_one(s, children, planner_cfg, tables, inst, map_path, method):
         "idle_s": None,
         "fruits_planned": None,
         "fruits_unreachable": None,
+        "fov_moved": None,
         "time_limit_s": s.time_limit_s,
         "wall_s": None,
         "plan": "",
@@ -383,6 +393,13 @@ def run_one(s, children, planner_cfg, tables, inst, map_path, method):
     os.replace(tmp, plan_path)
     row.update(summary)
     row["plan"] = plan_rel
+    if method == "fov":
+        m = FOV_MOVED_RE.search(err or "")
+        if m is None:
+            row["error"] = "harvest-plan fov: no 'fruits moved' count on stderr"
+            row["status"] = "error"
+            return row
+        row["fov_moved"] = int(m.group(1))
     return row
 
 

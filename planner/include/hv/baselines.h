@@ -1,16 +1,8 @@
 /* The paper's baselines (DESIGN §1, §5; paper §IV.B), on the same instance as the MILP, so
  * the plans compare on equal terms.
  *
- * FOV ("non-optimised"): the camera sees a window of fov_width_m along the row, centred on
- * the vehicle. The windows tile the row from the first reachable fruit: window k covers
- * y in [y0 + k w, y0 + (k+1) w), y0 = the smallest reachable fruit y; its stop is the
- * candidate stop nearest to the window centre y0 + (k + 1/2) w. At each window stop both
- * arms pick every fruit of their side in view that the stop reaches; the vehicle then
- * advances by w. A window with nothing in view is driven through (no stop, no tau).
- * A fruit in view that its window's stop cannot reach is not dropped: it is picked at the
- * nearest (in y; later on a tie) window stop that reaches it, and when no window stop
- * does, at an extra stop: the candidate stop nearest to the fruit that reaches it
- * (cheaper on a tie). The counts of both cases are reported.
+ * FOV ("non-optimised"): one camera window per arm inside that arm's reach; the vehicle
+ * advances exactly the window's width between stops (fov.h has the details).
  *
  * Serial ("optimised single arm"): one arm; the left side is harvested in a first pass
  * along the row and the right side in a second, each side planned optimally on its own:
