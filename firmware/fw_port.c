@@ -71,11 +71,11 @@ static hv_status_t fw_recv(void *ctx, hv_can_frame_t *f)
         if (r == 1)
             return HV_CAN_ERR_TIMEOUT;
         if (r == HV_ERR_FW_UART_OVERRUN) {
-            /* the line under way lost a byte: drop it whole, never act on half a line */
+            /* the line under way lost a byte: drop it whole up to its CR, never act on what
+             * is left of it; b came after the loss (fw_board.h) and may be that CR */
             P->overruns++;
             hv_fw_port_report_error(r);
-            hv_slcan_reset(&P->rx);
-            continue;
+            hv_slcan_lost(&P->rx);
         }
         r = hv_slcan_feed(&P->rx, b);
         if (r == 1 && on_line(P, f))

@@ -10,14 +10,17 @@ static const char hex_digit[] = "0123456789ABCDEF";
 int hv_slcan_feed(hv_slcan_rx_t *rx, uint8_t b)
 {
     if (b == '\r') {
-        int long_line = rx->too_long;
+        int long_line = rx->too_long, lost = rx->lost;
+        if (lost)
+            rx->len = 0; /* nothing of a damaged line is shown */
         rx->line[rx->len] = '\0';
         rx->done = rx->len;
         rx->len = 0;
         rx->too_long = 0;
-        return long_line ? HV_ERR_SLCAN_LINE_LONG : 1;
+        rx->lost = 0;
+        return lost ? 0 : long_line ? HV_ERR_SLCAN_LINE_LONG : 1;
     }
-    if (b == '\a' || b == '\n' || rx->too_long)
+    if (b == '\a' || b == '\n' || rx->too_long || rx->lost)
         return 0;
     if (rx->len >= HV_SLCAN_LINE_MAX) {
         rx->too_long = 1;
@@ -32,7 +35,14 @@ void hv_slcan_reset(hv_slcan_rx_t *rx)
     rx->len = 0;
     rx->done = 0;
     rx->too_long = 0;
+    rx->lost = 0;
     rx->line[0] = '\0';
+}
+
+void hv_slcan_lost(hv_slcan_rx_t *rx)
+{
+    rx->len = 0;
+    rx->lost = 1;
 }
 
 static int hex_value(char c)

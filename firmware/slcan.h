@@ -28,6 +28,7 @@ typedef struct hv_slcan_rx {
     unsigned len;                     /* bytes of the line under way */
     unsigned done;                    /* length of the line completed by the last CR */
     int too_long; /* the line outgrew line[]: its bytes are dropped up to the CR */
+    int lost;     /* a byte of the line was lost: its bytes are dropped up to the CR */
 } hv_slcan_rx_t;
 
 typedef enum hv_slcan_cmd {
@@ -43,12 +44,18 @@ typedef enum hv_slcan_cmd {
 } hv_slcan_cmd_t;
 
 /* Take one byte. Returns 1 when a line is complete (the CR seen): rx->line, rx->done
- * bytes, valid until the next byte is fed; 0 while it is not, HV_ERR_SLCAN_LINE_LONG when the CR ends a line that outgrew the buffer (the
- * line is dropped). A BELL or LF is ignored (not part of any command). */
+ * bytes, valid until the next byte is fed; 0 while it is not (or the CR ended a line that
+ * lost a byte: hv_slcan_lost), HV_ERR_SLCAN_LINE_LONG when the CR ends a line that outgrew
+ * the buffer (the line is dropped). A BELL or LF is ignored (not part of any command). */
 int hv_slcan_feed(hv_slcan_rx_t *rx, uint8_t b);
 
-/* Forget the line under way (after a UART overrun lost part of it). */
+/* Forget the line under way: the state of a fresh receiver. */
 void hv_slcan_reset(hv_slcan_rx_t *rx);
+
+/* A byte of the line under way was lost (a UART overrun): the line is dropped up to its CR,
+ * which then returns 0, so nothing of it is ever taken for a command ("C" would close the
+ * channel). Feed the bytes after the loss as they come. */
+void hv_slcan_lost(hv_slcan_rx_t *rx);
 
 /* Parse a complete line (without its CR). HV_ERR_SLCAN_HEX for a non-hex digit in an id,
  * DLC or data, HV_ERR_SLCAN_LENGTH for DLC > 8 or a data field that is not 2 x DLC

@@ -2,7 +2,11 @@
  * ExecutorPlanBegin / ExecutorPlanData frames in any order, lengths and CRCs, around the
  * image of a real plan (fuzz/data/plan.json, prepared, with the default parameters).
  *
- * Input: operations, each an opcode byte and its arguments; opcode & 7:
+ * Built with the firmware's tables (HV_FW_MAX_STOPS, HV_FW_MAX_PICKS) and its single
+ * precision, so capacity and number checks are the firmware's.
+ *
+ * Input: operations, each an opcode byte and its arguments (until FRAMES_MAX frames were
+ * sent); opcode & 7:
  *   0 raw frame   kind (bits 0-1: Begin, Data, Status, else id from the next 2 bytes;
  *                 bits 2-4: flags EXT, RTR, ERR), dlc (1 byte mod 9), data
  *   1 Begin       1 byte: bit 0 the image's size, else 2 bytes of total; bit 1 its CRC,
@@ -34,7 +38,10 @@
 #include "hv/cost_table.h" /* hv_crc32 */
 #include "hv/exec_status.h"
 
-#define IMAGE_MAX 4096u /* the image of fuzz/data/plan.json is ~2 KB */
+#define IMAGE_MAX  4096u /* the image of fuzz/data/plan.json: 1984 bytes */
+/* frames per input: 3 whole uploads of that image (331 frames each); beyond, an
+ * input only repeats what it did */
+#define FRAMES_MAX 1024u
 
 typedef struct upload_run {
     hv_fw_upload_t u;
@@ -42,7 +49,8 @@ typedef struct upload_run {
     hv_exec_params_t prm;
     hv_exec_sm_t sm;
     hv_can_frame_t last;
-    int begun; /* a Begin was taken */
+    int begun;       /* a Begin was taken */
+    unsigned frames; /* frames of this input so far */
     uint8_t running_image[IMAGE_MAX];
     size_t running_len;
 } upload_run_t;
@@ -110,6 +118,7 @@ static void frame(upload_run_t *U, const hv_can_frame_t *f)
     static hv_fw_upload_t before; /* large: off the fuzzer's stack */
     before = U->u;
     U->last = *f;
+    U->frames++;
     int answer = -1;
     int taken = hv_fw_upload_frame(&U->u, f, &U->plan, &U->prm, &answer);
     const hv_fw_upload_t *u = &U->u;
@@ -245,7 +254,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     U.u.state = HV_UPLOAD_IDLE;
     int op;
     unsigned ops = 0;
-    while ((op = hv_fuzz_next(&r)) >= 0 && ops++ < 4096) {
+    while ((op = hv_fuzz_next(&r)) >= 0 && ops++ < 4096 && U.frames < FRAMES_MAX) {
         switch (op & 7) {
         case 0: raw(&U, &r); break;
         case 1: {

@@ -1,15 +1,16 @@
 /* Fuzz target: the firmware's SLCAN codec (firmware/slcan.c), the serial line a host's
  * slcan driver or adapter writes to it.
  *
- * Input: the bytes of the serial stream, fed one by one (hv_slcan_feed); every completed
- * line is parsed (hv_slcan_parse), and a frame that parses is formatted again
- * (hv_slcan_format). The same bytes, 14 at a time, are also taken as frames to send
+ * Input: the bytes of the serial stream, fed one by one (hv_slcan_feed; a byte 0xFF stands
+ * for an overrun there instead, hv_slcan_lost); every completed line is parsed
+ * (hv_slcan_parse), and a frame that parses is formatted again (hv_slcan_format). The same bytes, 14 at a time, are also taken as frames to send
  * (id: 4 bytes, dlc, flags, 8 data bytes) and formatted.
  *
  * Properties: no crash or undefined behaviour; the line buffer never overflows; feed returns
- * 0, 1 or HV_ERR_SLCAN_LINE_LONG, parse HV_OK or a named SLCAN code; a line that parses to a
- * frame formats to the same line (hex digits in either case) and that line parses to the
- * same frame; a frame formats to 0 bytes or to a line that parses to the same frame. */
+ * 0, 1 or HV_ERR_SLCAN_LINE_LONG, and nothing but 0 up to the CR of a line that lost a
+ * byte; parse HV_OK or a named SLCAN code; a line that parses to a frame formats to the
+ * same line (hex digits in either case) and that line parses to the same frame; a frame
+ * formats to 0 bytes or to a line that parses to the same frame. */
 #include <string.h>
 #include <strings.h>
 
@@ -82,8 +83,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     hv_slcan_rx_t rx;
     hv_slcan_reset(&rx);
+    int lost = 0; /* a byte 0xFF stands for a UART overrun: hv_slcan_lost */
     for (size_t i = 0; i < size; i++) {
+        if (data[i] == 0xFF) {
+            hv_slcan_lost(&rx);
+            lost = 1;
+            continue;
+        }
         int r = hv_slcan_feed(&rx, data[i]);
+        if (lost && r != 0)
+            hv_fuzz_fail("a line that lost a byte gave %d", r);
+        lost &= data[i] != '\r';
         if (rx.len > HV_SLCAN_LINE_MAX || rx.done > HV_SLCAN_LINE_MAX)
             hv_fuzz_fail("line buffer at %u/%u of %u", rx.len, rx.done, HV_SLCAN_LINE_MAX);
         if (r == 1)

@@ -18,7 +18,8 @@ corpus="$root/fuzz/corpus"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-for t in config cost_table fruit_map plan_json exec_plan journal exec_step udp_wire; do
+for t in config cost_table fruit_map plan_json exec_plan journal exec_step udp_wire exec_online \
+  plan_upload slcan; do
   mkdir -p "$corpus/$t"
   rm -f "$corpus/$t"/seed-*
 done
@@ -72,10 +73,56 @@ put("estop-latched", [0, 2, 0, 3, 0, 2, 1, 0, 0, 2, 2, 0, 0, 3, 0, 5, 4, 0, 0x10
 put("estop-cleared", [1, 2, 0, 3, 0, 2, 1, 0, 0, 2, 2, 0, 0, 3, 0, 5, 4, 0, 0x10, 0,
                       3, 1, 1, 4, 0, 0, 0, 3, 2, 1, 4, 0, 0, 0, 4, 0, 0, 0, 2, 0,
                       4, 1, 0, 0, 2, 0] + [5] * 40)
+# the other plan shapes (flag bits 2-3): one stop, one stop per pick, the right arm idle
+put("one-stop", [4] + [5] * 20)
+put("many-stops", [8] + [5] * 120)
+put("one-arm", [12] + [5] * 40)
+put("many-stops-stopped", [8] + [5] * 20 + [0x16] + [5] * 10)
 # the left arm faults (joint bit 0) part way, then behaves
 put("arm-fault", [0] + [5] * 5 + [3, 1, 4, 4, 0, 1, 0] + [5] * 30)
 # a cut fails, then the end effector reports faulted
 put("ee-fail", [0] + [5] * 4 + [4, 0, 3, 1, 2, 0] + [5] * 3 + [4, 1, 4, 1, 2, 0] + [5] * 30)
+PY
+
+# inputs made by hand for the decoders of the online plan, the plan upload and SLCAN (the
+# opcodes of fuzz_exec_online.c, fuzz_plan_upload.c; a serial stream for fuzz_slcan.c)
+"$py" - "$corpus" <<'PY'
+import sys, os
+corpus = sys.argv[1]
+def put(t, name, data):
+    with open(os.path.join(corpus, t, "seed-" + name), "wb") as f:
+        f.write(bytes(data))
+# online: the planner's stops one message at a time (op 8: n, event byte), repeated, final
+good = [5] * 6
+put("exec_online", "grows", [0] + good + [8, 1, 40] + [5] * 25 + [8, 2, 70] + [5] * 25
+    + [8, 3, 101] + [5] * 40)
+put("exec_online", "repeats", [0] + good + [8, 2, 0, 8, 2, 0, 8, 1, 0] + [5] * 30 + [8, 3, 1]
+    + [5] * 30)
+# a stop of the input's making behind, then beyond, a fruit twice, then the source contradicted
+put("exec_online", "contradicts", [0] + good + [8, 1, 0] + [9, 10, 20, 1, 0, 0, 0]
+    + [9, 250, 150, 2, 1, 129, 1, 2, 0] + [5] * 20 + [8, 3, 1] + [5] * 40)
+# commit lines beyond the course end and NaN, a final of 2 (refused), the bus's stop requests
+put("exec_online", "events", [0] + good + [10, 0, 200, 10, 0, 253, 10, 2, 60, 10, 1, 60]
+    + [5] * 10 + [0x16, 0x16, 0x26] + [5] * 10)
+put("exec_online", "waits-then-stops", [0] + good + [8, 1, 30] + [5] * 30 + [6] + [5] * 10)
+# the upload: whole and running, a bad CRC, a flipped bit, a lost frame, a second Begin,
+# a wrong total, raw frames
+put("plan_upload", "accepted-running", [1, 3, 4, 5, 2, 0, 0, 1, 3])
+put("plan_upload", "bad-crc", [1, 1, 4])
+put("plan_upload", "bit-flip", [1, 3, 3, 0, 3, 0, 3, 0x85, 4])
+put("plan_upload", "order", [1, 3, 3, 0, 2, 5, 0, 4])
+put("plan_upload", "truncated", [1, 3, 3, 0, 3, 0, 1, 3, 4, 7, 5])
+put("plan_upload", "length", [1, 0, 0x10, 0, 4, 0, 0, 3, 1, 2])
+put("plan_upload", "raw", [0, 0, 8] + [0] * 8 + [0, 1, 8] + [0] * 8 + [0, 3, 0x23, 1, 2, 1, 2, 0,
+                                                                       4, 5])
+# SLCAN: every command, frames of each kind, damage, an overrun (0xFF), frames to send
+put("slcan", "stream", b"O\rS6\rs031C\rV\rN\rF\rZ1\rZ0\r\r"
+    b"t1230\rt7FF8DEADBEEF00112233\rt02a2beef\rT1ABCDEF02AABB\rr7FF3\rR000000010\r"
+    b"t12\rt1239\rt12G1\rT2000000000\rQ\rS9\r" + b"t" + b"1" * 40 + b"\rC\r\a\n")
+put("slcan", "overrun", b"O\rt0212AB\xffCC\rt0221FF\r\xff\r")
+put("slcan", "frames", [0x23, 0x01, 0, 0, 3, 0, 1, 2, 3, 0, 0, 0, 0, 0,
+                        0xEF, 0xCD, 0xAB, 0x01, 8, 1] + list(range(8))
+    + [0x7F, 0x07, 0, 0, 2, 2] + [0] * 8)
 PY
 
 # datagrams as python-can's udp_multicast packs them: the DBC's frames and the kinds of
