@@ -1,8 +1,10 @@
 /* Without libFuzzer (a gcc build): run a fuzz target once on every file of the corpus
- * folders (or files) given, so the corpora and the reproducers of fixed crashes are
- * regression tests in every build. Usage: fuzz_<target> CORPUS_DIR|FILE ... */
+ * folders (or files) given, so the corpora (seeds, crafted bad inputs, the reproducers of
+ * fixed crashes) are regression tests in every build; in the test build (build-test/,
+ * ASan + UBSan, halt_on_error) a sanitizer report fails the replay. Usage: fuzz_<target> CORPUS_DIR|FILE ... */
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,8 +22,18 @@ static int run_file(const char *path)
         fprintf(stderr, "replay: %s\n", err);
         return -1;
     }
-    LLVMFuzzerTestOneInput(data, len);
+    /* an exact-size copy: the reader's buffer ends in a NUL the target must not lean on,
+     * and ASan sees a read one byte past the input only when nothing is there */
+    uint8_t *exact = malloc(len ? len : 1);
+    if (!exact) {
+        free(data);
+        fprintf(stderr, "replay: %s: out of memory\n", path);
+        return -1;
+    }
+    memcpy(exact, data, len);
     free(data);
+    LLVMFuzzerTestOneInput(exact, len);
+    free(exact);
     return 1;
 }
 
