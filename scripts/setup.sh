@@ -25,6 +25,7 @@ apt_pkgs=(
   qemu-system-x86 busybox-static cpio kmod       # the vcan test-bed guest (DESIGN §6)
   gcc-arm-none-eabi libnewlib-arm-none-eabi      # firmware/: the Cortex-M4F cross build
   qemu-system-arm                                # firmware/: harvest-fw.elf on mps2-an386
+  dpkg-dev systemd                               # the .deb: cpack's dpkg-shlibdeps; systemd-analyze verify of its units
 )
 missing=()
 for p in "${apt_pkgs[@]}"; do
