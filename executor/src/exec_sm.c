@@ -197,11 +197,11 @@ static void enter_safe(ctx_t *c, hv_exec_safe_reason_t why, int node)
 }
 
 static void send_command(ctx_t *c, int node, int command);
-
-/* The controlled stop's end: every node disabled (motion off, nothing latched). */
 static hv_exec_action_t *journal(ctx_t *c, hv_exec_journal_kind_t kind, int pick, int stop,
                                  int attempt, int outcome, int reason);
 
+/* The controlled stop's end: journalled with its reason, then every node disabled (motion
+ * off, nothing latched). */
 static void stopped(ctx_t *c)
 {
     hv_exec_sm_t *sm = c->sm;
