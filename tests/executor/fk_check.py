@@ -115,6 +115,13 @@ class Judge:
             )
             self.yaw_tol[s] = sum(h[1:]) + NUMERIC_SLACK
 
+    @classmethod
+    def for_plan(cls, plan):
+        """The judge of a plan's own config (inputs.config: a scenario's config may differ
+        from the repository's), relative paths from the source tree."""
+        path = plan.get("inputs", {}).get("config") or CONFIG
+        return cls(path if os.path.isabs(path) else os.path.join(SOURCE, path))
+
     def identify(self, plan, picks):
         """Each pick event as (side, fruit id or None, the nearest planned fruit's id, its
         position error m, heading error rad, stop error m): a cut is the planned fruit when
@@ -168,7 +175,7 @@ def assert_cuts_on_plan(plan, picks, picked=None, judge=None):
     """Every cut in `picks` (the record's 'pick' events, in order) is a planned fruit of its
     arm at its stop, none is cut twice, each arm cuts in the plan's order; `picked`, when
     given (a set of (side, id)), is exactly the set of fruits cut. Returns the cuts."""
-    cuts = (judge or Judge()).cut_fruits(plan, picks)
+    cuts = (judge or Judge.for_plan(plan)).cut_fruits(plan, picks)
     twice = sorted({c for c in cuts if cuts.count(c) > 1})
     assert not twice, f"cut more than once: {twice}"
     order = plan_order(plan)
