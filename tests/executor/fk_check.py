@@ -115,6 +115,13 @@ class Judge:
             )
             self.yaw_tol[s] = sum(h[1:]) + NUMERIC_SLACK
 
+    @classmethod
+    def for_plan(cls, plan):
+        """The judge of a plan's own config (inputs.config: a scenario's config may differ
+        from the repository's), relative paths from the source tree."""
+        path = plan.get("inputs", {}).get("config") or CONFIG
+        return cls(path if os.path.isabs(path) else os.path.join(SOURCE, path))
+
     def identify(self, plan, picks):
         """Each pick event as (side, fruit id or None, the nearest planned fruit's id, its
         position error m, heading error rad, stop error m): a cut is the planned fruit when
@@ -122,28 +129,43 @@ class Judge:
         fruits = {"L": [], "R": []}
         for st in plan["stops"]:
             for side, key in (("L", "left"), ("R", "right")):
-                fruits[side] += [(k, st["y_m"]) for k in st[key]]
+                fruits[side] += [
+                    (k["id"], (k["x"], k["y"], k["z"]), k["yaw"], st["y_m"]) for k in st[key]
+                ]
+        return self._identify(fruits, picks)
+
+    def identify_in_map(self, fruit_map, picks):
+        """identify() against a fruit map's fruits (harvest.scenario.fruit_map.Fruit), from
+        whichever stop (stop error 0): for a row whose plan is not at hand."""
+        fruits = {"L": [], "R": []}
+        for f in fruit_map:
+            fruits[f.side].append((f.id, (f.x, f.y, f.z), f.yaw, None))
+        return self._identify(fruits, picks)
+
+    def _identify(self, fruits, picks):
         out = []
         for e in picks:
             side = SIDE_OF_NODE[e["node"]]
             x, y, z, yaw = self.arms[side].pose(e["positions"], e["vehicle_position"])
             best = None
-            for k, stop_y in fruits[side]:
-                d = math.dist((x, y, z), (k["x"], k["y"], k["z"]))
+            for fid, pos, fyaw, stop_y in fruits[side]:
+                d = math.dist((x, y, z), pos)
                 if best is None or d < best[1]:
-                    best = (k, d, abs(_wrap(yaw - k["yaw"])), abs(e["vehicle_position"] - stop_y))
+                    dstop = 0.0 if stop_y is None else abs(e["vehicle_position"] - stop_y)
+                    best = (fid, d, abs(_wrap(yaw - fyaw)), dstop)
             if best is None:
                 out.append((side, None, None, math.inf, math.inf, math.inf))
                 continue
-            k, d, dyaw, dstop = best
+            fid, d, dyaw, dstop = best
             ok = d <= self.pos_tol[side] and dyaw <= self.yaw_tol[side] and dstop <= self.stop_tol
-            out.append((side, k["id"] if ok else None, k["id"], d, dyaw, dstop))
+            out.append((side, fid if ok else None, fid, d, dyaw, dstop))
         return out
 
-    def cut_fruits(self, plan, picks):
+    def cut_fruits(self, plan, picks, found=None):
         """(side, id) of each cut in record order; AssertionError naming every stray (a cut
-        that is no planned fruit of its arm at its stop) with the nearest fruit."""
-        found = self.identify(plan, picks)
+        that is no planned fruit of its arm at its stop) with the nearest fruit. `found`:
+        identify()'s or identify_in_map()'s answer, when already at hand."""
+        found = self.identify(plan, picks) if found is None else found
         strays = [
             f"{side} cut {i}: nearest fruit {near} at {d * 1000:.3f} mm (<= "
             f"{self.pos_tol[side] * 1000:.3f}), heading off {dyaw:.2e} rad (<= "
@@ -168,7 +190,7 @@ def assert_cuts_on_plan(plan, picks, picked=None, judge=None):
     """Every cut in `picks` (the record's 'pick' events, in order) is a planned fruit of its
     arm at its stop, none is cut twice, each arm cuts in the plan's order; `picked`, when
     given (a set of (side, id)), is exactly the set of fruits cut. Returns the cuts."""
-    cuts = (judge or Judge()).cut_fruits(plan, picks)
+    cuts = (judge or Judge.for_plan(plan)).cut_fruits(plan, picks)
     twice = sorted({c for c in cuts if cuts.count(c) > 1})
     assert not twice, f"cut more than once: {twice}"
     order = plan_order(plan)

@@ -38,7 +38,11 @@ def count(plan, sim):
     recorded joints as the planned fruit there (a cut at no planned fruit fails), and
     those released into the container by the arm holding them."""
     events = sim.events()
-    ids = iter(H.fk_check.Judge().cut_fruits(plan, [e for e in events if e["event"] == "pick"]))
+    ids = iter(
+        H.fk_check.Judge.for_plan(plan).cut_fruits(
+            plan, [e for e in events if e["event"] == "pick"]
+        )
+    )
     cuts, released, held = collections.Counter(), set(), {}
     for e in events:
         if e["event"] == "pick":

@@ -97,7 +97,7 @@ class Row:
         with open(plan_path) as f:
             self.plan = json.load(f)
         p = self.plan["params"]
-        self.judge = H.fk_check.Judge()
+        self.judge = H.fk_check.Judge.for_plan(self.plan)
         self.vehicle_start = p["row_start_m"] - p["stop_margin_m"]
         self.journal = os.path.join(self.dir, "run.journal")
         self.sims, self.runs, self.notes = [], [], []
