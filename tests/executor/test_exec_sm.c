@@ -386,12 +386,24 @@ static void test_homing_fails(void **state)
     free(fx);
 }
 
-static void stop_request(fx_t *fx)
+/* from_bus: 0 a signal (SIGTERM), 1 the bus's ExecutorStopRequest */
+static void stop_request(fx_t *fx, int from_bus)
 {
     hv_exec_event_t ev;
     memset(&ev, 0, sizeof ev);
     ev.kind = HV_EV_STOP_REQUEST;
+    ev.u.stop.from_bus = from_bus;
     fx_event(fx, &ev);
+}
+
+/* A slower row (0.3 s per motion), started and run for `seconds`, so work is under way. */
+static fx_t *running_fx(int stops, int per_arm, double seconds)
+{
+    fx_t *fx = new_fx(stops, per_arm);
+    fx->motion_ns = 300000000ull;
+    fx_start(fx, NULL);
+    fx_run(fx, seconds);
+    return fx;
 }
 
 /* SIGTERM mid-row: the picks under way finish, every node is disabled, nothing is latched,
@@ -399,13 +411,10 @@ static void stop_request(fx_t *fx)
 static void test_operator_stop_is_controlled_and_resumable(void **state)
 {
     (void)state;
-    fx_t *fx = new_fx(3, 2);
-    fx->motion_ns = 300000000ull; /* a slower row, so it is still running */
-    fx_start(fx, NULL);
-    fx_run(fx, 1.5);
+    fx_t *fx = running_fx(3, 2, 1.5);
     assert_int_equal(fx->sm.phase, HV_PH_HARVEST);
     int from = fx->nlog;
-    stop_request(fx);
+    stop_request(fx, 0);
     assert_false(hv_exec_finished(&fx->sm)); /* a pick was under way */
     fx_run(fx, 30.0);
     assert_int_equal(fx->sm.phase, HV_PH_STOPPED);
@@ -448,20 +457,16 @@ static void test_operator_stop_is_controlled_and_resumable(void **state)
 static void test_a_repeated_bus_stop_request_is_one_request(void **state)
 {
     (void)state;
-    fx_t *fx = new_fx(2, 2);
-    fx->motion_ns = 300000000ull;
-    fx_start(fx, NULL);
-    fx_run(fx, 1.5);
-    hv_exec_event_t ev;
-    memset(&ev, 0, sizeof ev);
-    ev.kind = HV_EV_STOP_REQUEST;
-    ev.u.stop.from_bus = 1;
+    fx_t *fx = running_fx(2, 2, 1.5);
     for (int i = 0; i < 5; i++)
-        fx_event(fx, &ev);
+        stop_request(fx, 1);
     assert_false(hv_exec_finished(&fx->sm));
     fx_run(fx, 30.0);
     assert_int_equal(fx->sm.phase, HV_PH_STOPPED);
     assert_int_equal(fx_count(fx, HV_ACT_ESTOP, -1), 0);
+    hv_exec_event_t ev;
+    memset(&ev, 0, sizeof ev);
+    ev.kind = HV_EV_STOP_REQUEST;
     ev.u.stop.from_bus = 2; /* neither bus nor signal: refused */
     hv_exec_actions_t out = {0};
     assert_int_equal(hv_exec_step(&fx->sm, &ev, fx->now_ns, &out), HV_ERR_EXEC_EVENT);
@@ -475,20 +480,17 @@ static void test_second_stop_and_journal_failure_are_estops(void **state)
     (void)state;
     fx_t *fx = new_fx(1, 2);
     fx_start(fx, NULL);
-    stop_request(fx); /* the first step: no node seen yet */
+    stop_request(fx, 0); /* the first step: no node seen yet */
     assert_int_equal(fx->sm.phase, HV_PH_STOPPED);
     assert_int_equal(fx_count(fx, HV_ACT_ESTOP, -1), 0);
     free(fx);
     for (int which = 0; which < 2; which++) {
-        fx = new_fx(1, 2);
-        fx->motion_ns = 300000000ull;
-        fx_start(fx, NULL);
-        fx_run(fx, 1.0);
+        fx = running_fx(1, 2, 1.0);
         hv_exec_event_t ev;
         memset(&ev, 0, sizeof ev);
         ev.kind = which ? HV_EV_JOURNAL_FAILED : HV_EV_STOP_REQUEST;
         if (!which) {
-            stop_request(fx);
+            stop_request(fx, 0);
             assert_false(hv_exec_finished(&fx->sm));
         }
         hv_exec_actions_t out = {0};
