@@ -147,3 +147,18 @@ def uart_phases(rig):
         for ln in fw_qemu.uart_lines(rig.qemu.uart_log)
         if ln.startswith("harvest-fw: status")
     ]
+
+
+def diagnosis(rig):
+    """What a failed rig test prints: the firmware's last status line (its phase and, in
+    SAFE, the reason and node), the simulator's last log lines, and the rig's priority."""
+    status = fw_qemu.last_status(rig.qemu.uart_log)
+    sim_tail = []
+    if rig.sim is not None:
+        with open(rig.sim.log.name, errors="replace") as f:
+            sim_tail = f.read().splitlines()[-8:]
+    return (
+        f"firmware status {status}; rig nice {os.getpriority(os.PRIO_PROCESS, 0)}; "
+        f"cpus {len(os.sched_getaffinity(0))}; load {os.getloadavg()}; "
+        f"simulator log tail {sim_tail}"
+    )

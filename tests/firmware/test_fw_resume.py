@@ -62,7 +62,7 @@ def test_sigkill_mid_row_resumes_from_the_journal(tmp_path, rig_factory):
     assert upload(image)[0] == "RUNNING"
     # the power cut: just after the simulator's second cut, the fruit still in the gripper
     second_cut = fw_hil.wait_until(lambda: len(H.sim_picks(rig.sim)) >= 2, 240, period=0.05)
-    assert second_cut, uart_phases(rig)
+    assert second_cut, fw_hil.diagnosis(rig)
     rig.kill_firmware()
     cuts_before, _ = count(plan, rig.sim)
     journal_bytes = os.path.getsize(rig.qemu.journal)
@@ -71,7 +71,7 @@ def test_sigkill_mid_row_resumes_from_the_journal(tmp_path, rig_factory):
     time.sleep(H.HEARTBEAT_TIMEOUT_S + 1.0)
     rig.start_firmware()
     assert upload(image)[0] == "RUNNING"
-    assert fw_hil.wait_until(lambda: H.row_end_reached(plan, rig.sim), 300), uart_phases(rig)[-3:]
+    assert fw_hil.wait_until(lambda: H.row_end_reached(plan, rig.sim), 300), fw_hil.diagnosis(rig)
     assert fw_hil.wait_until(lambda: "row_done" in uart_phases(rig), 10)
     # the second boot replayed the journal the first one left: every record it held
     first, second = journal_lines(rig)[-2:]

@@ -29,7 +29,7 @@ def test_short_row_picks_every_planned_fruit(tmp_path, rig_factory):
     state = upload(image)
     assert state[0] == "RUNNING" and state[1] == len(image)
     assert fw_hil.wait_until(lambda: H.row_end_reached(plan, rig.sim), 240), (
-        f"the vehicle never reached the row end; firmware phases {uart_phases(rig)[-3:]}"
+        f"the vehicle never reached the row end; {fw_hil.diagnosis(rig)}"
     )
     assert fw_hil.wait_until(lambda: "row_done" in uart_phases(rig), 10)
     # the simulator's own record: every planned fruit cut once, none twice

@@ -198,10 +198,12 @@ class Bridge:
 
 
 def uart_lines(path):
-    """The firmware's text lines in a UART log (SLCAN frames and replies left out)."""
+    """The firmware's text lines in a UART log (SLCAN frames and replies left out). A line
+    still being written (no carriage return yet) is left out: the firmware writes the log
+    while it is read."""
     with open(path, "rb") as f:
         data = f.read().decode("ascii", "replace")
-    return [ln.lstrip("\a") for ln in data.split("\r") if "harvest-fw:" in ln]
+    return [ln.lstrip("\a") for ln in data.split("\r")[:-1] if "harvest-fw:" in ln]
 
 
 def status_fields(line):
