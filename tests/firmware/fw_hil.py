@@ -151,14 +151,25 @@ def uart_phases(rig):
 
 def diagnosis(rig):
     """What a failed rig test prints: the firmware's last status line (its phase and, in
-    SAFE, the reason and node), the simulator's last log lines, and the rig's priority."""
+    SAFE, the reason and node), the simulator's last refusals, repeats and faults from its
+    record, its last log lines, and the rig's priority and load."""
     status = fw_qemu.last_status(rig.qemu.uart_log)
     sim_tail = []
     if rig.sim is not None:
         with open(rig.sim.log.name, errors="replace") as f:
             sim_tail = f.read().splitlines()[-8:]
+    trouble = []
+    if rig.sim is not None and os.path.exists(rig.sim.record):
+        trouble = [
+            e
+            for e in rig.sim.events()
+            if e.get("accepted") is False
+            or e.get("repeat")
+            or e["event"] in ("comm_timeout", "fault", "fault_injected")
+            or (e["event"] == "state" and e.get("to") in ("FAULT", "ESTOP"))
+        ][-8:]
     return (
         f"firmware status {status}; rig nice {os.getpriority(os.PRIO_PROCESS, 0)}; "
         f"cpus {len(os.sched_getaffinity(0))}; load {os.getloadavg()}; "
-        f"simulator log tail {sim_tail}"
+        f"simulator's refusals, repeats and faults {trouble}; simulator log tail {sim_tail}"
     )
