@@ -166,6 +166,24 @@ def udp_wire():
     return out
 
 
+def slcan():
+    """SLCAN text as the firmware's UART delivers it (0xFF marks an overrun there)."""
+    out = truncations(seed("slcan", "seed-stream"))
+    out["dlc-9"] = b"t12390011223344556677\r"
+    out["dlc-not-hex"] = b"t123G00\r"
+    out["id-beyond-11-bits"] = b"t8001AA\r"
+    out["id-beyond-29-bits"] = b"T2000000001AA\r"
+    out["data-short-of-dlc"] = b"t1238AABB\r"
+    out["data-beyond-dlc"] = b"t1231AABBCC\r"
+    out["lower-hex-ext"] = b"T1abcdef02aabb\r"
+    out["no-cr"] = b"t1232AABB" * 40
+    out["long-line"] = b"t" + b"1" * 4000 + b"\r"
+    out["overrun-mid-line"] = b"t1232AA\xffBB\rt1231CC\r"
+    out["overrun-at-cr"] = b"t1231AA\xff\rt1231CC\r"
+    out["nul-bytes"] = b"t123\x00\x001AA\r"
+    return out
+
+
 def crafted():
     return {
         "config": config(),
@@ -176,6 +194,11 @@ def crafted():
         "journal": journal(),
         "exec_step": op_stream("exec_step", ["seed-good-run", "seed-arm-fault"]),
         "udp_wire": udp_wire(),
+        "slcan": slcan(),
+        "plan_upload": op_stream(
+            "plan_upload", ["seed-accepted-running", "seed-order", "seed-truncated"]
+        ),
+        "exec_online": op_stream("exec_online", ["seed-grows", "seed-repeats", "seed-contradicts"]),
     }
 
 
