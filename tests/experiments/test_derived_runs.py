@@ -1,6 +1,6 @@
-"""`experiments fov-width` and `experiments cost-models`: runs derived from the main run
-(FOV at other window placements and widths, the other cost model), on the quick set with
-the real planner, and the report's tables made from them."""
+"""`experiments fov-width`, `cost-models` and `mounts`: runs derived from the main run
+(FOV at other window placements and widths, the other cost model, the arm bases side by
+side), on the quick set with the real planner, and the report's tables made from them."""
 
 import filecmp
 import json
@@ -12,7 +12,7 @@ import subprocess
 import pytest
 from exp_helpers import CONFIG, COSTGEN, PLANNER, harvest, require
 
-from harvest.experiments import cost_models, report, results, sensitivity
+from harvest.experiments import cost_models, mounts, report, results, sensitivity
 from harvest.experiments.runner import METHODS, QUICK_ALPHAS, QUICK_SEEDS
 
 TIME_LIMIT_S = "20"
@@ -62,6 +62,7 @@ def derived(tmp_path_factory):
                 "--fov-offsets=" + ",".join(map(str, OFFSETS)),
             ),
         ),
+        ("mounts", ()),
         ("report", ()),
     ):
         r = _exp(step, out, *extra)
@@ -303,3 +304,65 @@ def test_gain_table_and_its_verdict_on_known_numbers():
     assert "inside the paper's band at 1 of 3 windows" in text
     assert "the main run's window (0.2 m wide, 0 m from the base) gives +100.0 %" in text
     assert re.search(r"^\| plan\.pick_cycle = 0 \| 0\.4 \| 0\.1 \| 3\.0 \| 20\.0 % \|", text, re.M)
+
+
+def test_the_side_by_side_mount_plans_the_same_instances_with_its_own_tables(derived):
+    other = derived / mounts.SUBDIR
+    cfg = (other / "mount.cfg").read_text()
+    assert "mount.base_spacing = 0\n" in cfg
+    assert "mount.base_spacing = 0\n" in (other / "planner.cfg").read_text()
+    # the same fruit maps; cost tables of its own, made for bases side by side
+    names = sorted(os.listdir(derived / "instances"))
+    assert names and sorted(os.listdir(other / "instances")) == names
+    for n in names:
+        assert filecmp.cmp(other / "instances" / n, derived / "instances" / n, shallow=False)
+    tables = sorted(os.listdir(derived / "tables"))
+    assert sorted(os.listdir(other / "tables")) == tables
+    assert any(
+        not filecmp.cmp(other / "tables" / n, derived / "tables" / n, shallow=False) for n in tables
+    ), "the side-by-side run planned on the main run's tables"
+    rows = results.read(str(other / "results.csv"))
+    want = {(a, s, m) for a in QUICK_ALPHAS for s in QUICK_SEEDS for m in METHODS}
+    assert {(r["alpha"], r["seed"], r["method"]) for r in rows} == want
+    for r in rows:
+        assert r["status"] != "error", r
+        c = subprocess.run(
+            [PLANNER, "check", str(other / r["plan"]), "--quiet"],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+        )
+        assert c.returncode == 0, (r["plan"], c.stdout)
+    # the fruits a reading leaves out of reach are the MILP plans' own count
+    main = mounts.figures(results.read(str(derived / "results.csv")))
+    side = mounts.figures(rows)
+    unreachable = sum(r["fruits_unreachable"] for r in rows if r["method"] == "milp")
+    assert side["unreachable"] == unreachable
+    # side by side, each arm reaches the stretch of row the other reaches
+    assert side["unreachable"] <= main["unreachable"], (side, main)
+
+
+def test_the_reports_mount_table_is_the_csvs(derived):
+    text = (derived / "report.md").read_text()
+    assert "## The mount readings side by side" in text
+    readings = mounts.load(str(derived), 0.47)
+    assert len(readings) == 2
+    for label, rows in readings:
+        milp, serial, fov = (_by_key(rows, m) for m in ("milp", "serial", "fov"))
+        gain = statistics.median(
+            milp[k]["throughput_fruit_per_s"] / fov[k]["throughput_fruit_per_s"] - 1.0 for k in milp
+        )
+        dual = statistics.median(
+            milp[k]["throughput_fruit_per_s"] / serial[k]["throughput_fruit_per_s"] for k in milp
+        )
+        stops = [statistics.median(r["stops"] for r in m.values()) for m in (fov, serial, milp)]
+        unreachable = sum(r["fruits_unreachable"] for r in milp.values())
+        proven = sum(1 for r in milp.values() if r["status"] == "optimal")
+        row = (
+            rf"^\| {re.escape(label)} \| {len(milp)} \| "
+            + " / ".join(re.escape(f"{v:.1f}") for v in stops)
+            + rf" \| {re.escape(f'{100 * gain:+.1f}')} %; [^|]+ \| "
+            rf"{re.escape(f'{dual:.2f}')}x; [^|]+ \| {unreachable} \| [^|]+ \| "
+            rf"{proven}/{len(milp)} \|$"
+        )
+        assert re.search(row, text, re.M), row

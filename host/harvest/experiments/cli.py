@@ -7,10 +7,13 @@ cost-models
 fov-width plan FOV again at each --fov-widths x --fov-offsets on the same instances, in
           each cost model planned -> OUT/fov_width/, OUT/pick_cycle_<0|1>/fov_width/ (the
           MILP's gain over FOV as a function of where FOV's windows lie and how wide)
+mounts    plan the same instances, every method, with the arm bases side by side
+          (mount.base_spacing = 0) -> OUT/mount_side_by_side/ (the other reading of the
+          paper's mount, docs/FRAMES.md)
 plots     box plots (stops, throughput, runtime) and a top view of one plan
 analysis  the cost-G and coverage figures from cost tables made by costgen
 report    OUT/report.md: our numbers beside each claim of the paper
-all       run, cost-models, fov-width, plots, analysis and report (the default)
+all       run, cost-models, fov-width, mounts, plots, analysis and report (the default)
 """
 
 import argparse
@@ -29,6 +32,7 @@ from . import (
     cost_analysis,
     cost_models,
     cost_table,
+    mounts,
     plan_file,
     plan_view,
     report,
@@ -47,7 +51,7 @@ from .runner import (
     run,
 )
 
-STEPS = ("run", "cost-models", "fov-width", "plots", "analysis", "report", "all")
+STEPS = ("run", "cost-models", "fov-width", "mounts", "plots", "analysis", "report", "all")
 
 
 def build_parser():
@@ -319,7 +323,7 @@ def _run_info(out):
         return json.load(f)
 
 
-def do_report(args, s):
+def do_report(args, s, row_cfg):
     out = os.path.abspath(args.out)
     rows = _rows(out)
     fig_dir = os.path.join(out, "figures")
@@ -396,6 +400,7 @@ def do_report(args, s):
         pick_cycle=pick_cycle,
         fov_width=fov_width,
         cost_models=report.cost_models_section(models, pick_cycle),
+        mounts=mounts.section(mounts.load(out, row_cfg.base_spacing_m)),
     )
     print(f"experiments: report {path}")
     return path
@@ -405,7 +410,7 @@ def main(argv):
     args = build_parser().parse_args(argv)
     try:
         row_cfg = Row(Config.load(args.config))
-        need_planner = args.step in ("run", "fov-width", "cost-models", "all")
+        need_planner = args.step in ("run", "fov-width", "cost-models", "mounts", "all")
         s = _settings(args, need_planner)
         os.makedirs(s.out_dir, exist_ok=True)
         if args.step in ("run", "all"):
@@ -432,12 +437,18 @@ def main(argv):
                     f"experiments: {ran} FOV plan(s) computed now in "
                     f"{os.path.join(ss.out_dir, sensitivity.SUBDIR)}"
                 )
+        if args.step in ("mounts", "all"):
+            ran = mounts.run_side_by_side(s, retry_errors=args.retry_errors)
+            print(
+                f"experiments: {ran} plan(s) computed now in "
+                f"{os.path.join(s.out_dir, mounts.SUBDIR)}"
+            )
         if args.step in ("plots", "all"):
             do_plots(args)
         if args.step in ("analysis", "all"):
             do_analysis(args, row_cfg)
         if args.step in ("report", "all"):
-            do_report(args, s)
+            do_report(args, s, row_cfg)
     except KeyboardInterrupt:
         return 130
     except (

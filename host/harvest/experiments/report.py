@@ -32,11 +32,11 @@ def _med(v):
     return statistics.median(v) if v else math.nan
 
 
-def _fmt(v, nd=2):
+def fmt(v, nd=2):
     return "n/a" if v is None or (isinstance(v, float) and math.isnan(v)) else f"{v:.{nd}f}"
 
 
-def _pct(v):
+def pct(v):
     return "n/a" if v is None or math.isnan(v) else f"{100.0 * v:+.1f} %"
 
 
@@ -64,10 +64,10 @@ def summary_table(rows, methods):
             rt = [r["runtime_s"] for r in ok]
             lines.append(
                 f"| {a:g} | {m} | {len(ok)}/{len(rs)} | "
-                f"{_fmt(_med([r['stops'] for r in ok]), 1)} | "
-                f"{_fmt(_med([r['makespan_s'] for r in ok]), 1)} | "
-                f"{_fmt(_med([r['throughput_fruit_per_s'] for r in ok]), 3)} | "
-                f"{_fmt(_med(rt), 2)} / {_fmt(max(rt) if rt else math.nan, 2)} | {st} | "
+                f"{fmt(_med([r['stops'] for r in ok]), 1)} | "
+                f"{fmt(_med([r['makespan_s'] for r in ok]), 1)} | "
+                f"{fmt(_med([r['throughput_fruit_per_s'] for r in ok]), 3)} | "
+                f"{fmt(_med(rt), 2)} / {fmt(max(rt) if rt else math.nan, 2)} | {st} | "
                 f"{sum(r['fruits_unreachable'] or 0 for r in ok)} |"
             )
     return "\n".join(lines)
@@ -91,8 +91,7 @@ def claim_stops(inst):
             if m in ms:
                 med[m].setdefault(key[1], []).append(ms[m]["stops"])
     trend = "; ".join(
-        f"{m}: "
-        + ", ".join(f"{_fmt(_med(v), 1)} at alpha {a:g}" for a, v in sorted(med[m].items()))
+        f"{m}: " + ", ".join(f"{fmt(_med(v), 1)} at alpha {a:g}" for a, v in sorted(med[m].items()))
         for m in med
     )
     text = [
@@ -122,7 +121,7 @@ def claim_stops(inst):
         }
         why += (
             f"; median pick time per fruit (stop time C_p shared out): FOV "
-            f"{_fmt(per_fruit['fov'])} s, MILP {_fmt(per_fruit['milp'])} s"
+            f"{fmt(per_fruit['fov'])} s, MILP {fmt(per_fruit['milp'])} s"
         )
         if worse["fov"]:
             why += (
@@ -150,15 +149,15 @@ def claim_throughput(inst, rows):
             gains.append(g)
             per_alpha.setdefault(key[1], []).append(g)
     med = _med(gains)
-    parts = [f"alpha {a:g}: {_pct(_med(v))}" for a, v in sorted(per_alpha.items())]
+    parts = [f"alpha {a:g}: {pct(_med(v))}" for a, v in sorted(per_alpha.items())]
     fov = [r for r in rows if _ok(r) and r["method"] == "fov" and r["fov_moved"] is not None]
     moved = sum(r["fov_moved"] for r in fov)
     planned = sum(r["fruits_planned"] for r in fov)
     text = [
         "**Paper:** MILP raises throughput by 10-20 % over FOV.",
-        f"**Ours:** median gain {_pct(med)} over {len(gains)} instances "
-        f"(range {_pct(min(gains) if gains else math.nan)} to "
-        f"{_pct(max(gains) if gains else math.nan)}); per alpha {'; '.join(parts)}. "
+        f"**Ours:** median gain {pct(med)} over {len(gains)} instances "
+        f"(range {pct(min(gains) if gains else math.nan)} to "
+        f"{pct(max(gains) if gains else math.nan)}); per alpha {'; '.join(parts)}. "
         f"FOV moved {moved} of its {planned} fruits "
         f"({_share(moved / planned if planned else math.nan)}) to another stop "
         "than the one they were in view at (out of that stop's reach).",
@@ -202,9 +201,9 @@ def _breakdown(rs):
     parts = [("picks", "pick_time_s"), ("stops", "stop_time_s"), ("travel", "travel_time_s")]
     return (
         ", ".join(
-            f"{name} {_fmt(_med([r[c] for r in rs if r[c] is not None]), 0)}" for name, c in parts
+            f"{name} {fmt(_med([r[c] for r in rs if r[c] is not None]), 0)}" for name, c in parts
         )
-        + f" (makespan {_fmt(_med([r['makespan_s'] for r in rs]), 0)})"
+        + f" (makespan {fmt(_med([r['makespan_s'] for r in rs]), 0)})"
     )
 
 
@@ -218,9 +217,9 @@ def claim_dual_arm(inst):
     med = _med(ratios)
     text = [
         "**Paper:** at alpha = 1 the dual-arm robot nearly doubles the single-arm throughput.",
-        f"**Ours:** MILP / Serial throughput at alpha = 1: median {_fmt(med, 2)}x over "
-        f"{len(ratios)} instances (range {_fmt(min(ratios) if ratios else math.nan, 2)}x to "
-        f"{_fmt(max(ratios) if ratios else math.nan, 2)}x).",
+        f"**Ours:** MILP / Serial throughput at alpha = 1: median {fmt(med, 2)}x over "
+        f"{len(ratios)} instances (range {fmt(min(ratios) if ratios else math.nan, 2)}x to "
+        f"{fmt(max(ratios) if ratios else math.nan, 2)}x).",
     ]
     if not ratios:
         text.append("**Verdict:** no data at alpha = 1.")
@@ -251,7 +250,7 @@ def claim_runtime(rows):
     for r in milp:
         by_alpha.setdefault(r["alpha"], []).append(r["runtime_s"])
     parts = [
-        f"alpha {a:g}: median {_fmt(_med(v))} s, max {_fmt(max(v))} s"
+        f"alpha {a:g}: median {fmt(_med(v))} s, max {fmt(max(v))} s"
         for a, v in sorted(by_alpha.items())
     ]
     mx = max(rt) if rt else math.nan
@@ -263,11 +262,11 @@ def claim_runtime(rows):
         f"**Paper:** the MILP solves within about {PAPER_RUNTIME_S:g} s (Gurobi, AMD 7950); "
         "FOV is the fastest method.",
         f"**Ours, median runtime per method:** {per_method}.",
-        f"**Ours (GLPK):** max {_fmt(mx)} s, median {_fmt(_med(rt))} s over {len(rt)} plans; "
+        f"**Ours (GLPK):** max {fmt(mx)} s, median {fmt(_med(rt))} s over {len(rt)} plans; "
         f"{'; '.join(parts)}. {len(milp) - len(not_proven)} of {len(milp)} proven optimal"
         + (
             f"; {len(not_proven)} stopped early (median gap "
-            f"{_fmt(100.0 * _med(gaps), 2)} %, max {_fmt(100.0 * max(gaps), 2)} %)"
+            f"{fmt(100.0 * _med(gaps), 2)} %, max {fmt(100.0 * max(gaps), 2)} %)"
             if not_proven and gaps
             else ""
         )
@@ -280,7 +279,7 @@ def claim_runtime(rows):
     else:
         text.append(
             "**Verdict:** differs: "
-            f"{'the slowest plan takes ' + _fmt(mx) + ' s, ' if mx > PAPER_RUNTIME_S else ''}"
+            f"{'the slowest plan takes ' + fmt(mx) + ' s, ' if mx > PAPER_RUNTIME_S else ''}"
             f"{len(not_proven)} plan(s) not proven optimal. Why: our exact search (branch-and-"
             "price on GLPK's simplex with subset-row cuts, planner/SOLVER.md) gets a tight root "
             "bound but closes its last fraction of a percent slowly at alpha >= 1: near-identical "
@@ -322,10 +321,10 @@ def _offsets_line(table, width_m):
     best = min(table, key=lambda t: t["median_gain"])
     worst = max(table, key=lambda t: t["median_gain"])
     return (
-        f"| {width_m:g} | {best['offset_m']:g} | {_fmt(best['fov_stops'], 1)} | "
-        f"{_share(best['moved_share'])} | {_pct(best['median_gain'])} | "
-        f"{_pct(best['min_gain'])} to {_pct(best['max_gain'])} | {best['in_band']} | "
-        f"{_pct(worst['median_gain'])} at {worst['offset_m']:g} |"
+        f"| {width_m:g} | {best['offset_m']:g} | {fmt(best['fov_stops'], 1)} | "
+        f"{_share(best['moved_share'])} | {pct(best['median_gain'])} | "
+        f"{pct(best['min_gain'])} to {pct(best['max_gain'])} | {best['in_band']} | "
+        f"{pct(worst['median_gain'])} at {worst['offset_m']:g} |"
     )
 
 
@@ -356,7 +355,7 @@ def fov_window_section(tables, main_pick_cycle, main_window):
         band = [t for t in rows if PAPER_GAIN_LO <= t["median_gain"] <= PAPER_GAIN_HI]
         text = (
             f"With plan.pick_cycle = {int(pc)}, FOV does best at width {low['width_m']:g} m, "
-            f"offset {low['offset_m']:g} m (median gain {_pct(low['median_gain'])}); the "
+            f"offset {low['offset_m']:g} m (median gain {pct(low['median_gain'])}); the "
             f"median gain is inside the paper's band at {len(band)} of {len(rows)} windows"
         )
         main = [
@@ -373,8 +372,8 @@ def fov_window_section(tables, main_pick_cycle, main_window):
             )
             text += (
                 f"; the main run's window ({main_window[0]:g} m wide, {main_window[1]:g} m "
-                f"from the base) gives {_pct(main[0]['median_gain'])}, the best placement at "
-                f"that width {_pct(best['median_gain'])} (offset {best['offset_m']:g} m)"
+                f"from the base) gives {pct(main[0]['median_gain'])}, the best placement at "
+                f"that width {pct(best['median_gain'])} (offset {best['offset_m']:g} m)"
             )
         verdicts.append(text + ".")
     return "\n".join(
@@ -414,13 +413,13 @@ def cost_models_section(models, main_pick_cycle):
         name = f"plan.pick_cycle = {int(pc)}"
         for t in models[pc]:
             lines.append(
-                f"| {name} | {t['alpha']:g} | {t['n']} | {_fmt(t['dual_median'], 2)}x | "
-                f"{_fmt(t['dual_min'], 2)}x to {_fmt(t['dual_max'], 2)}x | "
-                f"{_fmt(t['milp_makespan_s'], 1)} | {_fmt(t['serial_makespan_s'], 1)} | "
-                f"{_pct(t['fov_gain_median'])} |"
+                f"| {name} | {t['alpha']:g} | {t['n']} | {fmt(t['dual_median'], 2)}x | "
+                f"{fmt(t['dual_min'], 2)}x to {fmt(t['dual_max'], 2)}x | "
+                f"{fmt(t['milp_makespan_s'], 1)} | {fmt(t['serial_makespan_s'], 1)} | "
+                f"{pct(t['fov_gain_median'])} |"
             )
             if t["alpha"] == 1.0 and t["n"]:
-                at_one.append(f"{_fmt(t['dual_median'], 2)}x with {cost_model_text(pc)}")
+                at_one.append(f"{fmt(t['dual_median'], 2)}x with {cost_model_text(pc)}")
     text = [
         "#### Dual arm / single arm in both cost models",
         "",
@@ -521,10 +520,12 @@ def write(
     pick_cycle=False,
     fov_width=None,
     cost_models=None,
+    mounts=None,
 ):
     """Write the report; `figures` maps a caption to a path (relative links are made).
-    pick_cycle: the main run's cost model; fov_width, cost_models: the sections of the
-    derived runs (fov_window_section, cost_models_section), left out when None."""
+    pick_cycle: the main run's cost model; fov_width, cost_models, mounts: the sections of
+    the derived runs (fov_window_section, cost_models_section, mounts.section), left out
+    when None."""
     inst = by_instance(rows)
     base = os.path.dirname(os.path.abspath(path))
     c1, _ = claim_stops(inst)
@@ -538,8 +539,9 @@ def write(
         "",
         "Generated by `python -m harvest experiments` from `results.csv` (the main run) "
         + (
-            "and the derived runs' results.csv (`fov_width/`, `pick_cycle_<0|1>/`)"
-            if fov_width or cost_models
+            "and the derived runs' results.csv (`fov_width/`, `pick_cycle_<0|1>/`, "
+            "`mount_side_by_side/`)"
+            if fov_width or cost_models or mounts
             else ""
         )
         + "; every number below is computed from them.",
@@ -573,7 +575,10 @@ def write(
     out += ["### 3. Dual arm vs single arm at alpha = 1", "", c3, ""]
     if cost_models:
         out += [cost_models, ""]
-    out += ["### 4. Runtime", "", c4, "", "## Checks", ""]
+    out += ["### 4. Runtime", "", c4, ""]
+    if mounts:
+        out += [mounts, ""]
+    out += ["## Checks", ""]
     out.append(
         "- MILP makespan never above FOV's or Serial's on the same instance: "
         + (

@@ -37,10 +37,11 @@ def _link_or_copy(src, dst):
         os.replace(tmp, dst)
 
 
-def derive(s, subdir, **changes):
-    """Settings of a run in s.out_dir/subdir with `changes`, its inputs linked from the main run."""
+def derive(s, subdir, links=("tables", "instances"), **changes):
+    """Settings of a run in s.out_dir/subdir with `changes`, the main run's inputs named in
+    `links` linked into it (a run whose config changes the cost tables makes its own)."""
     sub = dataclasses.replace(s, out_dir=os.path.join(s.out_dir, subdir), **changes)
-    for d in ("tables", "instances"):
+    for d in links:
         src_dir = os.path.join(s.out_dir, d)
         if not os.path.isdir(src_dir):
             continue

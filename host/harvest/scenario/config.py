@@ -75,6 +75,12 @@ class Config:
     def float(self, key):
         return self.floats(key, 1)[0]
 
+    def at_least_zero(self, key):
+        v = self.float(key)
+        if v < 0:
+            raise ConfigError(f"{self.path}:{self._lines[key]}: '{key}' must be >= 0, got {v}")
+        return v
+
     def positive(self, key):
         v = self.float(key)
         if v <= 0:
@@ -96,7 +102,7 @@ class Row:
         self.stop_penalty_s = cfg.float("vehicle.stop_penalty")
         self.grid_step_m = cfg.positive("grid.step")
         self.grid_yaw_step_rad = math.radians(cfg.positive("grid.yaw_step_deg"))
-        self.base_spacing_m = cfg.positive("mount.base_spacing")
+        self.base_spacing_m = cfg.at_least_zero("mount.base_spacing")  # 0: side by side
         self.mount_offset_m = cfg.float("mount.offset")
 
     @property
