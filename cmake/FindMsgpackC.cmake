@@ -2,10 +2,11 @@
 # imported target MsgpackC::MsgpackC. Its own CMake package is `msgpack-c` from 6.0 on
 # (target msgpack-c) and `msgpack` before (target msgpackc); then, for an install without
 # a CMake package, pkg-config's msgpack-c.pc or msgpack.pc.
-# Sets MsgpackC_FOUND, MsgpackC_VERSION and MsgpackC_PKG_CONFIG_NAME (the .pc file a
-# pkg-config user of harvest names: msgpack-c installs one named as its CMake package).
+# Sets MsgpackC_FOUND, MsgpackC_VERSION, MsgpackC_PACKAGE (which package it is) and
+# MsgpackC_PKG_CONFIG_NAME (the .pc file a pkg-config user of harvest names: msgpack-c
+# installs one named as its CMake package).
 include(FindPackageHandleStandardArgs)
-set(_msgpackc_found_in "")
+set(MsgpackC_PACKAGE "")
 set(_msgpackc_link "")
 
 find_package(msgpack-c CONFIG QUIET)
@@ -13,7 +14,7 @@ if(msgpack-c_FOUND AND TARGET msgpack-c)
   set(_msgpackc_link msgpack-c)
   set(MsgpackC_VERSION ${msgpack-c_VERSION})
   set(MsgpackC_PKG_CONFIG_NAME msgpack-c)
-  set(_msgpackc_found_in "CMake package msgpack-c (${msgpack-c_DIR})")
+  set(MsgpackC_PACKAGE "CMake package msgpack-c (${msgpack-c_DIR})")
 else()
   # Before 6.0 msgpack-cxx's package was also called `msgpack`, in lib/cmake/msgpackc-cxx/:
   # sorted by name, ascending, lib/cmake/msgpack/ comes first, and only a package with the
@@ -29,7 +30,7 @@ else()
     set(_msgpackc_link msgpackc)
     set(MsgpackC_VERSION ${msgpack_VERSION})
     set(MsgpackC_PKG_CONFIG_NAME msgpack)
-    set(_msgpackc_found_in "CMake package msgpack (${msgpack_DIR})")
+    set(MsgpackC_PACKAGE "CMake package msgpack (${msgpack_DIR})")
   endif()
 endif()
 
@@ -42,11 +43,11 @@ if(NOT _msgpackc_link)
     set(_msgpackc_link PkgConfig::MSGPACKC)
     set(MsgpackC_VERSION ${MSGPACKC_VERSION})
     set(MsgpackC_PKG_CONFIG_NAME ${MSGPACKC_MODULE_NAME})
-    set(_msgpackc_found_in "pkg-config ${MSGPACKC_MODULE_NAME}")
+    set(MsgpackC_PACKAGE "pkg-config ${MSGPACKC_MODULE_NAME}")
   endif()
 endif()
 
-find_package_handle_standard_args(MsgpackC REQUIRED_VARS _msgpackc_found_in
+find_package_handle_standard_args(MsgpackC REQUIRED_VARS MsgpackC_PACKAGE
   VERSION_VAR MsgpackC_VERSION
   REASON_FAILURE_MESSAGE "no CMake package msgpack-c or msgpack with the C library's target, \
 no pkg-config msgpack-c or msgpack (Debian: libmsgpack-dev)")
