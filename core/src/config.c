@@ -61,6 +61,7 @@ static const key_spec_t keys[] = {
     {"pick.cut_time", F(cut_s), 1, POS, 60.0, K_REAL},
     {"pick.release_time", F(release_s), 1, POS, 60.0, K_REAL},
     {"plan.pick_cycle", F(pick_cycle), 1, 0.0, 1.0, K_BOOL},
+    {"plan.pick_cost_flat", F(pick_cost_flat), 1, 0.0, 1.0, K_BOOL},
     {"camera.lead", F(camera_lead_m), 1, 0.0, 100.0, K_REAL},
     {"camera.window", F(camera_window_m), 1, POS, 100.0, K_REAL},
     {"fov.width", F(fov_width_m), 1, POS, 2.0, K_REAL},

@@ -329,9 +329,11 @@ static void rd_plan(rd_t *r, const json_t *root, hv_plan_t *plan)
         plan->travel_time_s = rd_num(r, pa, "params", "travel_time_s");
         plan->stop_margin_m = rd_nonneg(r, pa, "params", "stop_margin_m");
         rd_str(r, pa, "params", "pick_time", plan->pick_time, sizeof plan->pick_time);
-        static const char *const pick_times[] = {"cycle", "one_way", NULL};
+        static const char *const pick_times[] = {"cycle", "one_way", "cycle_flat", "one_way_flat",
+                                                 NULL};
         if (!r->failed && !one_of(plan->pick_time, pick_times)) {
-            rd_fail(r, "params.pick_time", "expected cycle or one_way, got \"%s\"",
+            rd_fail(r, "params.pick_time",
+                    "expected cycle, one_way, cycle_flat or one_way_flat, got \"%s\"",
                     plan->pick_time);
         }
     }

@@ -507,6 +507,13 @@ int main(int argc, char **argv)
         fprintf(stderr, "harvest-plan-online: %s\n", err);
         return EXIT_INPUT;
     }
+    if (cfg.pick_cost_flat) { /* its costs are laid out over the config's whole row */
+        fprintf(stderr,
+                "harvest-plan-online: %s: plan.pick_cost_flat = 1 is the experiments' offline "
+                "cost variant, not the robot's times\n",
+                config);
+        return EXIT_INPUT;
+    }
     hv_ik_model_t ik;
     hv_pick_model_t model;
     if (hv_pick_model_ik(&cfg, &ik, &model) != HV_OK) {

@@ -19,6 +19,32 @@ static hv_status_t ik_cost(const void *ctx, const hv_fruit_t *fr, double stop_y_
     return st;
 }
 
+/* plan.pick_cost_flat: reachability as the IK's, the cost the fruit's least over the
+ * candidate stops that reach it (so a plan gains nothing from where it stops but reach) */
+static hv_status_t flat_cost(const void *ctx, const hv_fruit_t *fr, double stop_y_m, double *cost_s,
+                             hv_pick_why_t *why)
+{
+    const hv_ik_model_t *ik = ctx;
+    hv_status_t st = ik_cost(ctx, fr, stop_y_m, cost_s, why);
+    if (st != HV_OK) {
+        return st;
+    }
+    double lo = fr->y_m - ik->y_rel_max[fr->side], hi = fr->y_m - ik->y_rel_min[fr->side];
+    lo = lo > ik->course_lo_m ? lo : ik->course_lo_m;
+    hi = hi < ik->course_hi_m ? hi : ik->course_hi_m;
+    long k_lo = (long)ceil((lo - ik->course_lo_m) / ik->step_m - 1e-9);
+    long k_hi = (long)floor((hi - ik->course_lo_m) / ik->step_m + 1e-9);
+    for (long k = k_lo; k <= k_hi; ++k) {
+        double c = 0.0;
+        hv_pick_why_t w = HV_PICK_OK;
+        if (ik_cost(ctx, fr, ik->course_lo_m + (double)k * ik->step_m, &c, &w) == HV_OK &&
+            c < *cost_s) {
+            *cost_s = c;
+        }
+    }
+    return HV_OK;
+}
+
 hv_status_t hv_pick_model_ik(const hv_config_t *cfg, hv_ik_model_t *ik, hv_pick_model_t *model)
 {
     if (cfg == NULL || ik == NULL || model == NULL) {
@@ -27,7 +53,7 @@ hv_status_t hv_pick_model_ik(const hv_config_t *cfg, hv_ik_model_t *ik, hv_pick_
     ik->cycle = cfg->pick_cycle;
     ik->cut_s = cfg->cut_s;
     ik->release_s = cfg->release_s;
-    model->cost = ik_cost;
+    model->cost = cfg->pick_cost_flat ? flat_cost : ik_cost;
     model->ctx = ik;
     for (int s = 0; s < 2; ++s) {
         hv_grid_t area;
@@ -38,11 +64,23 @@ hv_status_t hv_pick_model_ik(const hv_config_t *cfg, hv_ik_model_t *ik, hv_pick_
         if (st != HV_OK) {
             return st;
         }
+        ik->y_rel_min[s] = model->y_rel_min[s];
+        ik->y_rel_max[s] = model->y_rel_max[s];
     }
+    /* the candidate stops of the config's row, as hv_instance_params_from_config lays them */
+    hv_instance_params_t row;
+    hv_instance_params_from_config(cfg, model, &row);
+    ik->flat = cfg->pick_cost_flat;
+    ik->step_m = row.stop_step_m;
+    ik->course_lo_m = row.row_start_m - row.stop_margin_m;
+    ik->course_hi_m = ik->course_lo_m + hv_instance_params_course_m(&row);
     return HV_OK;
 }
 
 const char *hv_pick_model_name(const hv_config_t *cfg)
 {
+    if (cfg->pick_cost_flat) {
+        return cfg->pick_cycle ? "cycle_flat" : "one_way_flat";
+    }
     return cfg->pick_cycle ? "cycle" : "one_way";
 }

@@ -1,6 +1,7 @@
-"""`experiments fov-width`, `cost-models` and `mounts`: runs derived from the main run
+"""`experiments fov-width`, `cost-models` and `variants`: runs derived from the main run
 (FOV at other window placements and widths, the other cost model, the arm bases side by
-side), on the quick set with the real planner, and the report's tables made from them."""
+side, flat pick costs), on the quick set with the real planner, and the report's tables
+made from them."""
 
 import filecmp
 import json
@@ -12,7 +13,7 @@ import subprocess
 import pytest
 from exp_helpers import CONFIG, COSTGEN, PLANNER, harvest, require
 
-from harvest.experiments import cost_models, mounts, report, results, sensitivity
+from harvest.experiments import cost_models, report, results, sensitivity, variants
 from harvest.experiments.runner import METHODS, QUICK_ALPHAS, QUICK_SEEDS
 
 TIME_LIMIT_S = "20"
@@ -62,7 +63,7 @@ def derived(tmp_path_factory):
                 "--fov-offsets=" + ",".join(map(str, OFFSETS)),
             ),
         ),
-        ("mounts", ()),
+        ("variants", ()),
         ("report", ()),
     ):
         r = _exp(step, out, *extra)
@@ -307,8 +308,8 @@ def test_gain_table_and_its_verdict_on_known_numbers():
 
 
 def test_the_side_by_side_mount_plans_the_same_instances_with_its_own_tables(derived):
-    other = derived / mounts.SUBDIR
-    cfg = (other / "mount.cfg").read_text()
+    other = derived / variants.SIDE_BY_SIDE.subdir
+    cfg = (other / "variant.cfg").read_text()
     assert "mount.base_spacing = 0\n" in cfg
     assert "mount.base_spacing = 0\n" in (other / "planner.cfg").read_text()
     # the same fruit maps; cost tables of its own, made for bases side by side
@@ -334,20 +335,56 @@ def test_the_side_by_side_mount_plans_the_same_instances_with_its_own_tables(der
         )
         assert c.returncode == 0, (r["plan"], c.stdout)
     # the fruits a reading leaves out of reach are the MILP plans' own count
-    main = mounts.figures(results.read(str(derived / "results.csv")))
-    side = mounts.figures(rows)
+    main = variants.figures(results.read(str(derived / "results.csv")))
+    side = variants.figures(rows)
     unreachable = sum(r["fruits_unreachable"] for r in rows if r["method"] == "milp")
     assert side["unreachable"] == unreachable
     # side by side, each arm reaches the stretch of row the other reaches
     assert side["unreachable"] <= main["unreachable"], (side, main)
 
 
-def test_the_reports_mount_table_is_the_csvs(derived):
+def test_flat_costs_plan_the_same_picks_no_dearer(derived):
+    """Flat costs are each fruit's least IK cost: a proven flat optimum is never longer
+    than the main run's plan of the same instance and method, and the checker accepts each
+    plan under the flat model its config names."""
+    other = derived / variants.FLAT_COSTS.subdir
+    assert "plan.pick_cost_flat = 1\n" in (other / "planner.cfg").read_text()
+    rows = results.read(str(other / "results.csv"))
+    main = {
+        (r["alpha"], r["seed"], r["method"]): r for r in results.read(str(derived / "results.csv"))
+    }
+    assert {(r["alpha"], r["seed"], r["method"]) for r in rows} == set(main)
+    proven = 0
+    for r in rows:
+        assert r["status"] != "error", r
+        plan = json.loads((other / r["plan"]).read_text())
+        assert plan["params"]["pick_time"].endswith("_flat")
+        m = main[(r["alpha"], r["seed"], r["method"])]
+        assert r["fruits_planned"] == m["fruits_planned"]
+        if r["method"] == "milp" and r["status"] == "optimal":
+            proven += 1
+            assert r["makespan_s"] <= m["makespan_s"] + 1e-6, (r, m)
+        c = subprocess.run(
+            [PLANNER, "check", str(other / r["plan"]), "--quiet"],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+        )
+        assert c.returncode == 0, (r["plan"], c.stdout)
+    assert proven > 0, "no flat MILP plan is optimal: the comparison checked nothing"
+
+
+def test_the_reports_readings_and_causes_are_the_csvs(derived):
     text = (derived / "report.md").read_text()
-    assert "## The mount readings side by side" in text
-    readings = mounts.load(str(derived), 0.47)
-    assert len(readings) == 2
-    for label, rows in readings:
+    assert "## The set-up's readings side by side" in text
+    assert "## What each cause accounts for" in text
+    main = results.read(str(derived / "results.csv"))
+    found = variants.load(str(derived))
+    assert sorted(found) == sorted(v.subdir for v in variants.VARIANTS)
+    labels = [("main run: bases 0.47 m apart along the row", main)] + [
+        (v.label, found[v.subdir]) for v in variants.VARIANTS
+    ]
+    for label, rows in labels:
         milp, serial, fov = (_by_key(rows, m) for m in ("milp", "serial", "fov"))
         gain = statistics.median(
             milp[k]["throughput_fruit_per_s"] / fov[k]["throughput_fruit_per_s"] - 1.0 for k in milp
@@ -366,3 +403,19 @@ def test_the_reports_mount_table_is_the_csvs(derived):
             rf"{proven}/{len(milp)} \|$"
         )
         assert re.search(row, text, re.M), row
+        if label != labels[0][0]:
+            # the causes table: the reading's gain, and its change from the main run's
+            base = variants.figures(main)["gain"]
+            cause = (
+                rf"^\| {re.escape(label)} \| {re.escape(f'{100 * gain:+.1f}')} % \| "
+                rf"{re.escape(f'{100 * (gain - base):+.1f}')} points \|"
+            )
+            assert re.search(cause, text, re.M), cause
+    # the bound row: each MILP plan's makespan at its solver's bound, never below the plan's gain
+    bound = variants.figures(variants.milp_at_bound(main))
+    assert bound["gain"] >= variants.figures(main)["gain"]
+    assert re.search(
+        rf"^\| every MILP plan at its bound [^|]*\| {re.escape(report.pct(bound['gain']))} \|",
+        text,
+        re.M,
+    )

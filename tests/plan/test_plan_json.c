@@ -199,7 +199,7 @@ static void test_rejects(void **state)
          "params.stop_margin_m"},
         {", \"stop_margin_m\": 0.5", "", HV_ERR_PLAN_FORMAT, "params.stop_margin_m: missing"},
         {"\"pick_time\": \"cycle\"", "\"pick_time\": \"two_way\"", HV_ERR_PLAN_FORMAT,
-         "params.pick_time: expected cycle or one_way"},
+         "params.pick_time: expected cycle, one_way, cycle_flat or one_way_flat"},
         {"\"nodes\": 123456", "\"nodes\": 1.5", HV_ERR_PLAN_FORMAT,
          "solver.nodes: expected an integer"},
         {"\"nodes\": 123456", "\"nodes\": \"many\"", HV_ERR_PLAN_FORMAT,

@@ -252,6 +252,49 @@ static void test_ik_model_is_the_executors(void **state)
     hv_instance_free(&inst);
 }
 
+/* plan.pick_cost_flat: the same pairs as the IK's, each fruit's cost the same from every
+ * stop that reaches it, and that cost its least IK cost over those stops */
+static void test_flat_costs_are_each_fruits_best(void **state)
+{
+    (void)state;
+    hv_config_t cfg;
+    assert_int_equal(tt_load_config(&cfg), 0);
+    hv_fruit_t fr[3] = {fruit("a", HV_SIDE_LEFT, 1.0, 0.45), fruit("b", HV_SIDE_RIGHT, 0.7, 0.75),
+                        fruit("end", HV_SIDE_LEFT, 0.0, 0.6)};
+    hv_instance_t by_ik, flat;
+    hv_ik_model_t ik_arms, flat_arms;
+    hv_pick_model_t ik, fl;
+    hv_instance_params_t pr;
+    hv_diag_t d;
+    cfg.stops_beyond_ends = 1; /* "end" is reached from stops before the row only */
+    cfg.pick_cost_flat = 0;
+    assert_int_equal(hv_pick_model_ik(&cfg, &ik_arms, &ik), HV_OK);
+    assert_string_equal(hv_pick_model_name(&cfg), cfg.pick_cycle ? "cycle" : "one_way");
+    hv_instance_params_from_config(&cfg, &ik, &pr);
+    assert_int_equal(hv_instance_build(&pr, fr, 3, &ik, &by_ik, &d), HV_OK);
+    cfg.pick_cost_flat = 1;
+    assert_int_equal(hv_pick_model_ik(&cfg, &flat_arms, &fl), HV_OK);
+    assert_string_equal(hv_pick_model_name(&cfg), cfg.pick_cycle ? "cycle_flat" : "one_way_flat");
+    assert_int_equal(hv_instance_build(&pr, fr, 3, &fl, &flat, &d), HV_OK);
+    assert_int_equal(flat.n_pairs, by_ik.n_pairs);
+    for (size_t f = 0; f < 3; ++f) {
+        uint32_t b = by_ik.fruit_begin[f], e = by_ik.fruit_begin[f + 1];
+        assert_true(e - b > 1); /* more than one stop reaches it: the costs could differ */
+        double best = INFINITY, worst = 0.0;
+        for (uint32_t k = b; k < e; ++k) {
+            best = fmin(best, by_ik.pairs[k].cost_s);
+            worst = fmax(worst, by_ik.pairs[k].cost_s);
+        }
+        assert_true(worst > best); /* by the IK, the cost depends on the stop */
+        for (uint32_t k = b; k < e; ++k) {
+            assert_int_equal(flat.pairs[k].stop, by_ik.pairs[k].stop);
+            assert_float_equal(flat.pairs[k].cost_s, best, 0.0);
+        }
+    }
+    hv_instance_free(&flat);
+    hv_instance_free(&by_ik);
+}
+
 static void test_bad_params(void **state)
 {
     fx_t *fx = *state;
@@ -269,8 +312,11 @@ static void test_bad_params(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_pairs),      cmocka_unit_test(test_eval),
-        cmocka_unit_test(test_subset),     cmocka_unit_test(test_ik_model_is_the_executors),
+        cmocka_unit_test(test_pairs),
+        cmocka_unit_test(test_eval),
+        cmocka_unit_test(test_subset),
+        cmocka_unit_test(test_ik_model_is_the_executors),
+        cmocka_unit_test(test_flat_costs_are_each_fruits_best),
         cmocka_unit_test(test_bad_params),
     };
     return cmocka_run_group_tests(tests, setup, teardown);

@@ -60,6 +60,9 @@ typedef struct hv_config {
                                   costs its whole cycle, a stop what the drive loses
                                   stopping: hv_config_stop_time_s); 0 in the paper's (G one
                                   way home -> fruit, tau = vehicle.stop_penalty) */
+    int pick_cost_flat; /* plan.pick_cost_flat (0/1): 1 gives each fruit, from every stop
+                           that reaches it, the cost of its best stop (experiments only:
+                           what the plans owe to the pick cost varying with the stop) */
 
     /* online mode: the camera's view along the row, relative to the vehicle's position */
     double camera_lead_m;   /* camera.lead: near edge of the view ahead of the vehicle (m) */

@@ -7,13 +7,13 @@ cost-models
 fov-width plan FOV again at each --fov-widths x --fov-offsets on the same instances, in
           each cost model planned -> OUT/fov_width/, OUT/pick_cycle_<0|1>/fov_width/ (the
           MILP's gain over FOV as a function of where FOV's windows lie and how wide)
-mounts    plan the same instances, every method, with the arm bases side by side
-          (mount.base_spacing = 0) -> OUT/mount_side_by_side/ (the other reading of the
-          paper's mount, docs/FRAMES.md)
+variants  plan the same instances, every method, under the set-up's other readings:
+          the arm bases side by side (mount.base_spacing = 0) -> OUT/mount_side_by_side/,
+          the pick costs flat over the stops (plan.pick_cost_flat = 1) -> OUT/flat_costs/
 plots     box plots (stops, throughput, runtime) and a top view of one plan
 analysis  the cost-G and coverage figures from cost tables made by costgen
 report    OUT/report.md: our numbers beside each claim of the paper
-all       run, cost-models, fov-width, mounts, plots, analysis and report (the default)
+all       run, cost-models, fov-width, variants, plots, analysis and report (the default)
 """
 
 import argparse
@@ -32,11 +32,11 @@ from . import (
     cost_analysis,
     cost_models,
     cost_table,
-    mounts,
     plan_file,
     plan_view,
     report,
     sensitivity,
+    variants,
 )
 from . import results as results_mod
 from .binaries import COSTGEN, PLANNER, MissingProgram, find
@@ -51,7 +51,7 @@ from .runner import (
     run,
 )
 
-STEPS = ("run", "cost-models", "fov-width", "mounts", "plots", "analysis", "report", "all")
+STEPS = ("run", "cost-models", "fov-width", "variants", "plots", "analysis", "report", "all")
 
 
 def build_parser():
@@ -227,6 +227,18 @@ def _main_window(out):
     )
 
 
+def _worst_fov(out, pick_cycle):
+    """(label, median gain over FOV) of FOV's worst window placement at the main run's
+    width in the main cost model, None before the fov-width run."""
+    width, _ = _main_window(out)
+    table = _width_tables(out).get(pick_cycle, [])
+    at = [t for t in table if t["n"] and abs(t["width_m"] - width) < 1e-9]
+    if not at:
+        return None
+    worst = max(at, key=lambda t: t["median_gain"])
+    return f"offset {worst['offset_m']:g} m at width {width:g} m", worst["median_gain"]
+
+
 def _pick_plan(out, rows):
     """The plan to draw: MILP at the alpha nearest 1, lowest seed (the balanced case)."""
     cands = [r for r in rows if r["method"] == "milp" and r["plan"] and r["status"] != "error"]
@@ -389,7 +401,9 @@ def do_report(args, s, row_cfg):
             for u in plan_file.load(os.path.join(out, r["plan"])).get("unreachable", []):
                 reasons[u.get("reason", "?")] = reasons.get(u.get("reason", "?"), 0) + 1
     fov_width = report.fov_window_section(_width_tables(out), pick_cycle, _main_window(out))
-    models = {pc: cost_models.ratios(rs) for pc, rs in cost_models.load(out).items()}
+    models_rows = cost_models.load(out)
+    models = {pc: cost_models.ratios(rs) for pc, rs in models_rows.items()}
+    variant_rows = variants.load(out)
     path = report.write(
         os.path.join(out, "report.md"),
         rows,
@@ -400,7 +414,10 @@ def do_report(args, s, row_cfg):
         pick_cycle=pick_cycle,
         fov_width=fov_width,
         cost_models=report.cost_models_section(models, pick_cycle),
-        mounts=mounts.section(mounts.load(out, row_cfg.base_spacing_m)),
+        variants=variants.section(rows, row_cfg.base_spacing_m, variant_rows),
+        causes=variants.causes_section(
+            rows, variant_rows, models_rows.get(not pick_cycle), _worst_fov(out, pick_cycle)
+        ),
     )
     print(f"experiments: report {path}")
     return path
@@ -410,7 +427,7 @@ def main(argv):
     args = build_parser().parse_args(argv)
     try:
         row_cfg = Row(Config.load(args.config))
-        need_planner = args.step in ("run", "fov-width", "cost-models", "mounts", "all")
+        need_planner = args.step in ("run", "fov-width", "cost-models", "variants", "all")
         s = _settings(args, need_planner)
         os.makedirs(s.out_dir, exist_ok=True)
         if args.step in ("run", "all"):
@@ -437,11 +454,11 @@ def main(argv):
                     f"experiments: {ran} FOV plan(s) computed now in "
                     f"{os.path.join(ss.out_dir, sensitivity.SUBDIR)}"
                 )
-        if args.step in ("mounts", "all"):
-            ran = mounts.run_side_by_side(s, retry_errors=args.retry_errors)
+        if args.step in ("variants", "all"):
+            ran = variants.run_all(s, retry_errors=args.retry_errors)
             print(
                 f"experiments: {ran} plan(s) computed now in "
-                f"{os.path.join(s.out_dir, mounts.SUBDIR)}"
+                + ", ".join(os.path.join(s.out_dir, v.subdir) for v in variants.VARIANTS)
             )
         if args.step in ("plots", "all"):
             do_plots(args)

@@ -63,7 +63,8 @@ typedef struct hv_plan {
         travel_time_s;                /* params: travel_time_s is one pass's T_travel */
     double stop_margin_m;             /* params: the course runs this far beyond both row ends */
     char pick_time[HV_PLAN_NAME_LEN]; /* params: "cycle" (a pick's cost_s is its whole
-                                         cycle) or "one_way" (the paper's G) */
+                                         cycle) or "one_way" (the paper's G); "_flat"
+                                         after either: plan.pick_cost_flat's variant */
 
     char solver_status[HV_PLAN_NAME_LEN]; /* optimal feasible infeasible time_limit error
                                              heuristic */

@@ -35,6 +35,11 @@ typedef struct hv_ik_model {
     hv_arm_t arm[2]; /* [HV_SIDE_LEFT], [HV_SIDE_RIGHT] */
     int cycle;       /* plan.pick_cycle */
     double cut_s, release_s;
+    /* plan.pick_cost_flat: a reachable pair costs the least cost of its fruit over the
+     * candidate stops of the config's row, [course_lo_m, course_hi_m] every step_m (m) */
+    int flat;
+    double course_lo_m, course_hi_m, step_m;
+    double y_rel_min[2], y_rel_max[2];
 } hv_ik_model_t;
 
 /* Fill `ik` from the configuration and `model` on it; the reach spans come from
@@ -42,7 +47,8 @@ typedef struct hv_ik_model {
  * none of its area. */
 hv_status_t hv_pick_model_ik(const hv_config_t *cfg, hv_ik_model_t *ik, hv_pick_model_t *model);
 
-/* "cycle" or "one_way": the plan file's params.pick_time for a configuration. */
+/* "cycle" or "one_way", with "_flat" under plan.pick_cost_flat: the plan file's
+ * params.pick_time for a configuration. */
 const char *hv_pick_model_name(const hv_config_t *cfg);
 
 #ifdef __cplusplus
