@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Run the benchmarks and print their figures; each compares against a baseline measured in
 # the same run. Release build in build/. Usage: scripts/bench.sh [--help] [--quick] [core|planner|can|executor|online|firmware ...]
-# (default: all six; planner takes ~1 h, online ~15 min, firmware ~6). Timings depend on the machine's load: run it on a quiet machine.
+# (default: all six; planner ~25 min, online ~15 min, firmware ~6). Timings depend on the machine's load: run it on a quiet machine.
 # --quick: the planner's smoke run (bench_milp --quick: one instance per model, HiGHS beside it); the others run in full.
 set -euo pipefail
 if [[ "${1:-}" == "--help" || "${1:-}" == "-h" ]]; then
