@@ -2,7 +2,7 @@
  * the paper's, against HiGHS on the same exported model and against FOV and Serial, all
  * measured in the same run. Run `bench_milp --help`.
  */
-#define _DEFAULT_SOURCE /* popen, mkstemps */
+#define _DEFAULT_SOURCE /* popen, mkstemps, getloadavg */
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
@@ -13,6 +13,7 @@
 #include "bench_instances.h"
 #include "hv/baselines.h"
 #include "hv/file_io.h"
+#include "hv/fruit_map.h"
 #include "hv/milp.h"
 #include "hv/plan_eval.h"
 
@@ -29,6 +30,7 @@
 #define MAX_ALPHAS 16
 #define MAX_SEEDS  100
 #define MAX_MODELS 2
+#define N_SLOWEST  5 /* the slowest instances named per model */
 
 /* HiGHS stops as ours does: our rel_gap, and an absolute gap just under 1 ms (the pick
  * costs are whole ms, so a plan within it of the bound is proven optimal: ms_granularity) */
@@ -47,24 +49,42 @@ static void usage(FILE *f)
         "stops, throughput (fruits / T) against FOV and Serial, and HiGHS (highspy) on the\n"
         "model harvest-plan --export-lp writes, with the same stopping rule (relative gap\n"
         "rel_gap, absolute gap 0.999 ms: whole-ms costs), 2 threads and its own limit.\n"
+        "The header and the end print the load average: other work on the machine slows it.\n"
         "  --config PATH        harvest config (default %s)\n"
         "  --models LIST        product,paper (default), or one of them\n"
         "  --alphas A,B,..      alphas (default 0.25,0.4,1,2.5,4)\n"
         "  --seeds N            seeds per alpha (default 10)\n"
         "  --first-seed N       the first seed (default 1): --first-seed 4 --seeds 1 runs seed 4\n"
-        "  --time-limit S       MILP limit per instance, s (default 10: DESIGN's max is 7 s)\n"
+        "  --quick              a smoke run: --alphas 0.25 --seeds 1 --highs-seeds 1\n"
+        "                       --highs-limit 20 (options after it override it)\n"
+        "  --time-limit S       MILP limit per instance, s (default: the config's\n"
+        "                       online.horizon_limit_min, the least time the product gives\n"
+        "                       a horizon of this size; DESIGN's max is 7 s)\n"
         "  --highs-seeds N      seeds per alpha also solved by HiGHS (default 2; 0 none)\n"
         "  --highs-limit S      its limit per instance, s (default 60)\n"
         "  --python PATH        the Python with highspy (default %s)\n"
         "  --set KEY=VALUE      an option of the MILP run (repeatable): a row of the\n"
         "                       table harvest-plan --help-params prints\n"
         "  --no-baselines       skip FOV and Serial\n"
+        "  --export DIR         write each instance to DIR as <model>-a<alpha>-s<seed>.csv\n"
+        "                       (its fruit map: harvest-plan --fruits) and .lp (the model\n"
+        "                       HiGHS solves, as harvest-plan --export-lp writes it)\n"
         "  --given-plan         also solve each instance again from the plan its MILP run\n"
         "                       found, and print that time: what the proof alone takes\n"
         "                       once the plan is known (the rest waited for the plan)\n"
         "  -v                   solver progress on stderr\n"
         "  --help               this text\n",
         HV_BENCH_DEFAULT_CONFIG, HV_BENCH_PYTHON);
+}
+
+/* "# load average <when>: 1, 5, 15 min (N cores)": what else the machine runs */
+static void print_load(const char *when)
+{
+    double la[3];
+    if (getloadavg(la, 3) == 3) {
+        printf("# load average %s: %.2f %.2f %.2f (1, 5, 15 min; %ld cores)\n", when, la[0], la[1],
+               la[2], sysconf(_SC_NPROCESSORS_ONLN));
+    }
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -129,10 +149,13 @@ typedef struct highs_cfg {
 /* Solve the model file `lp` with HiGHS (highs_baseline.py). 0 on success. */
 static int highs_solve(highs_cfg_t *h, const char *lp, highs_run_t *out)
 {
-    char cmd[1024];
-    snprintf(cmd, sizeof cmd,
-             "'%s' '%s' '%s' --time-limit %g --threads 2 --rel-gap %g --abs-gap %g", h->python,
-             HV_BENCH_HIGHS_SCRIPT, lp, h->limit_s, h->rel_gap, HIGHS_ABS_GAP_S);
+    char cmd[4096];
+    int len = snprintf(
+        cmd, sizeof cmd, "'%s' '%s' '%s' --time-limit %g --threads 2 --rel-gap %g --abs-gap %g",
+        h->python, HV_BENCH_HIGHS_SCRIPT, lp, h->limit_s, h->rel_gap, HIGHS_ABS_GAP_S);
+    if (len < 0 || (size_t)len >= sizeof cmd) {
+        return -1; /* paths too long: never run a cut command */
+    }
     FILE *p = popen(cmd, "r");
     if (p == NULL) {
         return -1;
@@ -143,46 +166,92 @@ static int highs_solve(highs_cfg_t *h, const char *lp, highs_run_t *out)
     return n == 5 && rc == 0 ? 0 : -1;
 }
 
-/* HiGHS on the exported model of `inst`: 1 when it ran (out filled), 0 when not. */
-static int highs_baseline(highs_cfg_t *h, const hv_instance_t *inst, highs_run_t *out)
+/* HiGHS on the model file `lp`: 1 when it ran (out filled), 0 when not. */
+static int highs_baseline(highs_cfg_t *h, const char *lp, highs_run_t *out)
 {
     if (h->broken) {
         return 0;
     }
-    char lp[] = "/tmp/bench_milp_XXXXXX.lp";
-    int fd = mkstemps(lp, 3);
-    if (fd < 0) {
-        fprintf(stderr, "bench_milp: HiGHS baseline: cannot make a temporary file\n");
-        h->broken = 1;
-        return 0;
-    }
-    close(fd);
-    hv_milp_options_t o;
-    hv_milp_options_default(&o);
-    int ok = hv_milp_export_lp(inst, &o, lp) == HV_OK && highs_solve(h, lp, out) == 0;
-    unlink(lp);
-    if (!ok) {
+    if (highs_solve(h, lp, out) != 0) {
         fprintf(stderr,
                 "bench_milp: HiGHS baseline SKIPPED: %s %s failed (highspy missing? "
                 "scripts/setup.sh installs it)\n",
                 h->python, HV_BENCH_HIGHS_SCRIPT);
         h->broken = 1;
+        return 0;
     }
-    return ok;
+    return 1;
 }
 
+/* The model file of `inst` as harvest-plan --export-lp writes it (its default options):
+ * with `dir`, dir/<name>.lp beside dir/<name>.csv, the instance's fruit map, both kept;
+ * else a temporary file (*temp set: the caller removes it). 0 on success, else a message
+ * on stderr. */
+static int write_model(const char *dir, const char *name, const hv_instance_t *inst, char *lp,
+                       size_t len, int *temp)
+{
+    *temp = dir == NULL;
+    if (dir == NULL) {
+        snprintf(lp, len, "/tmp/bench_milp_XXXXXX.lp");
+        int fd = mkstemps(lp, 3);
+        if (fd < 0) {
+            fprintf(stderr, "bench_milp: cannot make a temporary model file\n");
+            return -1;
+        }
+        close(fd);
+    } else {
+        char csv[1024], err[512];
+        snprintf(csv, sizeof csv, "%s/%s.csv", dir, name);
+        if (hv_fruitmap_save(csv, inst->fruits, inst->n_fruits, err, sizeof err) != HV_OK) {
+            fprintf(stderr, "bench_milp: --export: %s\n", err);
+            return -1;
+        }
+        snprintf(lp, len, "%s/%s.lp", dir, name);
+    }
+    hv_milp_options_t o;
+    hv_milp_options_default(&o);
+    if (hv_milp_export_lp(inst, &o, lp) != HV_OK) {
+        fprintf(stderr, "bench_milp: %s: cannot write the model\n", lp);
+        return -1;
+    }
+    return 0;
+}
+
+/* One instance's outcome, for the slowest of a model. */
+typedef struct inst_time {
+    double alpha, time_s, gap;
+    size_t seed;
+    hv_solve_status_t status;
+} inst_time_t;
+
 typedef struct bench_run {
-    const char *cfg_path;
+    const char *cfg_path, *export_dir;
     double alphas[MAX_ALPHAS];
     size_t n_alpha, n_seeds, first_seed;
     int baselines, given_plan;
     hv_milp_options_t mo;
     highs_cfg_t highs;
+    inst_time_t slowest[MAX_MODELS][N_SLOWEST]; /* slowest first; time_s < 0: none */
 } bench_run_t;
+
+/* Keep `t` among the N_SLOWEST slowest in list[] (slowest first). */
+static void note_slowest(inst_time_t *list, const inst_time_t *t)
+{
+    size_t k = N_SLOWEST;
+    while (k > 0 && list[k - 1].time_s < t->time_s) {
+        if (k < N_SLOWEST) {
+            list[k] = list[k - 1];
+        }
+        --k;
+    }
+    if (k < N_SLOWEST) {
+        list[k] = *t;
+    }
+}
 
 /* Every instance of model m: a row each, into st[alpha] and st[n_alpha] (all alphas).
  * Returns the number of solver failures. */
-static int run_model(bench_run_t *br, const bench_model_t *m, row_stats_t *st)
+static int run_model(bench_run_t *br, const bench_model_t *m, row_stats_t *st, inst_time_t *slowest)
 {
     int failures = 0;
     printf("\n# Model: %s (%s)\n", bench_model_name(m->kind),
@@ -220,6 +289,8 @@ static int run_model(bench_run_t *br, const bench_model_t *m, row_stats_t *st)
                 continue;
             }
             hv_assignment_eval(&inst, &out, &ev);
+            inst_time_t it = {br->alphas[ai], res.runtime_s, res.gap, s, res.status};
+            note_slowest(slowest, &it);
             for (int w = 0; w < 2; ++w) {
                 row_stats_t *x = w ? all : r;
                 x->t_milp[x->n++] = res.runtime_s;
@@ -238,8 +309,17 @@ static int run_model(bench_run_t *br, const bench_model_t *m, row_stats_t *st)
                    br->alphas[ai], s, nf, inst.n_stops, inst.n_pairs, status_word(res.status),
                    res.objective_s, res.bound_s, res.gap, res.runtime_s, res.nodes, ev.stops,
                    res.root_bound_s, res.incumbent_s);
+            /* the model file HiGHS reads, and --export's copy */
+            int want_highs = seed < br->highs.seeds && !br->highs.broken, temp = 0;
+            char lp[1024], name[96];
+            snprintf(name, sizeof name, "%s-a%g-s%zu", bench_model_name(m->kind), br->alphas[ai],
+                     s);
+            int have_lp = (want_highs || br->export_dir != NULL) &&
+                          write_model(br->export_dir, name, &inst, lp, sizeof lp, &temp) == 0;
+            failures += br->export_dir != NULL && !have_lp;
+            br->highs.broken |= want_highs && !have_lp; /* said once, not tried again */
             highs_run_t hr;
-            if (seed < br->highs.seeds && highs_baseline(&br->highs, &inst, &hr)) {
+            if (want_highs && have_lp && highs_baseline(&br->highs, lp, &hr)) {
                 int proven = strcmp(hr.status, "optimal") == 0;
                 /* both proven: the optima agree to the ms */
                 int disagree = proven && res.status == HV_SOLVE_OPTIMAL &&
@@ -261,6 +341,9 @@ static int run_model(bench_run_t *br, const bench_model_t *m, row_stats_t *st)
                 }
             } else {
                 printf(" %-14s %9s %7s |", "-", "-", "-");
+            }
+            if (temp) {
+                unlink(lp);
             }
             if (br->baselines) {
                 hv_eval_t fe;
@@ -336,7 +419,8 @@ static void highs_cells(row_stats_t *r, char *buf, size_t len)
     snprintf(buf, len, "%2zu/%-2zu %7.2f %7s", r->n_highs_opt, r->n_highs, theirs, ratio);
 }
 
-static void print_model_summary(const bench_run_t *br, const bench_model_t *m, row_stats_t *st)
+static void print_model_summary(const bench_run_t *br, const bench_model_t *m, row_stats_t *st,
+                                const inst_time_t *slowest)
 {
     printf("\n# Summary, %s model (times in s; throughput in fruits/s; HiGHS: proven of run, "
            "median time, its median over ours on the same instances, %.0f s limit)\n",
@@ -364,6 +448,16 @@ static void print_model_summary(const bench_run_t *br, const bench_model_t *m, r
                ai < br->n_alpha ? name : "all", median(r->t_milp, r->n), tmax, r->n_opt, r->n,
                r->gap_sum / n, r->gap_max, r->stops_milp / n, r->thr_milp / n, fov, serial, highs);
     }
+    printf("# slowest:");
+    for (size_t k = 0; k < N_SLOWEST && slowest[k].time_s >= 0; ++k) {
+        const inst_time_t *t = &slowest[k];
+        printf("%s alpha %g seed %zu %.2f s %s", k ? ";" : "", t->alpha, t->seed, t->time_s,
+               status_word(t->status));
+        if (t->status != HV_SOLVE_OPTIMAL) {
+            printf(" (gap %.1e)", t->gap);
+        }
+    }
+    printf("\n");
     if (st[br->n_alpha].n_highs_disagree > 0) {
         printf("# HiGHS and the MILP proved different optima on %zu instances (stderr)\n",
                st[br->n_alpha].n_highs_disagree);
@@ -421,12 +515,19 @@ int main(int argc, char **argv)
     br.first_seed = 1;
     br.baselines = 1;
     br.highs = (highs_cfg_t){HV_BENCH_PYTHON, 2, 60.0, 0.0, 0};
+    for (size_t k = 0; k < MAX_MODELS; ++k) {
+        for (size_t i = 0; i < N_SLOWEST; ++i) {
+            br.slowest[k][i].time_s = -1.0;
+        }
+    }
     bench_model_kind_t kinds[MAX_MODELS] = {BENCH_MODEL_PRODUCT, BENCH_MODEL_PAPER};
     size_t n_models = 2;
     hv_milp_options_default(&br.mo);
-    br.mo.time_limit_s = 10.0;
+    br.mo.time_limit_s = 0.0; /* 0: the config's */
     enum {
         O_NO_BASELINES = 256,
+        O_QUICK,
+        O_EXPORT,
         O_GIVEN_PLAN,
         O_CONFIG,
         O_MODELS,
@@ -441,6 +542,8 @@ int main(int argc, char **argv)
     };
     static const struct option longopts[] = {
         {"no-baselines", no_argument, NULL, O_NO_BASELINES},
+        {"quick", no_argument, NULL, O_QUICK},
+        {"export", required_argument, NULL, O_EXPORT},
         {"given-plan", no_argument, NULL, O_GIVEN_PLAN},
         {"config", required_argument, NULL, O_CONFIG},
         {"models", required_argument, NULL, O_MODELS},
@@ -464,6 +567,14 @@ int main(int argc, char **argv)
         case 'v': br.mo.verbose = br.mo.verbose + 1; break;
         case O_NO_BASELINES: br.baselines = 0; break;
         case O_GIVEN_PLAN: br.given_plan = 1; break;
+        case O_QUICK:
+            br.alphas[0] = 0.25;
+            br.n_alpha = 1;
+            br.n_seeds = 1;
+            br.highs.seeds = 1;
+            br.highs.limit_s = 20.0;
+            break;
+        case O_EXPORT: br.export_dir = v; break;
         case O_CONFIG: br.cfg_path = v; break;
         case O_PYTHON: br.highs.python = v; break;
         case O_MODELS: {
@@ -542,6 +653,11 @@ int main(int argc, char **argv)
         fprintf(stderr, "bench_milp: unexpected argument %s (see --help)\n", argv[optind]);
         return 2;
     }
+    if (br.export_dir != NULL && access(br.export_dir, W_OK | X_OK) != 0) {
+        fprintf(stderr, "bench_milp: --export: %s: not a folder this user can write\n",
+                br.export_dir);
+        return 2;
+    }
     br.highs.rel_gap = br.mo.rel_gap;
 
     hv_config_t cfg;
@@ -549,6 +665,10 @@ int main(int argc, char **argv)
     if (hv_config_load(br.cfg_path, &cfg, err, sizeof err) != HV_OK) {
         fprintf(stderr, "bench_milp: %s\n", err);
         return 1;
+    }
+    int time_limit_given = br.mo.time_limit_s > 0;
+    if (!time_limit_given) {
+        br.mo.time_limit_s = cfg.online_limit_min_s;
     }
     static bench_model_t models[MAX_MODELS];
     for (size_t k = 0; k < n_models; ++k) {
@@ -570,18 +690,22 @@ int main(int argc, char **argv)
            mo->auto_smoothing, mo->interval_branching, mo->iv_pseudocost, mo->tail_off_ms,
            mo->tail_off_open, mo->binding_splits, mo->balance_workers, mo->warm_transfer,
            mo->rins_every, mo->region_stops);
+    printf("# %s; MILP limit %g s per instance%s\n", br.cfg_path, mo->time_limit_s,
+           time_limit_given ? "" : " (online.horizon_limit_min of the config)");
+    print_load("at the start");
     printf("# HiGHS: highspy on the exported compact model, first %zu seeds per alpha, %.0f s "
            "limit, 2 threads, mip_rel_gap %g, mip_abs_gap %g s, its defaults otherwise\n",
            br.highs.seeds, br.highs.limit_s, br.highs.rel_gap, HIGHS_ABS_GAP_S);
     int failures = 0;
     for (size_t k = 0; k < n_models; ++k) {
-        failures += run_model(&br, &models[k], stats[k]);
+        failures += run_model(&br, &models[k], stats[k], br.slowest[k]);
     }
     for (size_t k = 0; k < n_models; ++k) {
-        print_model_summary(&br, &models[k], stats[k]);
+        print_model_summary(&br, &models[k], stats[k], br.slowest[k]);
     }
     if (n_models > 1) {
         print_side_by_side(&br, models, n_models, stats);
     }
+    print_load("at the end");
     return failures ? 1 : 0;
 }

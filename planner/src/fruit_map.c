@@ -1,4 +1,4 @@
-/* Fruit map CSV reader (fruit_map.h). */
+/* Fruit map CSV reader and writer (fruit_map.h). */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -277,5 +277,31 @@ hv_status_t hv_fruitmap_load(const char *path, const hv_fruitmap_limits_t *lim, 
     }
     st = hv_fruitmap_parse(data, len, path, lim, map, err, errlen);
     free(data);
+    return st;
+}
+
+hv_status_t hv_fruitmap_save(const char *path, const hv_fruit_t *fruits, size_t n, char *err,
+                             size_t errlen)
+{
+    if (path == NULL || (fruits == NULL && n > 0)) {
+        return HV_ERR_ARG;
+    }
+    /* a line: an id of at most 31 characters, the side and four %.17g numbers */
+    const size_t line_max = HV_FRUIT_ID_LEN + 4 + 4 * 26;
+    const char header[] = "id,side,x,y,z,yaw\n";
+    size_t cap = sizeof header + n * line_max;
+    char *buf = malloc(cap);
+    if (buf == NULL) {
+        return map_fail(err, errlen, HV_ERR_PLAN_NOMEM, path, 0, "map", "out of memory");
+    }
+    size_t len = (size_t)snprintf(buf, cap, "%s", header);
+    for (size_t i = 0; i < n; ++i) {
+        const hv_fruit_t *f = &fruits[i];
+        len += (size_t)snprintf(buf + len, cap - len, "%s,%c,%.17g,%.17g,%.17g,%.17g\n", f->id,
+                                f->side == HV_SIDE_LEFT ? 'L' : 'R', f->x_m, f->y_m, f->z_m,
+                                f->yaw_rad);
+    }
+    hv_status_t st = hv_file_write_atomic(path, buf, len, err, errlen);
+    free(buf);
     return st;
 }

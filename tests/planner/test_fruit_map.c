@@ -1,4 +1,6 @@
-/* Fruit map CSV: good input parses; each bad input has its own code and names the line. */
+/* Fruit map CSV: good input parses; each bad input has its own code and names the line; a
+ * saved map reads back the same. */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -7,7 +9,9 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "hv/fruit_map.h"
 #include "tiny_tables.h"
@@ -124,12 +128,57 @@ static void test_missing_file(void **state)
     assert_non_null(strstr(err, "/nonexistent/map.csv"));
 }
 
+/* Numbers that print differently at fewer digits (0.1, 1/3, a long fraction) read back as
+ * the same doubles: a saved map is the same instance when it is loaded again. */
+static void test_save_reads_back_exactly(void **state)
+{
+    (void)state;
+    hv_fruit_t fr[3];
+    memset(fr, 0, sizeof fr);
+    const double v[3][4] = {{-0.4, 0.1, 0.6, 0.1},
+                            {0.45, 1.0 / 3.0, 0.55, -0.2},
+                            {0.4123456789012345, 1.9999999999999998, 0.7, -0.7853981633974483}};
+    for (int i = 0; i < 3; ++i) {
+        snprintf(fr[i].id, sizeof fr[i].id, i == 2 ? "R_0.long-id-%d" : "L%d", i);
+        fr[i].side = i == 0 ? HV_SIDE_LEFT : HV_SIDE_RIGHT;
+        fr[i].x_m = v[i][0];
+        fr[i].y_m = v[i][1];
+        fr[i].z_m = v[i][2];
+        fr[i].yaw_rad = v[i][3];
+    }
+    char dir[] = "/tmp/hv_test_fruit_map_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char path[256];
+    snprintf(path, sizeof path, "%s/map.csv", dir);
+    char err[256] = "";
+    assert_int_equal(hv_fruitmap_save(path, fr, 3, err, sizeof err), HV_OK);
+    hv_fruitmap_t map;
+    assert_int_equal(hv_fruitmap_load(path, &g_lim, &map, err, sizeof err), HV_OK);
+    assert_int_equal(map.n, 3);
+    for (int i = 0; i < 3; ++i) {
+        const hv_fruit_t *a = &fr[i], *b = &map.fruits[i];
+        assert_string_equal(a->id, b->id);
+        assert_int_equal(a->side, b->side);
+        assert_true(a->x_m == b->x_m && a->y_m == b->y_m);
+        assert_true(a->z_m == b->z_m && a->yaw_rad == b->yaw_rad);
+    }
+    hv_fruitmap_free(&map);
+    /* a folder that is not there: refused, naming the file */
+    char bad[300];
+    snprintf(bad, sizeof bad, "%s/none/map.csv", dir);
+    assert_int_equal(hv_fruitmap_save(bad, fr, 3, err, sizeof err), HV_ERR_IO);
+    assert_non_null(strstr(err, bad));
+    unlink(path);
+    rmdir(dir);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_good_map),
         cmocka_unit_test(test_bad_maps),
         cmocka_unit_test(test_missing_file),
+        cmocka_unit_test(test_save_reads_back_exactly),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -45,6 +45,12 @@ hv_status_t hv_fruitmap_load(const char *path, const hv_fruitmap_limits_t *lim, 
 
 void hv_fruitmap_free(hv_fruitmap_t *map);
 
+/* Write `n` fruits to `path` in this format, atomically (hv_file_write_atomic), each number
+ * with 17 significant digits so that hv_fruitmap_load reads back the same doubles.
+ * HV_ERR_IO with `err` naming the file; HV_ERR_PLAN_NOMEM. */
+hv_status_t hv_fruitmap_save(const char *path, const hv_fruit_t *fruits, size_t n, char *err,
+                             size_t errlen);
+
 #ifdef __cplusplus
 }
 #endif
