@@ -30,6 +30,8 @@ C_PROGRAMS = {
     "costgen": "tools/costgen",
     "mountopt": "tools/mountopt",
 }
+# installed from the tree as they are (the package's libexec)
+SCRIPTS = {"harvest-can-up": "packaging/harvest-can-up"}
 # harvest-stack and each of its commands, as their messages name them
 PY_PROGRAMS = [
     "harvest-stack",
@@ -68,7 +70,9 @@ def codes_of(program):
 
 
 def command(program, *args):
-    """argv of `program` (a name of C_PROGRAMS or PY_PROGRAMS) with `args`."""
+    """argv of `program` (a name of C_PROGRAMS, SCRIPTS or PY_PROGRAMS) with `args`."""
+    if program in SCRIPTS:
+        return [os.path.join(SRC, SCRIPTS[program]), *args]
     if program in C_PROGRAMS:
         exe = os.path.join(BUILD, C_PROGRAMS[program])
         if not os.access(exe, os.X_OK):
@@ -90,11 +94,11 @@ def one_line(p):
 def test_the_table_names_every_program_and_the_common_codes():
     t = table()
     assert t[None] == {0, 1, 2}
-    assert set(t) - {None} <= set(C_PROGRAMS) | set(PY_PROGRAMS), set(t)
+    assert set(t) - {None} <= set(C_PROGRAMS) | set(SCRIPTS) | set(PY_PROGRAMS), set(t)
     assert 3 in t["harvest-exec"] and 6 in t["harvest-exec"]  # the latched and clean stops
 
 
-@pytest.mark.parametrize("program", list(C_PROGRAMS) + PY_PROGRAMS)
+@pytest.mark.parametrize("program", list(C_PROGRAMS) + list(SCRIPTS) + PY_PROGRAMS)
 def test_help_ends_with_the_codes_of_the_table(program):
     p = run(command(program, "--help"))
     assert p.returncode == 0, p.stderr
@@ -108,7 +112,7 @@ def test_help_ends_with_the_codes_of_the_table(program):
 
 # (program, args before --bogus, the program as the message names it): enough arguments
 # that only the unknown option is wrong
-BAD_OPTION = [(name, (), name) for name in C_PROGRAMS] + [
+BAD_OPTION = [(name, (), name) for name in list(C_PROGRAMS) + list(SCRIPTS)] + [
     ("harvest-stack", (), "harvest-stack"),
     ("harvest-stack sim", (), "harvest-stack sim"),
     ("harvest-stack scenario", ("--out", "m.csv"), "harvest-stack scenario"),

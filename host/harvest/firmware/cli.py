@@ -13,7 +13,7 @@ import subprocess
 import sys
 import time
 
-from ..cmdline import EXIT_USAGE, Parser, error, os_error
+from ..cmdline import EXIT_FAILURE, EXIT_USAGE, Parser, error, os_error
 from . import rig
 
 PROG = "harvest-stack firmware"
@@ -193,4 +193,10 @@ def main(argv=None):
     )
     r.add_argument("--out", required=True, help="folder for the record, logs, firmware.json")
     a = ap.parse_args(argv)
-    return run(a)
+    try:
+        return run(a)
+    except OSError as e:  # QEMU not listening in time, a file of --out not written
+        error(f"{PROG} run", os_error(e))
+    except (RuntimeError, EOFError) as e:  # QEMU ended, the upload refused, the UART closed
+        error(f"{PROG} run", str(e))
+    return EXIT_FAILURE
