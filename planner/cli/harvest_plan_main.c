@@ -213,8 +213,11 @@ static int run_check(int argc, char **argv)
     int rc = 0;
     if (st != HV_OK) {
         int is_check = st <= HV_ERR_PLAN_CHECK_DUPLICATE && st >= HV_ERR_PLAN_CHECK_PARAMS;
-        fprintf(stderr, "harvest-plan: %s%s (%s)\n", is_check ? plan_path : "",
-                is_check ? ": " : "", err);
+        if (is_check) {
+            fprintf(stderr, "harvest-plan: %s: %s\n", plan_path, err);
+        } else { /* an input of the plan: `err` names its file */
+            fprintf(stderr, "harvest-plan: %s\n", err);
+        }
         rc = is_check ? HV_EXIT_PLAN_CHECK : HV_EXIT_USAGE;
     } else if (!quiet) {
         printf("%s: OK: %s, %zu stops, %zu fruits planned, %zu unreachable, makespan %.3f s\n",

@@ -5,7 +5,7 @@ MCAP."""
 import json
 
 from ..cmdline import EXIT_FAILURE, EXIT_USAGE, Parser, error, os_error
-from . import eventlog, lcm_types
+from . import lcm_types
 
 PROG = "harvest-stack telemetry"
 
@@ -74,8 +74,7 @@ def _torn(prog, path, torn_at):
 
 
 def main(argv=None):
-    parser = _parser()
-    args = parser.parse_args(argv)
+    args = _parser().parse_args(argv)
     prog = f"{PROG} {args.cmd}"
     if args.cmd == "gantt":
         for out in args.out:
@@ -116,7 +115,7 @@ def main(argv=None):
     except lcm_types.LcmTypesMissing as e:
         error(prog, str(e))
         return EXIT_FAILURE
-    except (eventlog.LogError, ValueError) as e:  # the log's content, naming the file
+    except ValueError as e:  # the log's content (eventlog.LogError too), naming the file
         error(prog, str(e))
         return EXIT_USAGE
     except OSError as e:  # the log not read is bad input; an output not written, a failure

@@ -14,8 +14,9 @@ from . import eventlog, lcm_schema, lcm_types
 def export(log_path, out_path, python_dir=None, lcm_defs=None):
     """Write `out_path`; return ({channel: messages written}, the log's torn_at). Channels
     the telemetry does not define are refused (ValueError naming the channel), not dropped;
-    a file that is no LCM log (eventlog.LogError) or holds no event is refused too. The MCAP
-    file appears whole or not at all: written beside, renamed at the end."""
+    an empty file, or one that is no LCM event log, too (eventlog.LogError), before the
+    output is created. The MCAP file appears whole or not at all: written beside, renamed at
+    the end."""
     with eventlog.EventLog(log_path) as log:
         types = lcm_types.load(python_dir)
         structs = lcm_schema.load(lcm_defs)
