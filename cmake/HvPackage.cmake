@@ -37,7 +37,7 @@ if(TARGET harvest-exec)
   # the conffiles: an operator's edits survive upgrades (dpkg asks before replacing them)
   install(FILES config/harvest.cfg packaging/harvest.env DESTINATION /etc/harvest
           COMPONENT vehicle EXCLUDE_FROM_ALL)
-  install(FILES docs/INSTALL.md DESTINATION ${CMAKE_INSTALL_DOCDIR}
+  install(FILES docs/INSTALL.md docs/EXIT_CODES.md DESTINATION ${CMAKE_INSTALL_DOCDIR}
           COMPONENT vehicle EXCLUDE_FROM_ALL)
 endif()
 

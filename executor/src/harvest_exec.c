@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hv/cli.h"
 #include "hv/config.h"
 #include "hv/exec_can.h"
 #include "hv/exec_journal.h"
@@ -20,15 +21,7 @@
 #include "hv/pick.h"
 #include "hv/version.h"
 
-enum {
-    EXIT_ROW_DONE = 0,
-    EXIT_RUNTIME = 1,
-    EXIT_USAGE = 2,
-    EXIT_SAFE = 3,
-    EXIT_ESTOP_LATCHED = 4,
-    EXIT_REFUSED = 5,
-    EXIT_STOPPED = 6
-};
+static const char k_prog[] = "harvest-exec";
 
 /* The only mutable global: a signal handler can reach nothing else. */
 static volatile sig_atomic_t stop_requested;
@@ -117,20 +110,14 @@ static void usage(FILE *out)
         "  -h, --help              this text\n"
         "  --version               the version and exit\n"
         "\n"
-        "exit status: 0 row done (--check-plan: every pick accepted); 1 runtime error; 2 bad "
-        "input;\n"
-        "3 stopped in the safe state (the nodes hold an e-stop: restart with --clear-estop NAME "
-        "once\n"
-        "the cause is dealt with); 4 not started: a node reports a latched e-stop and "
-        "--clear-estop\n"
-        "was not given (nothing but e-stop frames and heartbeats was sent; the summary's\n"
-        "estop_latched names the nodes); 5 --check-plan: the IK refuses a planned pick;\n"
-        "6 stopped on request (SIGTERM/SIGINT), nothing latched: a plain restart resumes.\n"
         "Expected makespan (compared with the executed one): per stop the slower arm's sum of\n"
         "pick cycles (2 x IK move time home->fruit + pick.cut_time + pick.release_time of the\n"
         "config) plus trapezoid vehicle moves\n"
         "between stops, from the course's start to its end (the row and the plan's stop margin\n"
-        "beyond each end; the vehicle is expected at the course's start).\n");
+        "beyond each end; the vehicle is expected at the course's start).\n"
+        "\n" HV_EXIT_CODES_HELP ",\n"
+        "3 stopped in the safe state, 4 not started: a latched e-stop, 5 --check-plan: a pick\n"
+        "refused by the IK, 6 stopped on request)\n");
 }
 
 typedef struct opts {
@@ -191,7 +178,8 @@ static int parse_args(int argc, char **argv, opts_t *o)
     o->max_retries = 2;
     int c;
     double v;
-    while ((c = getopt_long(argc, argv, "h", lo, NULL)) != -1) {
+    opterr = 0; /* hv_cli_option_error's message instead of getopt's */
+    while ((c = getopt_long(argc, argv, ":h", lo, NULL)) != -1) {
         switch (c) {
         case 'p': o->plan = optarg; break;
         case 'c': o->config = optarg; break;
@@ -251,16 +239,16 @@ static int parse_args(int argc, char **argv, opts_t *o)
             break;
         case 'h': usage(stdout); exit(0);
         case 'V': printf("harvest-exec %s\n", HV_VERSION); exit(0);
-        default: return -1;
+        default: hv_cli_option_error(k_prog, c, optopt, argv[optind - 1]); return -1;
         }
     }
     if (optind < argc) {
-        fprintf(stderr, "harvest-exec: unexpected argument '%s'\n", argv[optind]);
+        hv_cli_usage_error(k_prog, argv[optind], "unexpected argument");
         return -1;
     }
     if (o->online && (o->plan || o->check_only || !o->lcm_url)) {
-        fprintf(stderr, "harvest-exec: --online takes no --plan nor --check-plan, and needs "
-                        "--lcm-url (see --help)\n");
+        hv_cli_usage_error(k_prog, "--online",
+                           "takes no --plan nor --check-plan, and needs --lcm-url");
         return -1;
     }
     const char *missing = !o->plan && !o->online          ? "--plan"
@@ -268,7 +256,7 @@ static int parse_args(int argc, char **argv, opts_t *o)
                           : !o->journal && !o->check_only ? "--journal"
                                                           : NULL;
     if (missing) {
-        fprintf(stderr, "harvest-exec: %s is required (see --help)\n", missing);
+        hv_cli_usage_error(k_prog, missing, "required");
         return -1;
     }
     if (strcmp(o->transport, "udp") != 0 && strcmp(o->transport, "socketcan") != 0) {
@@ -377,12 +365,12 @@ int main(int argc, char **argv)
 {
     opts_t o;
     if (parse_args(argc, argv, &o) != 0)
-        return EXIT_USAGE;
+        return HV_EXIT_USAGE;
     char err[512];
     hv_config_t cfg;
     if (hv_config_load(o.config, &cfg, err, sizeof err) != HV_OK) {
         fprintf(stderr, "harvest-exec: %s\n", err);
-        return EXIT_USAGE;
+        return HV_EXIT_USAGE;
     }
     /* a table is checked, not used: the IK decides every pick (hv/pick.h) */
     hv_arm_t arms[2];
@@ -391,26 +379,26 @@ int main(int argc, char **argv)
         if (o.table[s] &&
             hv_costtab_check_for(o.table[s], &cfg, (hv_side_t)s, err, sizeof err) != HV_OK) {
             fprintf(stderr, "harvest-exec: %s\n", err);
-            return EXIT_USAGE;
+            return HV_EXIT_USAGE;
         }
     }
     double margin_m = 0.0;
     if (hv_pick_stop_margin(&cfg, &margin_m) != HV_OK) {
         fprintf(stderr, "harvest-exec: %s: an arm reaches none of its fruit area\n", o.config);
-        return EXIT_USAGE;
+        return HV_EXIT_USAGE;
     }
 
     world_t *w = calloc(1, sizeof *w);
     if (!w) {
         fprintf(stderr, "harvest-exec: out of memory\n");
-        return EXIT_RUNTIME;
+        return HV_EXIT_FAILURE;
     }
     /* online: the plan starts empty and grows from the planner's messages */
     hv_status_t st = o.online ? HV_OK : hv_exec_plan_load_json(o.plan, &w->plan, err, sizeof err);
     if (st != HV_OK) {
         fprintf(stderr, "harvest-exec: %s\n", err);
         free(w);
-        return EXIT_USAGE;
+        return HV_EXIT_USAGE;
     }
     if (w->plan.stop_margin_m > margin_m + 1e-9) {
         fprintf(stderr,
@@ -419,7 +407,7 @@ int main(int argc, char **argv)
                 o.plan, w->plan.stop_margin_m, o.config, margin_m,
                 hv_exec_status_name(HV_ERR_EXEC_PLAN_RANGE));
         free(w);
-        return EXIT_USAGE;
+        return HV_EXIT_USAGE;
     }
     hv_exec_timing_t timing = {cfg.cut_s, cfg.release_s, cfg.vehicle_speed_mps,
                                cfg.vehicle_accel_mps2};
@@ -427,7 +415,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "harvest-exec: %s: cannot prepare the plan: %s\n", o.plan,
                 hv_exec_status_name(st));
         free(w);
-        return EXIT_USAGE;
+        return HV_EXIT_USAGE;
     }
     for (uint16_t i = 0; i < w->plan.n_picks; i++)
         if (!w->plan.picks[i].reachable)
@@ -441,7 +429,7 @@ int main(int argc, char **argv)
                "%.3f s (plan's objective %.3f s)\n",
                o.plan, (unsigned)w->plan.n_stops, (unsigned)w->plan.n_picks, w->plan.n_unreachable,
                w->plan.expected_makespan_s, w->plan.planned_makespan_s);
-        int rc = w->plan.n_unreachable ? EXIT_REFUSED : EXIT_ROW_DONE;
+        int rc = w->plan.n_unreachable ? HV_EXIT_EXEC_REFUSED : HV_EXIT_OK;
         free(w);
         return rc;
     }
@@ -453,7 +441,9 @@ int main(int argc, char **argv)
     if (st != HV_OK) {
         fprintf(stderr, "harvest-exec: %s\n", err);
         free(w);
-        return EXIT_USAGE;
+        /* a journal that cannot be opened or written is a failure; one that does not
+         * belong to this plan, bad input */
+        return st == HV_ERR_EXEC_JOURNAL_IO || st == HV_ERR_NOMEM ? HV_EXIT_FAILURE : HV_EXIT_USAGE;
     }
     /* online: the stops committed before a restart, rebuilt from the journal, are checked
      * and prepared as the planner's messages are */
@@ -466,7 +456,7 @@ int main(int argc, char **argv)
                 o.journal, o.config);
         hv_exec_journal_close(&w->journal);
         free(w);
-        return EXIT_USAGE;
+        return HV_EXIT_USAGE;
     }
     unsigned done = 0;
     for (uint16_t i = 0; i < w->plan.n_picks; i++)
@@ -477,7 +467,7 @@ int main(int argc, char **argv)
                o.journal, done, (unsigned)w->plan.n_picks);
         hv_exec_journal_close(&w->journal);
         free(w);
-        return EXIT_ROW_DONE;
+        return HV_EXIT_OK;
     }
     if (done || w->journal.records > 1)
         fprintf(stderr,
@@ -506,10 +496,11 @@ int main(int argc, char **argv)
     double h0 = hv_exec_home_max_s(&arms[0]), h1 = hv_exec_home_max_s(&arms[1]);
     prm.home_max_s = h0 > h1 ? h0 : h1;
     if ((st = hv_exec_init(&w->sm, &w->plan, &prm, &w->prog)) != HV_OK) {
-        fprintf(stderr, "harvest-exec: bad parameters: %s\n", hv_exec_status_name(st));
+        fprintf(stderr, "harvest-exec: %s: parameters refused: %s\n", o.config,
+                hv_exec_status_name(st));
         hv_exec_journal_close(&w->journal);
         free(w);
-        return EXIT_USAGE;
+        return HV_EXIT_USAGE;
     }
 
     if (strcmp(o.transport, "udp") == 0)
@@ -517,11 +508,11 @@ int main(int argc, char **argv)
     else
         st = hv_can_socketcan_open(&w->bus, o.channel, NULL, 0);
     if (st != HV_OK) {
-        fprintf(stderr, "harvest-exec: cannot open the %s bus '%s': %s (%s)\n", o.transport,
-                o.channel, hv_can_status_name(st), strerror(hv_can_last_errno(&w->bus)));
+        fprintf(stderr, "harvest-exec: %s bus '%s': cannot open: %s (%s)\n", o.transport, o.channel,
+                hv_can_status_name(st), strerror(hv_can_last_errno(&w->bus)));
         hv_exec_journal_close(&w->journal);
         free(w);
-        return EXIT_RUNTIME;
+        return HV_EXIT_FAILURE;
     }
     if (o.lcm_url) {
         if (hv_exec_telemetry_lcm_open(&w->tm, o.lcm_url, err, sizeof err) != HV_OK) {
@@ -529,7 +520,7 @@ int main(int argc, char **argv)
             hv_can_close(&w->bus);
             hv_exec_journal_close(&w->journal);
             free(w);
-            return EXIT_RUNTIME;
+            return HV_EXIT_FAILURE;
         }
     } else {
         hv_exec_telemetry_null(&w->tm);
@@ -549,7 +540,7 @@ int main(int argc, char **argv)
             hv_can_close(&w->bus);
             hv_exec_journal_close(&w->journal);
             free(w);
-            return EXIT_RUNTIME;
+            return HV_EXIT_FAILURE;
         }
         w->loop.feed = &w->feed;
     }
@@ -601,11 +592,11 @@ int main(int argc, char **argv)
     double cpu_s = (double)ru.ru_utime.tv_sec + (double)ru.ru_utime.tv_usec * 1e-6 +
                    (double)ru.ru_stime.tv_sec + (double)ru.ru_stime.tv_usec * 1e-6;
 
-    int rc = st != HV_OK                                  ? EXIT_RUNTIME
-             : w->sm.phase == HV_PH_ROW_DONE              ? EXIT_ROW_DONE
-             : w->sm.phase == HV_PH_STOPPED               ? EXIT_STOPPED
-             : w->sm.safe_reason == HV_SAFE_ESTOP_LATCHED ? EXIT_ESTOP_LATCHED
-                                                          : EXIT_SAFE;
+    int rc = st != HV_OK                                  ? HV_EXIT_FAILURE
+             : w->sm.phase == HV_PH_ROW_DONE              ? HV_EXIT_OK
+             : w->sm.phase == HV_PH_STOPPED               ? HV_EXIT_EXEC_STOPPED
+             : w->sm.safe_reason == HV_SAFE_ESTOP_LATCHED ? HV_EXIT_EXEC_ESTOP_LATCHED
+                                                          : HV_EXIT_EXEC_SAFE;
     /* an online plan has no objective of its own: the planner's horizons each had one */
     char objective[96];
     if (o.online)
@@ -623,14 +614,14 @@ int main(int argc, char **argv)
                     : "",
            w->sm.picked, w->sm.failed, w->sm.skipped, hv_exec_remaining(&w->sm), w->sm.faults,
            hv_exec_executed_s(&w->sm, t_end), w->plan.expected_makespan_s, objective);
-    if (rc == EXIT_ESTOP_LATCHED) {
+    if (rc == HV_EXIT_EXEC_ESTOP_LATCHED) {
         char latched[64];
         hv_exec_node_list(w->sm.latched, latched, sizeof latched);
         printf("harvest-exec: latched e-stop on %s: not started, nothing enabled. Once its "
                "cause is dealt with, an operator clears it by restarting with "
                "--clear-estop NAME\n",
                latched);
-    } else if (rc == EXIT_SAFE)
+    } else if (rc == HV_EXIT_EXEC_SAFE)
         printf("harvest-exec: the nodes hold the e-stop (%s, %s): a restart needs "
                "--clear-estop NAME\n",
                hv_exec_safe_reason_name(w->sm.safe_reason), hv_exec_node_name(w->sm.safe_node));

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "fw_status.h"
+#include "hv/cli.h"
 #include "hv/cost_table.h"
 #include "hv/exec_plan_json.h"
 #include "hv/exec_status.h"
@@ -17,6 +18,8 @@
 #include "hv/pick.h"
 #include "hv/version.h"
 #include "plan_image.h"
+
+static const char k_prog[] = "harvest-fw-plan";
 
 static void usage(FILE *out)
 {
@@ -38,7 +41,7 @@ static void usage(FILE *out)
         "  --startup-timeout S     wall s to see every node (default 10)\n"
         "  -h, --help              this text\n"
         "  --version               the version and exit\n"
-        "exit status: 0 written; 2 bad input (the file and field named).\n",
+        "\n" HV_EXIT_CODES_HELP ")\n",
         (unsigned)HV_FW_MAX_STOPS, (unsigned)HV_FW_MAX_PICKS);
 }
 
@@ -70,7 +73,8 @@ int main(int argc, char **argv)
                                          {"version", no_argument, 0, 'V'},
                                          {0, 0, 0, 0}};
     int c;
-    while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+    opterr = 0; /* hv_cli_option_error's message instead of getopt's */
+    while ((c = getopt_long(argc, argv, ":h", opts, NULL)) != -1) {
         int bad = 0;
         switch (c) {
         case 'p': plan_path = optarg; break;
@@ -81,29 +85,38 @@ int main(int argc, char **argv)
         case 's': bad = number("startup-timeout", optarg, &prm.startup_timeout_s); break;
         case 'h': usage(stdout); return 0;
         case 'V': printf("harvest-fw-plan %s\n", HV_VERSION); return 0;
-        default: usage(stderr); return 2;
+        default: hv_cli_option_error(k_prog, c, optopt, argv[optind - 1]); return HV_EXIT_USAGE;
         }
         if (bad)
-            return 2;
+            return HV_EXIT_USAGE;
     }
-    if (!plan_path || !config || !out || optind != argc) {
-        usage(stderr);
-        return 2;
+    if (optind != argc) {
+        hv_cli_usage_error(k_prog, argv[optind], "unexpected argument");
+        return HV_EXIT_USAGE;
+    }
+    const char *missing = !plan_path ? "--plan" : !config ? "--config" : !out ? "--out" : NULL;
+    if (missing) {
+        hv_cli_usage_error(k_prog, missing, "required");
+        return HV_EXIT_USAGE;
     }
     char err[512];
     hv_config_t cfg;
     if (hv_config_load(config, &cfg, err, sizeof err) != HV_OK) {
         fprintf(stderr, "harvest-fw-plan: %s\n", err);
-        return 2;
+        return HV_EXIT_USAGE;
     }
     hv_arm_t arms[2];
     for (int s = 0; s < 2; s++)
         hv_config_arm(&cfg, (hv_side_t)s, &arms[s]);
     hv_exec_plan_t *plan = calloc(1, sizeof *plan);
-    if (!plan || hv_exec_plan_load_json(plan_path, plan, err, sizeof err) != HV_OK) {
-        fprintf(stderr, "harvest-fw-plan: %s\n", plan ? err : "out of memory");
+    if (!plan) {
+        fprintf(stderr, "harvest-fw-plan: out of memory\n");
+        return HV_EXIT_FAILURE;
+    }
+    if (hv_exec_plan_load_json(plan_path, plan, err, sizeof err) != HV_OK) {
+        fprintf(stderr, "harvest-fw-plan: %s\n", err);
         free(plan);
-        return 2;
+        return HV_EXIT_USAGE;
     }
     double margin_m = 0.0;
     if (hv_pick_stop_margin(&cfg, &margin_m) != HV_OK || plan->stop_margin_m > margin_m + 1e-9) {
@@ -113,7 +126,7 @@ int main(int argc, char **argv)
                 plan_path, plan->stop_margin_m, config, margin_m,
                 hv_exec_status_name(HV_ERR_EXEC_PLAN_RANGE));
         free(plan);
-        return 2;
+        return HV_EXIT_USAGE;
     }
     if (plan->n_stops > HV_FW_MAX_STOPS || plan->n_picks > HV_FW_MAX_PICKS) {
         fprintf(stderr,
@@ -123,7 +136,7 @@ int main(int argc, char **argv)
                 (unsigned)HV_FW_MAX_STOPS, (unsigned)HV_FW_MAX_PICKS,
                 hv_exec_status_name(HV_ERR_EXEC_PLAN_CAPACITY));
         free(plan);
-        return 2;
+        return HV_EXIT_USAGE;
     }
     hv_exec_timing_t timing = {cfg.cut_s, cfg.release_s, cfg.vehicle_speed_mps,
                                cfg.vehicle_accel_mps2};
@@ -132,7 +145,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "harvest-fw-plan: %s: cannot prepare the plan: %s\n", plan_path,
                 hv_exec_status_name(st));
         free(plan);
-        return 2;
+        return HV_EXIT_USAGE;
     }
     prm.cut_s = cfg.cut_s;
     prm.release_s = cfg.release_s;
@@ -142,12 +155,13 @@ int main(int argc, char **argv)
     prm.home_max_s = h0 > h1 ? h0 : h1;
     size_t size = hv_fw_image_size(plan->n_stops, plan->n_picks);
     uint8_t *buf = malloc(size);
+    snprintf(err, sizeof err, "%s: out of memory", out);
     if (!buf || hv_fw_image_write(plan, &prm, buf, size) != size ||
         hv_file_write_atomic(out, buf, size, err, sizeof err) != HV_OK) {
-        fprintf(stderr, "harvest-fw-plan: %s: %s\n", out, buf ? err : "out of memory");
+        fprintf(stderr, "harvest-fw-plan: %s\n", err);
         free(buf);
         free(plan);
-        return 2;
+        return HV_EXIT_FAILURE;
     }
     printf("harvest-fw-plan: %s: %zu bytes, crc32 %08lx, %u stops, %u picks (%u refused by the "
            "IK), expected makespan %.3f s\n",
@@ -155,5 +169,5 @@ int main(int argc, char **argv)
            (unsigned)plan->n_picks, plan->n_unreachable, plan->expected_makespan_s);
     free(buf);
     free(plan);
-    return 0;
+    return HV_EXIT_OK;
 }

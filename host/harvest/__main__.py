@@ -4,6 +4,8 @@ harvest.<command>.cli:main(argv)."""
 import importlib
 import sys
 
+from .cmdline import EXIT_USAGE, error, exit_codes_help
+
 COMMANDS = {
     "sim": "simulated vehicle drive and SCARA joint controllers on python-can",
     "scenario": "generate fruit maps (paper's uniform rows, clusters, gradients, long rows)",
@@ -22,13 +24,17 @@ def _usage(stream):
     )
     for name, what in COMMANDS.items():
         print(f"  {name:<12} {what}", file=stream)
+    print("\n" + exit_codes_help("a command's higher ones in its --help"), file=stream)
 
 
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
-    if not argv or argv[0] in ("-h", "--help"):
-        _usage(sys.stdout if argv else sys.stderr)
-        return 0 if argv else 2
+    if not argv:
+        error("harvest-stack", "COMMAND", f"missing, one of {', '.join(COMMANDS)} (see --help)")
+        return EXIT_USAGE
+    if argv[0] in ("-h", "--help"):
+        _usage(sys.stdout)
+        return 0
     if argv[0] == "--version":
         from importlib.metadata import version
 
@@ -36,9 +42,9 @@ def main(argv=None):
         return 0
     name, rest = argv[0], argv[1:]
     if name not in COMMANDS:
-        print(f"harvest: unknown command '{name}'", file=sys.stderr)
-        _usage(sys.stderr)
-        return 2
+        why = "unknown option" if name.startswith("-") else "unknown command"
+        error("harvest-stack", name, f"{why} (see --help)")
+        return EXIT_USAGE
     module = importlib.import_module(f"harvest.{name}.cli")
     return module.main(rest)
 

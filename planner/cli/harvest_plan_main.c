@@ -11,6 +11,7 @@
 #include <time.h>
 
 #include "hv/baselines.h"
+#include "hv/cli.h"
 #include "hv/file_io.h"
 #include "hv/fruit_map.h"
 #include "hv/horizon.h"
@@ -23,7 +24,7 @@
 #include "hv/plan_paths.h"
 #include "hv/version.h"
 
-enum { EXIT_INPUT = 1, EXIT_USAGE = 2, EXIT_NO_SOLUTION = 3, EXIT_CHECK = 4, EXIT_INTERRUPTED = 5 };
+static const char k_prog[] = "harvest-plan";
 
 static const char k_usage[] =
     "usage: harvest-plan --config CFG --fruits MAP.csv --method milp|fov|serial\n"
@@ -74,8 +75,9 @@ static const char k_usage[] =
     "Ctrl-C or SIGTERM stops the solver as its time limit would: the best plan so far is\n"
     "checked and written with its status and gap (exit 5); a second one ends the program\n"
     "at once, writing nothing.\n"
-    "exit codes: 0 plan written / check passed, 1 bad input, 2 usage, 3 no solution,\n"
-    "4 the plan failed the independent check, 5 interrupted (the best plan so far written).\n";
+    "\n" HV_EXIT_CODES_HELP ",\n"
+    "3 no solution, 4 the plan failed the independent check, 5 interrupted: the best plan\n"
+    "so far written)\n";
 
 typedef struct args {
     const char *config, *left, *right, *fruits, *method, *out, *export_lp, *algorithm;
@@ -123,20 +125,26 @@ static void catch_stop_signals(void)
     sigprocmask(SIG_UNBLOCK, &set, NULL);
 }
 
-static int usage_error(const char *msg, const char *what)
+static int usage_error(const char *what, const char *why)
 {
-    fprintf(stderr, "harvest-plan: %s%s%s (see --help)\n", msg, what ? ": " : "", what ? what : "");
-    return EXIT_USAGE;
+    hv_cli_usage_error(k_prog, what, why);
+    return HV_EXIT_USAGE;
 }
 
-/* A positive finite number, or -1 with a message. */
+/* "harvest-plan: --flag: expected ..., got "text"" */
+static int bad_value(const char *flag, const char *expected, const char *text)
+{
+    fprintf(stderr, "harvest-plan: %s: expected %s, got \"%s\"\n", flag, expected, text);
+    return HV_EXIT_USAGE;
+}
+
+/* A positive finite number: 0, or HV_EXIT_USAGE with a message. */
 static int parse_pos(const char *flag, const char *text, double *out)
 {
     char *end = NULL;
     double v = strtod(text, &end);
     if (end == text || *end != '\0' || !isfinite(v) || v <= 0) {
-        fprintf(stderr, "harvest-plan: %s: expected a positive number, got \"%s\"\n", flag, text);
-        return -1;
+        return bad_value(flag, "a positive number", text);
     }
     *out = v;
     return 0;
@@ -152,7 +160,8 @@ static double now_s(void)
 /* getopt_long's verdict on argv[optind - 1] when it returned ':' or '?'. */
 static int option_error(int opt, char **argv)
 {
-    return usage_error(opt == ':' ? "option needs a value" : "unknown option", argv[optind - 1]);
+    hv_cli_option_error(k_prog, opt, optopt, argv[optind - 1]);
+    return HV_EXIT_USAGE;
 }
 
 static int run_check(int argc, char **argv)
@@ -188,25 +197,28 @@ static int run_check(int argc, char **argv)
         plan_path = argv[optind++];
     }
     if (optind < argc) {
-        return usage_error("more than one plan file", argv[optind]);
+        return usage_error(argv[optind], "more than one plan file");
     }
     if (plan_path == NULL) {
-        return usage_error("check needs a PLAN.json", NULL);
+        return usage_error("check", "needs a PLAN.json");
     }
     char err[512] = "";
     hv_plan_t plan;
     hv_status_t st = hv_plan_load(plan_path, &plan, err, sizeof err);
     if (st != HV_OK) {
         fprintf(stderr, "harvest-plan: %s\n", err);
-        return EXIT_INPUT;
+        return HV_EXIT_USAGE;
     }
     st = hv_plan_check_files(&plan, plan_path, config, left, right, fruits, err, sizeof err);
     int rc = 0;
     if (st != HV_OK) {
         int is_check = st <= HV_ERR_PLAN_CHECK_DUPLICATE && st >= HV_ERR_PLAN_CHECK_PARAMS;
-        fprintf(stderr, "harvest-plan: %s%s (%s)\n", is_check ? plan_path : "",
-                is_check ? ": " : "", err);
-        rc = is_check ? EXIT_CHECK : EXIT_INPUT;
+        if (is_check) {
+            fprintf(stderr, "harvest-plan: %s: %s\n", plan_path, err);
+        } else { /* an input of the plan: `err` names its file */
+            fprintf(stderr, "harvest-plan: %s\n", err);
+        }
+        rc = is_check ? HV_EXIT_PLAN_CHECK : HV_EXIT_USAGE;
     } else if (!quiet) {
         printf("%s: OK: %s, %zu stops, %zu fruits planned, %zu unreachable, makespan %.3f s\n",
                plan_path, plan.method, plan.n_stops, plan.fruits_planned, plan.fruits_unreachable,
@@ -290,55 +302,51 @@ static int parse_args(int argc, char **argv, args_t *a)
         case OPT_ALGORITHM: a->algorithm = v; break;
         case OPT_THREADS:
             if (strcmp(v, "1") != 0 && strcmp(v, "2") != 0) {
-                return usage_error("--threads must be 1 or 2, not", v);
+                return bad_value("--threads", "1 or 2", v);
             }
             a->threads = v[0] - '0';
             break;
         case OPT_TIME_LIMIT:
             if (parse_pos(f, v, &a->time_limit_s))
-                return EXIT_USAGE;
+                return HV_EXIT_USAGE;
             break;
         case OPT_GAP: {
             char *end = NULL;
             a->gap = strtod(v, &end);
             if (end == v || *end != '\0' || !isfinite(a->gap) || a->gap < 0 || a->gap >= 1) {
-                fprintf(stderr, "harvest-plan: --gap: expected a number in [0, 1), got \"%s\"\n",
-                        v);
-                return EXIT_USAGE;
+                return bad_value("--gap", "a number in [0, 1)", v);
             }
             break;
         }
         case OPT_FOV_WIDTH:
             if (parse_pos(f, v, &a->fov_width_m))
-                return EXIT_USAGE;
+                return HV_EXIT_USAGE;
             break;
         case OPT_FOV_OFFSET: {
             char *end = NULL;
             a->fov_offset_m = strtod(v, &end);
             if (end == v || *end != '\0' || !isfinite(a->fov_offset_m)) {
-                fprintf(stderr, "harvest-plan: --fov-offset: expected a number (m), got \"%s\"\n",
-                        v);
-                return EXIT_USAGE;
+                return bad_value("--fov-offset", "a number (m)", v);
             }
             break;
         }
         case OPT_HORIZON:
             if (parse_pos(f, v, &a->horizon_m))
-                return EXIT_USAGE;
+                return HV_EXIT_USAGE;
             break;
         case OPT_COMMIT:
             if (parse_pos(f, v, &a->commit_m))
-                return EXIT_USAGE;
+                return HV_EXIT_USAGE;
             break;
         case OPT_ROW_LENGTH:
             if (parse_pos(f, v, &a->row_length_m))
-                return EXIT_USAGE;
+                return HV_EXIT_USAGE;
             break;
         default: return option_error(opt, argv);
         }
     }
     if (optind < argc) {
-        return usage_error("unexpected argument", argv[optind]);
+        return usage_error(argv[optind], "unexpected argument");
     }
     const char *missing = !a->config   ? "--config"
                           : !a->fruits ? "--fruits"
@@ -346,36 +354,36 @@ static int parse_args(int argc, char **argv, args_t *a)
                           : !a->out    ? "--out"
                                        : NULL;
     if (missing != NULL) {
-        return usage_error("missing required option", missing);
+        return usage_error(missing, "required");
     }
     if (strcmp(a->method, "milp") != 0 && strcmp(a->method, "fov") != 0 &&
         strcmp(a->method, "serial") != 0) {
-        return usage_error("--method must be milp, fov or serial, not", a->method);
+        return bad_value("--method", "milp, fov or serial", a->method);
     }
     if (a->algorithm != NULL && strcmp(a->algorithm, "price") != 0 &&
         strcmp(a->algorithm, "compact") != 0) {
-        return usage_error("--algorithm must be price or compact, not", a->algorithm);
+        return bad_value("--algorithm", "price or compact", a->algorithm);
     }
     if (a->algorithm != NULL && strcmp(a->method, "milp") != 0) {
-        return usage_error("--algorithm applies to --method milp only", NULL);
+        return usage_error("--algorithm", "applies to --method milp only");
     }
     if (a->threads != 0 && strcmp(a->method, "milp") != 0) {
-        return usage_error("--threads applies to --method milp only", NULL);
+        return usage_error("--threads", "applies to --method milp only");
     }
     if (a->horizon_m > 0 && strcmp(a->method, "milp") != 0) {
-        return usage_error("--horizon applies to --method milp only", NULL);
+        return usage_error("--horizon", "applies to --method milp only");
     }
     if (a->compare_single && !(a->horizon_m > 0)) {
-        return usage_error("--compare-single needs --horizon", NULL);
+        return usage_error("--compare-single", "needs --horizon");
     }
     if (a->commit_m > 0 && !(a->horizon_m > 0)) {
-        return usage_error("--commit needs --horizon", NULL);
+        return usage_error("--commit", "needs --horizon");
     }
     if (a->horizon_m > 0 && a->commit_m > a->horizon_m) {
-        return usage_error("--commit must not exceed --horizon", NULL);
+        return usage_error("--commit", "must not exceed --horizon");
     }
     if (a->export_lp != NULL && (strcmp(a->method, "milp") != 0 || a->horizon_m > 0)) {
-        return usage_error("--export-lp applies to a single-window --method milp", NULL);
+        return usage_error("--export-lp", "applies to a single-window --method milp");
     }
     return 0;
 }
@@ -441,7 +449,7 @@ static int check_table(const char *path, hv_side_t side, const hv_config_t *cfg)
     char err[512];
     if (hv_costtab_check_for(path, cfg, side, err, sizeof err) != HV_OK) {
         fprintf(stderr, "harvest-plan: %s\n", err);
-        return EXIT_INPUT;
+        return HV_EXIT_USAGE;
     }
     return 0;
 }
@@ -472,7 +480,7 @@ static int run_plan(const args_t *a)
     hv_config_t cfg;
     if (hv_config_load(a->config, &cfg, err, sizeof err) != HV_OK) {
         fprintf(stderr, "harvest-plan: %s\n", err);
-        return EXIT_INPUT;
+        return HV_EXIT_USAGE;
     }
     hv_ik_model_t ik;
     hv_pick_model_t model;
@@ -480,7 +488,7 @@ static int run_plan(const args_t *a)
     if (mst != HV_OK) {
         fprintf(stderr, "harvest-plan: %s: an arm reaches none of its fruit area (%s)\n", a->config,
                 hv_status_name(mst));
-        return EXIT_INPUT;
+        return HV_EXIT_USAGE;
     }
     hv_instance_params_t params;
     hv_instance_params_from_config(&cfg, &model, &params);
@@ -504,7 +512,7 @@ static int run_plan(const args_t *a)
         hv_fruitmap_limits_from_config(&cfg, params.row_start_m, params.row_length_m, &lim);
         if (hv_fruitmap_load(a->fruits, &lim, &map, err, sizeof err) != HV_OK) {
             fprintf(stderr, "harvest-plan: %s\n", err);
-            rc = EXIT_INPUT;
+            rc = HV_EXIT_USAGE;
         }
     }
     if (rc == 0) {
@@ -514,7 +522,7 @@ static int run_plan(const args_t *a)
         hv_status_t st = hv_instance_build(&params, map.fruits, map.n, &model, &inst, &d);
         if (st != HV_OK) {
             fprintf(stderr, "harvest-plan: instance: %s: %s\n", d.field, d.message);
-            rc = EXIT_INPUT;
+            rc = HV_EXIT_USAGE;
         } else if (!a->quiet) {
             size_t nl = 0;
             for (size_t f = 0; f < map.n; ++f) {
@@ -533,7 +541,7 @@ static int run_plan(const args_t *a)
     }
     if (rc == 0 && hv_assignment_alloc(&sol, inst.n_fruits) != HV_OK) {
         fprintf(stderr, "harvest-plan: out of memory\n");
-        rc = EXIT_INPUT;
+        rc = HV_EXIT_FAILURE;
     }
 
     /* the plan names its inputs relative to its own folder (plan_paths.h) */
@@ -544,7 +552,7 @@ static int run_plan(const args_t *a)
             hv_plan_input_relative(a->out, given[k], inputs[k], sizeof inputs[k], err,
                                    sizeof err) != HV_OK) {
             fprintf(stderr, "harvest-plan: %s\n", err);
-            rc = EXIT_INPUT;
+            rc = HV_EXIT_FAILURE;
         }
     }
     hv_plan_meta_t meta;
@@ -648,7 +656,7 @@ static int run_plan(const args_t *a)
             if (st == HV_OK && mr.status != HV_SOLVE_OPTIMAL && mr.status != HV_SOLVE_FEASIBLE) {
                 fprintf(stderr, "harvest-plan: milp: %s after %.1f s: no plan written\n",
                         solve_status_name(mr.status), mr.runtime_s);
-                rc = EXIT_NO_SOLUTION;
+                rc = HV_EXIT_PLAN_NO_SOLUTION;
             } else if (st == HV_OK) {
                 meta.solver_status = solve_status_name(mr.status);
                 meta.gap = mr.gap;
@@ -663,14 +671,14 @@ static int run_plan(const args_t *a)
         if (st != HV_OK && rc == 0) {
             fprintf(stderr, "harvest-plan: %s: solve failed: %s\n", a->method,
                     hv_plan_status_name(st));
-            rc = st == HV_ERR_PLAN_NO_SOLUTION ? EXIT_NO_SOLUTION : EXIT_INPUT;
+            rc = st == HV_ERR_PLAN_NO_SOLUTION ? HV_EXIT_PLAN_NO_SOLUTION : HV_EXIT_FAILURE;
         }
     }
     if (rc == 0) {
         hv_status_t st = hv_plan_build(&inst, &sol, passes, &meta, &plan);
         if (st != HV_OK) {
             fprintf(stderr, "harvest-plan: building the plan: %s\n", hv_plan_status_name(st));
-            rc = EXIT_INPUT;
+            rc = HV_EXIT_FAILURE;
         }
     }
     if (rc == 0) {
@@ -679,12 +687,12 @@ static int run_plan(const args_t *a)
                                              err, sizeof err);
         if (st != HV_OK) {
             fprintf(stderr, "harvest-plan: internal error, plan not written: %s\n", err);
-            rc = EXIT_CHECK;
+            rc = HV_EXIT_PLAN_CHECK;
         }
     }
     if (rc == 0 && hv_plan_save(a->out, &plan, err, sizeof err) != HV_OK) {
         fprintf(stderr, "harvest-plan: %s\n", err);
-        rc = EXIT_INPUT;
+        rc = HV_EXIT_FAILURE;
     }
     if (rc == 0 && !a->quiet) {
         char gap[32] = "n/a";
@@ -699,7 +707,7 @@ static int run_plan(const args_t *a)
                 plan.fruits_unreachable, plan.throughput_fruit_per_s, plan.runtime_s, a->out);
     }
     if (rc == 0 && interrupted(NULL) && strcmp(plan.solver_status, "optimal") != 0) {
-        rc = EXIT_INTERRUPTED; /* a proof that came in time lost nothing */
+        rc = HV_EXIT_PLAN_INTERRUPTED; /* a proof that came in time lost nothing */
     }
     hv_plan_free(&plan);
     free(passes);
@@ -713,10 +721,6 @@ int main(int argc, char **argv)
 {
     if (argc >= 2 && strcmp(argv[1], "check") == 0) {
         return run_check(argc, argv);
-    }
-    if (argc < 2) {
-        fputs(k_usage, stderr);
-        return EXIT_USAGE;
     }
     args_t a;
     int rc = parse_args(argc, argv, &a);

@@ -17,6 +17,7 @@
 #include "harvest_lcm_camera_frame_t.h"
 #include "harvest_lcm_exec_state_t.h"
 #include "harvest_lcm_plan_commit_t.h"
+#include "hv/cli.h"
 #include "hv/file_io.h"
 #include "hv/fruit_id.h"
 #include "hv/online.h"
@@ -28,15 +29,7 @@
 #include "hv/pick_model.h"
 #include "hv/online_journal.h"
 
-enum {
-    EXIT_DONE = 0,
-    EXIT_INPUT = 1,
-    EXIT_USAGE = 2,
-    EXIT_FAILED = 3,
-    EXIT_EXEC_SAFE = 4,
-    EXIT_INTERRUPTED = 5,
-    EXIT_EXEC_STOPPED = 6
-};
+static const char k_prog[] = "harvest-plan-online";
 #define MAX_HORIZONS 4096
 #define REPUBLISH_S  2.0 /* wall s between repeats of the committed plan (a lost one heals) */
 
@@ -87,10 +80,9 @@ static const char k_usage[] =
     "It ends once the whole row is committed and the executor reports row_done, when the\n"
     "executor reports safe or stopped (HARVEST_EXEC_STATE), or on SIGINT / SIGTERM (which\n"
     "also stop a horizon's solve).\n"
-    "exit codes: 0 done, 1 bad input (a journal too), 2 usage, 3 planning failed (or the journal\n"
-    "could not be written), 4 the executor stopped in\n"
-    "the safe state, 5 interrupted before the row was planned, 6 the executor made a\n"
-    "controlled stop (SIGTERM to it: both resume on a plain restart).\n";
+    "\n" HV_EXIT_CODES_HELP ",\n"
+    "4 the executor stopped in the safe state, 5 interrupted before the row was planned,\n"
+    "6 the executor made a controlled stop)\n";
 
 static atomic_int g_stop; /* set by SIGINT / SIGTERM: the only process-wide state */
 
@@ -473,52 +465,48 @@ int main(int argc, char **argv)
         case O_THREADS:
             bad = strcmp(v, "1") != 0 && strcmp(v, "2") != 0;
             if (bad) {
-                fprintf(stderr, "harvest-plan-online: --threads must be 1 or 2, not %s\n", v);
+                fprintf(stderr, "harvest-plan-online: --threads: expected 1 or 2, got \"%s\"\n", v);
             } else if (v[0] == '1') {
                 opt.milp.helper_thread = 0;
                 opt.milp.tree_threads = 1;
             }
             break;
-        default:
-            fprintf(stderr, "harvest-plan-online: %s %s (see --help)\n",
-                    o == ':' ? "a value is needed for" : "unknown option", argv[optind - 1]);
-            return EXIT_USAGE;
+        default: hv_cli_option_error(k_prog, o, optopt, argv[optind - 1]); return HV_EXIT_USAGE;
         }
         if (bad) {
-            return EXIT_USAGE;
+            return HV_EXIT_USAGE;
         }
     }
     if (optind < argc) {
-        fprintf(stderr, "harvest-plan-online: unexpected argument %s (see --help)\n", argv[optind]);
-        return EXIT_USAGE;
+        hv_cli_usage_error(k_prog, argv[optind], "unexpected argument");
+        return HV_EXIT_USAGE;
     }
     if (config == NULL || url == NULL) {
-        fprintf(stderr, "harvest-plan-online: %s is required (see --help)\n",
-                config == NULL ? "--config" : "--lcm-url");
-        return EXIT_USAGE;
+        hv_cli_usage_error(k_prog, config == NULL ? "--config" : "--lcm-url", "required");
+        return HV_EXIT_USAGE;
     }
     if (opt.commit_m > opt.window_m) {
-        fprintf(stderr, "harvest-plan-online: --commit must not exceed --window\n");
-        return EXIT_USAGE;
+        hv_cli_usage_error(k_prog, "--commit", "must not exceed --window");
+        return HV_EXIT_USAGE;
     }
     hv_config_t cfg;
     char err[512];
     if (hv_config_load(config, &cfg, err, sizeof err) != HV_OK) {
         fprintf(stderr, "harvest-plan-online: %s\n", err);
-        return EXIT_INPUT;
+        return HV_EXIT_USAGE;
     }
     if (cfg.pick_cost_flat) { /* its costs are laid out over the config's whole row */
         fprintf(stderr,
                 "harvest-plan-online: %s: plan.pick_cost_flat = 1 is the experiments' offline "
                 "cost variant, not the robot's times\n",
                 config);
-        return EXIT_INPUT;
+        return HV_EXIT_USAGE;
     }
     hv_ik_model_t ik;
     hv_pick_model_t model;
     if (hv_pick_model_ik(&cfg, &ik, &model) != HV_OK) {
         fprintf(stderr, "harvest-plan-online: %s: an arm reaches none of its fruit area\n", config);
-        return EXIT_INPUT;
+        return HV_EXIT_USAGE;
     }
     hv_instance_params_t par;
     hv_instance_params_from_config(&cfg, &model, &par);
@@ -528,19 +516,29 @@ int main(int argc, char **argv)
     /* the plan records the longest a horizon may take */
     opt.milp.time_limit_s = fixed_limit_s > 0.0 ? fixed_limit_s : opt.limit_max_s;
     app_t *a = calloc(1, sizeof *a);
-    if (a == NULL || hv_online_init(&a->o, &par, &model, &opt) != HV_OK) {
-        fprintf(stderr, "harvest-plan-online: cannot start (out of memory or bad options)\n");
+    if (a == NULL) {
+        fprintf(stderr, "harvest-plan-online: out of memory\n");
+        return HV_EXIT_FAILURE;
+    }
+    hv_status_t ist = hv_online_init(&a->o, &par, &model, &opt);
+    if (ist != HV_OK) {
+        fprintf(stderr,
+                "harvest-plan-online: %s: cannot plan with this config and these options: %s\n",
+                config, hv_plan_status_name(ist));
         free(a);
-        return EXIT_INPUT;
+        return HV_EXIT_USAGE;
     }
     a->quiet = quiet;
     hv_online_journal_t journal;
     if (journal_path != NULL) {
-        if (hv_online_journal_open(&journal, journal_path, &a->o, err, sizeof err) != HV_OK) {
+        hv_status_t jst = hv_online_journal_open(&journal, journal_path, &a->o, err, sizeof err);
+        if (jst != HV_OK) {
             fprintf(stderr, "harvest-plan-online: %s\n", err);
             hv_online_free(&a->o);
             free(a);
-            return EXIT_INPUT;
+            /* a journal that cannot be opened or written is a failure; one of another
+             * row, bad input */
+            return jst == HV_ERR_IO || jst == HV_ERR_NOMEM ? HV_EXIT_FAILURE : HV_EXIT_USAGE;
         }
         a->journal = &journal;
         if (journal.detections > 0 && !quiet) {
@@ -558,7 +556,7 @@ int main(int argc, char **argv)
         hv_online_journal_close(a->journal);
         hv_online_free(&a->o);
         free(a);
-        return EXIT_INPUT;
+        return HV_EXIT_FAILURE;
     }
     harvest_lcm_camera_frame_t_subscription_t *cam_sub =
         harvest_lcm_camera_frame_t_subscribe(a->lcm, "HARVEST_CAMERA", on_frame, a);
@@ -587,7 +585,7 @@ int main(int argc, char **argv)
                 cfg.row_length_m, cfg.camera_window_m, cfg.camera_lead_m, opt.window_m,
                 opt.commit_m, limit_text);
     }
-    int rc = EXIT_DONE;
+    int rc = HV_EXIT_OK;
     double last_pub = 0.0, last_progress = now_s();
     while (!atomic_load(&g_stop)) {
         lcm_handle_timeout(a->lcm, 20);
@@ -602,14 +600,14 @@ int main(int argc, char **argv)
                                   : hv_online_step_ahead(&a->o, work_ahead_s(a, &cfg), &r);
             if (sst != HV_OK) {
                 fprintf(stderr, "harvest-plan-online: a horizon failed to plan\n");
-                rc = EXIT_FAILED;
+                rc = HV_EXIT_FAILURE;
                 break;
             }
             /* durable before anyone may act on it */
             if (a->journal != NULL && a->o.pos != pos &&
                 hv_online_journal_horizon(a->journal, &a->o, r.stops_from) != HV_OK) {
                 journal_failed(a);
-                rc = EXIT_FAILED;
+                rc = HV_EXIT_FAILURE;
                 break;
             }
             double dt = now_s() - t0;
@@ -632,7 +630,7 @@ int main(int argc, char **argv)
             while (lcm_handle_timeout(a->lcm, 0) > 0)
                 ;
         }
-        if (rc != EXIT_DONE) {
+        if (rc != HV_EXIT_OK) {
             break;
         }
         double t = now_s();
@@ -646,12 +644,12 @@ int main(int argc, char **argv)
         }
         if (a->exec_seen && strcmp(a->exec_phase, "safe") == 0) {
             fprintf(stderr, "harvest-plan-online: the executor stopped in the safe state\n");
-            rc = EXIT_EXEC_SAFE;
+            rc = HV_EXIT_ONLINE_EXEC_SAFE;
             break;
         }
         if (a->exec_seen && strcmp(a->exec_phase, "stopped") == 0) {
             fprintf(stderr, "harvest-plan-online: the executor made a controlled stop\n");
-            rc = EXIT_EXEC_STOPPED;
+            rc = HV_EXIT_ONLINE_EXEC_STOPPED;
             break;
         }
         if (a->o.done && a->exec_seen && strcmp(a->exec_phase, "row_done") == 0) {
@@ -659,9 +657,9 @@ int main(int argc, char **argv)
         }
     }
     if (a->journal_failed) {
-        rc = EXIT_FAILED;
-    } else if (rc == EXIT_DONE && atomic_load(&g_stop)) {
-        rc = a->o.done ? EXIT_DONE : EXIT_INTERRUPTED;
+        rc = HV_EXIT_FAILURE;
+    } else if (rc == HV_EXIT_OK && atomic_load(&g_stop)) {
+        rc = a->o.done ? HV_EXIT_OK : HV_EXIT_ONLINE_INTERRUPTED;
     }
     if (!quiet) {
         progress(a, "end");
@@ -669,8 +667,8 @@ int main(int argc, char **argv)
     if (summary != NULL) {
         write_summary(summary, a);
     }
-    if (out != NULL && a->o.done && write_plan(out, config, &cfg, a) != 0 && rc == EXIT_DONE) {
-        rc = EXIT_FAILED;
+    if (out != NULL && a->o.done && write_plan(out, config, &cfg, a) != 0 && rc == HV_EXIT_OK) {
+        rc = HV_EXIT_FAILURE;
     }
     harvest_lcm_camera_frame_t_unsubscribe(a->lcm, cam_sub);
     harvest_lcm_exec_state_t_unsubscribe(a->lcm, exec_sub);

@@ -4,6 +4,7 @@ planned and actual timelines, summarised and plotted; bad input gets a clear err
 
 import json
 import os
+import struct
 import subprocess
 import sys
 
@@ -140,7 +141,8 @@ def test_cli(tmp_path):
         text=True,
         env=env(),
     )
-    assert r.returncode == 1 and "telemetry:" in r.stderr
+    missing = f"harvest-stack telemetry summary: {tmp_path / 'missing.lcmlog'}: No such file"
+    assert r.returncode == 2 and r.stderr.startswith(missing), r.stderr
     r = subprocess.run(
         [
             sys.executable,
@@ -203,3 +205,45 @@ def test_lcm_schema_from_definitions(tmp_path):
     bad.write_text("package harvest;\nstruct x_t\n{\n    double a b;\n}\n")
     with pytest.raises(ValueError, match="bad.lcm:4"):
         lcm_schema.parse(str(bad))
+
+
+def _events(data):
+    """Byte offsets of the events of an LCM log's bytes (its own format, big-endian)."""
+    offsets, off = [], 0
+    while off < len(data):
+        offsets.append(off)
+        clen, dlen = struct.unpack_from(">ii", data, off + 20)
+        off += 28 + clen + dlen
+    return offsets
+
+
+def test_a_torn_end_is_reported_and_damage_refused(tmp_path):
+    _write_log(tmp_path / "t.lcmlog")
+    data = (tmp_path / "t.lcmlog").read_bytes()
+    last = _events(data)[-1]
+    torn = tmp_path / "torn.lcmlog"
+    torn.write_bytes(data[:-5])  # a logger stopped in the middle of its last write
+    r = subprocess.run(
+        [sys.executable, "-m", "harvest", "telemetry", "summary", str(torn)],
+        capture_output=True,
+        text=True,
+        env=env(),
+    )
+    assert r.returncode == 0, r.stderr
+    assert r.stderr.strip() == (
+        f"harvest-stack telemetry summary: {torn}: byte {last}: the last event is cut short "
+        "(left out)"
+    )
+    assert timeline.read(str(torn)).torn_at == last
+    second = _events(data)[1]
+    damaged = tmp_path / "damaged.lcmlog"
+    damaged.write_bytes(data[:second] + b"\0\0\0\0" + data[second + 4 :])
+    r = subprocess.run(
+        [sys.executable, "-m", "harvest", "telemetry", "mcap", str(damaged), "--out", "d.mcap"],
+        capture_output=True,
+        text=True,
+        env=env(),
+        cwd=tmp_path,
+    )
+    assert r.returncode == 2 and not (tmp_path / "d.mcap").exists(), r.stderr
+    assert r.stderr.startswith(f"harvest-stack telemetry mcap: {damaged}: byte {second}: ")

@@ -228,14 +228,14 @@ def test_derived_runs_need_the_main_run_with_the_same_options(tmp_path):
     require(PLANNER, "planner/harvest-plan")
     require(COSTGEN, "tools/costgen")
     r = _exp("fov-width", tmp_path / "none")
-    assert r.returncode == 1 and "no main run yet" in r.stderr, r.stderr
+    assert r.returncode == 2 and "no main run yet" in r.stderr, r.stderr  # bad input
     out = tmp_path / "main"
     r = _exp("run", out, "--alphas", "0.25", "--seeds", "1", "--methods", "fov")
     assert r.returncode == 0, r.stderr
     r = _exp(
         "cost-models", out, "--alphas", "0.25", "--seeds", "1", "--methods", "fov", "--pick-cycle"
     )
-    assert r.returncode == 1 and "different pick_cycle" in r.stderr, r.stderr
+    assert r.returncode == 2 and "different pick_cycle" in r.stderr, r.stderr
     assert not (out / cost_models.subdir(False)).exists()
 
 
@@ -265,7 +265,7 @@ def test_bad_windows_are_refused_before_anything_runs(tmp_path, option, text):
         "--costgen",
         "/bin/true",
     )
-    assert r.returncode == 1 and option in r.stderr, r.stderr
+    assert r.returncode == 2 and r.stderr.startswith(f"harvest-stack experiments: {option}: ")
     assert not (tmp_path / "x").exists()
 
 

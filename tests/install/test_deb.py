@@ -93,6 +93,8 @@ def test_programs_libraries_headers_and_data_under_usr(deb):
     with open(os.path.join(SOURCE_DIR, "executor/can/harvest.dbc"), "rb") as f:
         assert (share / "harvest.dbc").read_bytes() == f.read()
     assert (share / "harvest.cfg").is_file() and list((share / "lcm").glob("*.lcm"))
+    # the page every program's --help points to, beside the install guide
+    assert {"/usr/share/doc/harvest/EXIT_CODES.md", "/usr/share/doc/harvest/INSTALL.md"} <= names
     # the package's prefix is /usr: nothing of the build's own prefix or folders
     assert not [n for n in names if n.startswith("/usr/local")]
     assert not [n for n in names - {"/"} if not n.startswith(("/usr/", "/etc/", "/lib/"))]

@@ -117,8 +117,8 @@ def test_usage_errors(tables, tmp_path):
         (plan_args(tables, fruits, out, "fov", "--fov-width", "-1"), "--fov-width"),
         (plan_args(tables, fruits, out, "fov", "--horizon", "2"), "--horizon"),
         (plan_args(tables, fruits, out, "milp", "--gap", "abc"), "--gap"),
-        (["--config", CONFIG], "missing required option: --fruits"),
-        (plan_args(tables, fruits, out, "milp", "--bogus"), "unknown option: --bogus"),
+        (["--config", CONFIG], "harvest-plan: --fruits: required (see --help)"),
+        (plan_args(tables, fruits, out, "milp", "--bogus"), "--bogus: unknown option"),
         (plan_args(tables, fruits, out, "milp", "--algorithm", "cplex"), "--algorithm"),
         (plan_args(tables, fruits, out, "fov", "--algorithm", "price"), "--algorithm"),
         (plan_args(tables, fruits, out, "milp", "--threads", "4"), "--threads"),
@@ -310,7 +310,7 @@ def test_bad_map(tables, tmp_path, text, needle):
     path = tmp_path / "m.csv"
     path.write_text(text)
     out = str(tmp_path / "p.json")
-    p = run(*plan_args(tables, str(path), out, "fov"), check=1)
+    p = run(*plan_args(tables, str(path), out, "fov"), check=2)
     assert needle in p.stderr, p.stderr
     assert len(p.stderr.strip().splitlines()) == 1, p.stderr
     assert not os.path.exists(out)
@@ -320,15 +320,15 @@ def test_bad_tables(tables, tmp_path):
     fruits = write_map(tmp_path / "m.csv", random_fruits(2, 2))
     out = str(tmp_path / "p.json")
     swapped = (tables[1], tables[0])
-    p = run(*plan_args(swapped, fruits, out, "fov"), check=1)
+    p = run(*plan_args(swapped, fruits, out, "fov"), check=2)
     assert tables[1] in p.stderr and "side" in p.stderr
     broken = tmp_path / "broken.bin"
     data = bytearray(open(tables[0], "rb").read())
     data[-1] ^= 0xFF
     broken.write_bytes(bytes(data))
-    p = run(*plan_args((str(broken), tables[1]), fruits, out, "fov"), check=1)
+    p = run(*plan_args((str(broken), tables[1]), fruits, out, "fov"), check=2)
     assert str(broken) in p.stderr
-    p = run(*plan_args((str(tmp_path / "none.bin"), tables[1]), fruits, out, "fov"), check=1)
+    p = run(*plan_args((str(tmp_path / "none.bin"), tables[1]), fruits, out, "fov"), check=2)
     assert "none.bin" in p.stderr
     assert not os.path.exists(out)
 
@@ -366,7 +366,7 @@ def test_table_for_another_arm_refused(tmp_path, overrides, field):
         out,
         "--left",
         left,
-        check=1,
+        check=2,
     )
     line = p.stderr.strip()
     assert f"{left}: {field}:" in line and "HV_ERR_TAB_MISMATCH" in line, line
@@ -414,13 +414,13 @@ def test_check_catches_tampering(tables, tmp_path):
     # a stop listed twice, or two stops swapped: the reader refuses the file itself
     p = tampered(lambda pl: pl["stops"].append(dict(pl["stops"][-1])))
     last = len(good["stops"])
-    assert p.returncode == 1 and f"t.json: stops[{last}].y_m: " in p.stderr, p.stderr
+    assert p.returncode == 2 and f"t.json: stops[{last}].y_m: " in p.stderr, p.stderr
     if len(good["stops"]) >= 2:
         p = tampered(lambda pl: pl["stops"].reverse())
-        assert p.returncode == 1 and "t.json: stops[1].y_m: " in p.stderr, p.stderr
+        assert p.returncode == 2 and "t.json: stops[1].y_m: " in p.stderr, p.stderr
         assert "not after" in p.stderr
     p = tampered(lambda pl: pl.__setitem__("extra", 1))
-    assert p.returncode == 1 and "extra: unknown field" in p.stderr
+    assert p.returncode == 2 and "extra: unknown field" in p.stderr
     # the same plan checked against another map: fruits missing / unknown
     other = write_map(tmp_path / "other.csv", random_fruits(6, 6, seed=12))
     p = run("check", str(out), "--fruits", other)
@@ -436,7 +436,7 @@ def test_bad_fruit_id_in_plan_refused(tables, tmp_path):
     plan["stops"][0][arm][0]["id"] = "L0\nS 0 t=0"  # a newline, then a journal record
     bad = tmp_path / "bad.json"
     bad.write_text(json.dumps(plan))
-    p = run("check", str(bad), check=1)
+    p = run("check", str(bad), check=2)
     assert f"bad.json: stops[0].{arm}[0].id: character 0x0a at position 3" in p.stderr, p.stderr
 
 

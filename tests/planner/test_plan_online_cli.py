@@ -64,4 +64,4 @@ def test_bad_config_refused(tmp_path):
     with open(CONFIG) as f:
         cfg.write_text("".join(line for line in f if not line.startswith("camera.window")))
     p = run("--config", str(cfg), "--lcm-url", "memq://")
-    assert p.returncode == 1 and "camera.window" in p.stderr, p.stderr
+    assert p.returncode == 2 and "camera.window" in p.stderr, p.stderr

@@ -65,7 +65,7 @@ def test_bad_input_is_one_clear_line(args, message):
 
 def test_unknown_interface_fails_cleanly():
     r = run("--interface", "no-such-interface", "--channel", "x")
-    assert r.returncode == 1 and "cannot open no-such-interface" in r.stderr
+    assert r.returncode == 1 and "harvest-stack sim: no-such-interface:x: cannot open" in r.stderr
 
 
 @pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT])

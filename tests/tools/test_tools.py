@@ -75,7 +75,7 @@ def _built():
 @pytest.mark.parametrize("prog", [COSTGEN, MOUNTOPT])
 def test_help(prog):
     p = run([prog, "--help"], check=True)
-    assert "usage:" in p.stdout and "--config" in p.stdout and "Exit status" in p.stdout
+    assert "usage:" in p.stdout and "--config" in p.stdout and "Exit codes" in p.stdout
 
 
 @pytest.mark.parametrize(
@@ -260,7 +260,7 @@ def test_costgen_nothing_reachable_is_an_error(tmp_path):
             "--quiet",
         ]
     )
-    assert p.returncode == 1 and "no cell" in p.stderr
+    assert p.returncode == 2 and "no cell" in p.stderr  # the config (and --offset) at fault
     assert not (tmp_path / "x.bin").exists()
 
 
@@ -366,11 +366,12 @@ def test_bad_config(tmp_path, prog, changes, drop, extra, key, has_line):
     assert p.returncode == 2, (p.stdout, p.stderr)
     lines = p.stderr.strip().splitlines()
     assert len(lines) == 1, p.stderr
-    pattern = re.escape(cfg) + (r":\d+: " if has_line else r": ") + re.escape(key) + r": \S"
+    where = f"{prog}: {cfg}"
+    pattern = re.escape(where) + (r":\d+: " if has_line else r": ") + re.escape(key) + r": \S"
     assert re.match(pattern, lines[0]), lines[0]
     if has_line:
         # The line number points at the offending line (or the appended one).
-        n = int(lines[0][len(cfg) + 1 :].split(":", 1)[0])
+        n = int(lines[0][len(where) + 1 :].split(":", 1)[0])
         text = open(cfg).read().splitlines()[n - 1]
         assert text.split("=")[0].strip() == key
     assert not list(tmp_path.glob("costtab_*.bin"))
@@ -381,4 +382,5 @@ def test_missing_config_file(tmp_path, exe):
     path = str(tmp_path / "nope.cfg")
     p = run([exe, "--config", path])
     assert p.returncode == 2
-    assert p.stderr.startswith(path + ": ") and len(p.stderr.strip().splitlines()) == 1
+    assert p.stderr.startswith(f"{os.path.basename(exe)}: {path}: ")
+    assert len(p.stderr.strip().splitlines()) == 1

@@ -15,14 +15,25 @@ ArgReader::ArgReader(int argc, char **argv)
     }
 }
 
-std::string ArgReader::next_option()
+void ArgReader::check_no_pending() const
 {
     if (has_pending_) {
-        throw UsageError(option_ + ": takes no value");
+        throw UsageError(option_ + "=" + pending_ + ": takes no value (see --help)");
     }
+}
+
+bool ArgReader::done() const
+{
+    check_no_pending();
+    return pos_ >= args_.size();
+}
+
+std::string ArgReader::next_option()
+{
+    check_no_pending();
     std::string a = args_.at(pos_++);
     if (a.size() < 2 || a.compare(0, 2, "--") != 0) {
-        throw UsageError("unexpected argument '" + a + "' (options start with --; see --help)");
+        throw UsageError(a + ": unexpected argument (options start with --; see --help)");
     }
     std::size_t eq = a.find('=');
     if (eq != std::string::npos) {
@@ -41,7 +52,7 @@ std::string ArgReader::value()
         return pending_;
     }
     if (pos_ >= args_.size()) {
-        throw UsageError(option_ + ": missing value");
+        throw UsageError(option_ + ": needs a value (see --help)");
     }
     return args_[pos_++];
 }

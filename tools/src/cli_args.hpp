@@ -1,5 +1,5 @@
 // Command-line parsing shared by the tools: "--name value" or "--name=value", numbers
-// checked for being whole and finite, and one exit-code convention for every program.
+// checked for being whole and finite. Exit codes: hv/exit_codes.h (docs/EXIT_CODES.md).
 #ifndef HV_TOOLS_CLI_ARGS_HPP
 #define HV_TOOLS_CLI_ARGS_HPP
 
@@ -10,22 +10,15 @@
 namespace hv::tools
 {
 
-// Exit codes of every tool (documented in each --help).
-enum ExitCode : int {
-    kExitOk = 0,
-    kExitFailure = 1, // the work itself failed (I/O, a check that did not hold)
-    kExitBadInput = 2 // bad command line or bad configuration: nothing was done
-};
-
-// A command-line or input problem; what() is the one-line message to print.
+// A command-line or input problem; what() is the one-line message to print after
+// "PROGRAM: " ("--side: expected left, right or both, got 'up'").
 class UsageError : public std::runtime_error
 {
   public:
     using std::runtime_error::runtime_error;
 };
 
-// Bad content of an input file; what() already starts with "<path>:<line>: <key>: " and is
-// printed as it is (no program-name prefix), like a compiler's message.
+// Bad content of an input file; what() starts with "<path>:<line>: <key>: ".
 class InputError : public UsageError
 {
   public:
@@ -38,10 +31,9 @@ class ArgReader
   public:
     ArgReader(int argc, char **argv);
 
-    bool done() const
-    {
-        return pos_ >= args_.size();
-    }
+    // True after the last argument; throws UsageError when that was "--flag=value" of a
+    // flag that takes no value.
+    bool done() const;
     // Next option name ("--side"); a "--side=left" form keeps "left" as its pending value.
     std::string next_option();
     // The value of the option just read (from "=value" or the following argument).
@@ -50,6 +42,8 @@ class ArgReader
     long value_long(long min, long max);
 
   private:
+    void check_no_pending() const;
+
     std::vector<std::string> args_;
     std::size_t pos_ = 0;
     std::string option_;

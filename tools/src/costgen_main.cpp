@@ -11,6 +11,7 @@
 
 #include "cli_args.hpp"
 #include "cost_table_builder.hpp"
+#include "hv/exit_codes.h"
 #include "hv/file_io.h"
 #include "hv/version.h"
 #include "progress.hpp"
@@ -42,9 +43,7 @@ const char kUsage[] =
     "  --quiet           no progress line\n"
     "  --help            this text\n"
     "  --version         the version and exit\n"
-    "\n"
-    "Exit status: 0 done, 1 failure (I/O, --check mismatch, nothing reachable),\n"
-    "2 bad command line or configuration (one line naming the file and the key).\n";
+    "\n" HV_EXIT_CODES_HELP ")\n";
 
 struct Options {
     std::string config = default_config_path();
@@ -103,7 +102,7 @@ Options parse(int argc, char **argv, bool *help)
         } else if (opt == "--quiet") {
             o.quiet = true;
         } else {
-            throw UsageError("unknown option " + opt + " (see --help)");
+            throw UsageError(opt + ": unknown option (see --help)");
         }
     }
     if (!o.out.empty() && o.sides.size() != 1) {
@@ -184,7 +183,10 @@ int run(const Options &o)
                 o.config.c_str(), cfg.elbow_free ? "free" : "one-sided", cfg.offset_m,
                 cfg.theta_rad[0] * 180.0 / 3.14159265358979323846,
                 cfg.theta_rad[1] * 180.0 / 3.14159265358979323846, o.threads);
-    int status = kExitOk;
+    int status = HV_EXIT_OK;
+    auto fail = [&status](int code) { // the first side's problem gives the exit code
+        status = status == HV_EXIT_OK ? code : status;
+    };
     for (hv_side_t side : o.sides) {
         hv_arm_t arm;
         hv_grid_t grid;
@@ -208,7 +210,7 @@ int run(const Options &o)
                          "costgen: %s: no cell of the %s arm's table is reachable "
                          "(mount.offset / mount.theta_*_deg / row.*?): nothing written\n",
                          o.config.c_str(), side_name(side));
-            status = kExitFailure;
+            fail(HV_EXIT_USAGE); // the configuration (or an override) is at fault
             continue;
         }
         if (t.clamped > 0) {
@@ -221,7 +223,7 @@ int run(const Options &o)
         if (hv_file_write_atomic(path.c_str(), image.data(), image.size(), err, sizeof err) !=
             HV_OK) {
             std::fprintf(stderr, "costgen: %s\n", err);
-            status = kExitFailure;
+            fail(HV_EXIT_FAILURE);
             continue;
         }
         const hv_axis_t *a = grid.axis;
@@ -236,7 +238,7 @@ int run(const Options &o)
             if (bad > 0) {
                 std::fprintf(stderr, "costgen: %s: --check: %ld of %ld cells disagree\n",
                              path.c_str(), bad, o.check);
-                status = kExitFailure;
+                fail(HV_EXIT_FAILURE);
             } else {
                 std::printf("costgen: %s: --check: %ld random cells agree with direct "
                             "IK + timing\n",
@@ -258,17 +260,14 @@ int main(int argc, char **argv)
         o = parse(argc, argv, &help);
         if (help) {
             std::printf(kUsage, default_config_path().c_str());
-            return kExitOk;
+            return HV_EXIT_OK;
         }
         return run(o);
-    } catch (const InputError &e) {
-        std::fprintf(stderr, "%s\n", e.what());
-        return kExitBadInput;
-    } catch (const UsageError &e) {
+    } catch (const UsageError &e) { // and InputError
         std::fprintf(stderr, "costgen: %s\n", e.what());
-        return kExitBadInput;
+        return HV_EXIT_USAGE;
     } catch (const std::exception &e) {
         std::fprintf(stderr, "costgen: %s\n", e.what());
-        return kExitFailure;
+        return HV_EXIT_FAILURE;
     }
 }

@@ -12,6 +12,7 @@
 
 #include "cli_args.hpp"
 #include "fpa_grid.hpp"
+#include "hv/exit_codes.h"
 #include "hv/file_io.h"
 #include "hv/version.h"
 #include "json_writer.hpp"
@@ -65,8 +66,7 @@ const char kUsage[] =
     "  --quiet             no progress line\n"
     "  --help              this text\n"
     "  --version           the version and exit\n"
-    "\n"
-    "Exit status: 0 done, 1 failure (I/O), 2 bad command line or configuration.\n";
+    "\n" HV_EXIT_CODES_HELP ")\n";
 
 struct Options {
     std::string config = default_config_path();
@@ -108,7 +108,7 @@ Options parse(int argc, char **argv, bool *help)
         } else if (opt == "--quiet") {
             o.quiet = true;
         } else {
-            throw UsageError("unknown option " + opt + " (see --help)");
+            throw UsageError(opt + ": unknown option (see --help)");
         }
     }
     return o;
@@ -374,11 +374,11 @@ int run(const Options &o)
         if (hv_file_write_atomic(o.json.c_str(), text.data(), text.size(), err, sizeof err) !=
             HV_OK) {
             std::fprintf(stderr, "mountopt: %s\n", err);
-            return kExitFailure;
+            return HV_EXIT_FAILURE;
         }
         std::printf("summary: %s\n", o.json.c_str());
     }
-    return kExitOk;
+    return HV_EXIT_OK;
 }
 
 } // namespace
@@ -390,17 +390,14 @@ int main(int argc, char **argv)
         Options o = parse(argc, argv, &help);
         if (help) {
             std::printf(kUsage, default_config_path().c_str());
-            return kExitOk;
+            return HV_EXIT_OK;
         }
         return run(o);
-    } catch (const InputError &e) {
-        std::fprintf(stderr, "%s\n", e.what());
-        return kExitBadInput;
-    } catch (const UsageError &e) {
+    } catch (const UsageError &e) { // and InputError
         std::fprintf(stderr, "mountopt: %s\n", e.what());
-        return kExitBadInput;
+        return HV_EXIT_USAGE;
     } catch (const std::exception &e) {
         std::fprintf(stderr, "mountopt: %s\n", e.what());
-        return kExitFailure;
+        return HV_EXIT_FAILURE;
     }
 }

@@ -13,11 +13,10 @@
 
 #include "hv/can_bus.h"
 #include "hv/can_messages.h"
+#include "hv/cli.h"
 #include "hv/version.h"
 
-#define EXIT_BUS     1 /* the bus could not be opened or failed */
-#define EXIT_USAGE   2 /* bad command line or input line */
-#define EXIT_TIMEOUT 3 /* fewer frames than asked for before the timeout / lost frames */
+static const char k_prog[] = "hv-can-tool";
 
 static const char usage[] =
     "usage: hv-can-tool [--bus SPEC] COMMAND [options]\n"
@@ -58,7 +57,8 @@ static const char usage[] =
     "\n"
     "Readiness: once the bus is open, 'ready <bus name>' is printed on stderr; a summary\n"
     "line 'stats tx=.. rx=.. ...' follows on stderr when the command ends.\n"
-    "exit status: 0 ok, 1 bus error, 2 usage/input error, 3 timeout or frames lost\n";
+    "\n" HV_EXIT_CODES_HELP ",\n"
+    "3 timeout or frames lost)\n";
 
 typedef struct opts {
     const char *bus_spec;
@@ -182,7 +182,7 @@ static int parse_args(int argc, char **argv, opts_t *o)
     o->window = 1;
     opterr = 0; /* our own messages, naming the option */
     int opt, idx = -1;
-    while ((opt = getopt_long(argc, argv, "h", longopts, &idx)) != -1) {
+    while ((opt = getopt_long(argc, argv, ":h", longopts, &idx)) != -1) {
         if (opt == 'h') {
             fputs(usage, stdout);
             exit(0);
@@ -192,20 +192,16 @@ static int parse_args(int argc, char **argv, opts_t *o)
             exit(0);
         }
         if (opt == '?' || opt == ':') {
-            const char *bad = argv[optind - 1];
-            if (optopt != 0 && optopt != '?')
-                fprintf(stderr, "hv-can-tool: option %s needs a value\n", bad);
-            else
-                fprintf(stderr, "hv-can-tool: unknown option %s (see --help)\n", bad);
+            hv_cli_option_error(k_prog, opt, optopt, argv[optind - 1]);
             return -1;
         }
         if (apply_option(opt, optarg, o)) {
-            fprintf(stderr, "hv-can-tool: bad value '%s' for --%s\n", optarg, longopts[idx].name);
+            fprintf(stderr, "hv-can-tool: --%s: bad value '%s'\n", longopts[idx].name, optarg);
             return -1;
         }
     }
     if (optind >= argc) {
-        fputs(usage, stderr);
+        hv_cli_usage_error(k_prog, "COMMAND", "missing");
         return -1;
     }
     o->command = argv[optind];
@@ -396,7 +392,7 @@ static int cmd_pack(void)
         int r = pack_line(line, &f);
         if (r < 0) {
             fprintf(stderr, "hv-can-tool: stdin line %d rejected\n", lineno);
-            return EXIT_USAGE;
+            return HV_EXIT_USAGE;
         }
         if (r == 0)
             print_frame(stdout, &f);
@@ -416,20 +412,21 @@ static int cmd_unpack(void)
         hv_can_frame_t f;
         if (parse_frame(line, &f)) {
             fprintf(stderr, "hv-can-tool: stdin line %d rejected\n", lineno);
-            return EXIT_USAGE;
+            return HV_EXIT_USAGE;
         }
         print_unpacked(stdout, &f);
     }
     return 0;
 }
 
+/* 0, or the exit code: a bad --bus is usage, a bus that does not open a failure. */
 static int open_bus(const opts_t *o, hv_can_bus_t *bus)
 {
     char spec[128];
     hv_status_t st;
     if (strlen(o->bus_spec) >= sizeof spec) {
-        fprintf(stderr, "hv-can-tool: --bus '%s' too long\n", o->bus_spec);
-        return -1;
+        fprintf(stderr, "hv-can-tool: --bus %s: too long\n", o->bus_spec);
+        return HV_EXIT_USAGE;
     }
     strcpy(spec, o->bus_spec);
     if (!strncmp(spec, "socketcan:", 10)) {
@@ -443,18 +440,18 @@ static int open_bus(const opts_t *o, hv_can_bus_t *bus)
         long port = 0;
         if (port_s && (parse_long(port_s, &port) || port < 1 || port > 65535)) {
             fprintf(stderr, "hv-can-tool: --bus %s: bad port '%s'\n", o->bus_spec, port_s);
-            return -1;
+            return HV_EXIT_USAGE;
         }
         st = hv_can_udp_open(bus, group, (uint16_t)port, ifaddr, o->filters, o->n_filters);
     } else {
-        fprintf(stderr, "hv-can-tool: --bus '%s': expected socketcan:IFNAME or udp[:...]\n",
+        fprintf(stderr, "hv-can-tool: --bus %s: expected socketcan:IFNAME or udp[:...]\n",
                 o->bus_spec);
-        return -1;
+        return HV_EXIT_USAGE;
     }
     if (st != HV_OK) {
-        fprintf(stderr, "hv-can-tool: cannot open %s: %s (%s)\n", o->bus_spec,
+        fprintf(stderr, "hv-can-tool: %s: cannot open: %s (%s)\n", o->bus_spec,
                 hv_can_status_name(st), strerror(hv_can_last_errno(bus)));
-        return -1;
+        return HV_EXIT_FAILURE;
     }
     if (o->rcvbuf > 0) {
         int size = (int)o->rcvbuf;
@@ -494,9 +491,12 @@ static int cmd_send(const opts_t *o, hv_can_bus_t *bus, int packed)
 {
     hv_can_frame_t f;
     if (!packed && o->n_args > 0) {
-        for (int i = 0; i < o->n_args; i++)
-            if (parse_frame(o->args[i], &f) || send_checked(bus, &f, o->timeout_ms))
-                return EXIT_USAGE;
+        for (int i = 0; i < o->n_args; i++) {
+            if (parse_frame(o->args[i], &f))
+                return HV_EXIT_USAGE;
+            if (send_checked(bus, &f, o->timeout_ms))
+                return HV_EXIT_FAILURE;
+        }
         return 0;
     }
     char line[1024];
@@ -512,10 +512,10 @@ static int cmd_send(const opts_t *o, hv_can_bus_t *bus, int packed)
         }
         if (r < 0) {
             fprintf(stderr, "hv-can-tool: stdin line %d rejected\n", lineno);
-            return EXIT_USAGE;
+            return HV_EXIT_USAGE;
         }
         if (r == 0 && send_checked(bus, &f, o->timeout_ms))
-            return EXIT_BUS;
+            return HV_EXIT_FAILURE;
     }
     return 0;
 }
@@ -528,10 +528,10 @@ static int cmd_recv(const opts_t *o, hv_can_bus_t *bus, int echo)
         hv_can_frame_t f;
         hv_status_t st = hv_can_recv(bus, &f, o->timeout_ms);
         if (st == (hv_status_t)HV_CAN_ERR_TIMEOUT)
-            return (o->count == 0) ? 0 : EXIT_TIMEOUT;
+            return (o->count == 0) ? 0 : HV_EXIT_CAN_TIMEOUT;
         if (st != HV_OK) {
             fprintf(stderr, "hv-can-tool: receive failed: %s\n", hv_can_status_name(st));
-            return EXIT_BUS;
+            return HV_EXIT_FAILURE;
         }
         got++;
         if (echo) {
@@ -540,7 +540,7 @@ static int cmd_recv(const opts_t *o, hv_can_bus_t *bus, int echo)
             f.id = (f.id + o->offset) &
                    ((f.flags & HV_CAN_FLAG_EXT) ? HV_CAN_EFF_MASK : HV_CAN_SFF_MASK);
             if (send_checked(bus, &f, o->timeout_ms))
-                return EXIT_BUS;
+                return HV_EXIT_FAILURE;
         } else if (!o->quiet) {
             print_frame(stdout, &f);
             fflush(stdout);
@@ -582,7 +582,7 @@ static int cmd_ping(const opts_t *o, hv_can_bus_t *bus)
         free(sent_at);
         free(rtt);
         fprintf(stderr, "hv-can-tool: out of memory for %ld samples\n", n);
-        return EXIT_BUS;
+        return HV_EXIT_FAILURE;
     }
     long next = 0, done = 0, lost = 0, in_flight = 0;
     int rc = 0;
@@ -594,7 +594,7 @@ static int cmd_ping(const opts_t *o, hv_can_bus_t *bus)
             put_u32(f.data + 4, 0xC0FFEEu);
             sent_at[next] = now_s();
             if (send_checked(bus, &f, o->timeout_ms)) {
-                rc = EXIT_BUS;
+                rc = HV_EXIT_FAILURE;
                 goto out;
             }
             next++;
@@ -608,7 +608,7 @@ static int cmd_ping(const opts_t *o, hv_can_bus_t *bus)
             continue;
         }
         if (st != HV_OK) {
-            rc = EXIT_BUS;
+            rc = HV_EXIT_FAILURE;
             goto out;
         }
         if (r.id != o->reply_id || r.dlc != 8 || r.flags != 0)
@@ -635,7 +635,7 @@ out:;
     free(sent_at);
     free(rtt);
     if (rc == 0 && lost > 0)
-        rc = EXIT_TIMEOUT;
+        rc = HV_EXIT_CAN_TIMEOUT;
     return rc;
 }
 
@@ -648,7 +648,7 @@ static int cmd_flood(const opts_t *o, hv_can_bus_t *bus)
         put_u32(f.data, (uint32_t)i);
         put_u32(f.data + 4, ~(uint32_t)i);
         if (send_checked(bus, &f, o->timeout_ms))
-            return EXIT_BUS;
+            return HV_EXIT_FAILURE;
     }
     double elapsed = now_s() - t0;
     printf("flood sent=%ld seconds=%.3f fps=%.0f\n", n, elapsed,
@@ -669,7 +669,7 @@ static int cmd_sink(const opts_t *o, hv_can_bus_t *bus)
             break;
         if (st != HV_OK) {
             fprintf(stderr, "hv-can-tool: receive failed: %s\n", hv_can_status_name(st));
-            return EXIT_BUS;
+            return HV_EXIT_FAILURE;
         }
         if (f.id != o->id || f.dlc != 8 || f.flags)
             continue;
@@ -690,14 +690,14 @@ static int cmd_sink(const opts_t *o, hv_can_bus_t *bus)
            " seconds=%.3f fps=%.0f\n",
            got, n, gaps, bad, s.rx_kernel_drops, elapsed,
            elapsed > 0 ? (double)got / elapsed : 0.0);
-    return (got == n && gaps == 0 && bad == 0) ? 0 : EXIT_TIMEOUT;
+    return (got == n && gaps == 0 && bad == 0) ? 0 : HV_EXIT_CAN_TIMEOUT;
 }
 
 int main(int argc, char **argv)
 {
     opts_t o;
     if (parse_args(argc, argv, &o))
-        return EXIT_USAGE;
+        return HV_EXIT_USAGE;
     if (!strcmp(o.command, "list"))
         return cmd_list();
     if (!strcmp(o.command, "pack"))
@@ -710,17 +710,17 @@ int main(int argc, char **argv)
     for (c = 0; c < sizeof bus_cmds / sizeof *bus_cmds && strcmp(o.command, bus_cmds[c]); c++) {
     }
     if (c == sizeof bus_cmds / sizeof *bus_cmds) {
-        fprintf(stderr, "hv-can-tool: unknown command '%s' (see --help)\n", o.command);
-        return EXIT_USAGE;
+        hv_cli_usage_error(k_prog, o.command, "unknown command");
+        return HV_EXIT_USAGE;
     }
     if (o.n_args > 0 && strcmp(o.command, "send")) {
-        fprintf(stderr, "hv-can-tool: unexpected argument '%s'\n", o.args[0]);
-        return EXIT_USAGE;
+        hv_cli_usage_error(k_prog, o.args[0], "unexpected argument");
+        return HV_EXIT_USAGE;
     }
     hv_can_bus_t bus;
-    if (open_bus(&o, &bus))
-        return EXIT_BUS;
-    int rc;
+    int rc = open_bus(&o, &bus);
+    if (rc != 0)
+        return rc;
     switch (c) {
     case 0: rc = cmd_send(&o, &bus, 0); break;
     case 1: rc = cmd_send(&o, &bus, 1); break;

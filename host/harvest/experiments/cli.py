@@ -24,6 +24,7 @@ import platform
 import sys
 
 from .. import resources
+from ..cmdline import EXIT_FAILURE, EXIT_USAGE, Parser, error, os_error
 from ..scenario import fruit_map
 from ..scenario.config import Config, ConfigError, Row, default_config_path
 from . import (
@@ -47,22 +48,26 @@ from .runner import (
     QUICK_ALPHAS,
     QUICK_SEEDS,
     RunError,
+    RunInputError,
     Settings,
     run,
 )
 
 STEPS = ("run", "cost-models", "fov-width", "variants", "plots", "analysis", "report", "all")
+PROG = "harvest-stack experiments"
+EXIT_INTERRUPTED = 130  # as a shell reports SIGINT: the run resumes when started again
 
 
 def build_parser():
-    p = argparse.ArgumentParser(
-        prog="python -m harvest experiments",
+    p = Parser(
+        prog=PROG,
         description="Reproduce the paper's comparison (FOV, Serial, MILP) on the real planner: "
         "instances, a resumable runner, plots, analysis figures and a report.",
         formatter_class=argparse.RawDescriptionHelpFormatter,
         epilog=__doc__.split("\n", 2)[2]
         + "\nAn interrupted run (Ctrl-C, kill) resumes where it stopped when run again with "
         "the same --out:\nfinished rows are never recomputed.",
+        exit_codes=(f"{EXIT_INTERRUPTED} interrupted: run again with the same --out to resume",),
     )
     p.add_argument("step", nargs="?", choices=STEPS, default="all")
     p.add_argument("--out", required=True, help="output directory (created; reused to resume)")
@@ -163,7 +168,7 @@ def _settings(args, need_planner):
         try:
             alphas = tuple(float(a) for a in args.alphas.split(","))
         except ValueError:
-            raise RunError(
+            raise RunInputError(
                 f"--alphas: not a comma-separated list of numbers: {args.alphas!r}"
             ) from None
     seeds = QUICK_SEEDS if args.quick else PAPER_SEEDS
@@ -172,20 +177,20 @@ def _settings(args, need_planner):
     methods = tuple(m for m in args.methods.split(",") if m)
     unknown = [m for m in methods if m not in METHODS]
     if unknown or not methods:
-        raise RunError(
+        raise RunInputError(
             f"--methods: unknown {', '.join(unknown) or '(empty)'}; use {', '.join(METHODS)}"
         )
     if any(a < 0 or not math.isfinite(a) for a in alphas) or not seeds:
-        raise RunError("--alphas must be >= 0 and --seeds >= 1")
+        raise RunInputError("--alphas must be >= 0 and --seeds >= 1")
     if args.jobs < 1:
-        raise RunError("--jobs must be >= 1")
+        raise RunInputError("--jobs must be >= 1")
     if args.time_limit is not None and not args.time_limit > 0:
-        raise RunError("--time-limit must be > 0")
+        raise RunInputError("--time-limit must be > 0")
     try:
         sensitivity.parse_widths(args.fov_widths)
         sensitivity.parse_offsets(args.fov_offsets)
     except ValueError as e:
-        raise RunError(str(e)) from None
+        raise RunInputError(str(e)) from None
     planner = find(PLANNER, args.planner, args.build_dir) if need_planner else ""
     costgen = find(COSTGEN, args.costgen, args.build_dir) if need_planner else ""
     return Settings(
@@ -211,7 +216,7 @@ def _rows(out):
     path = os.path.join(out, "results.csv")
     rows = results_mod.read(path)
     if not rows:
-        raise RunError(f"{path}: no results yet: run 'experiments run --out {out}' first")
+        raise RunInputError(f"{path}: no results yet: run 'experiments run --out {out}' first")
     return rows
 
 
@@ -467,17 +472,21 @@ def main(argv):
         if args.step in ("report", "all"):
             do_report(args, s, row_cfg)
     except KeyboardInterrupt:
-        return 130
+        return EXIT_INTERRUPTED
+    except RunInputError as e:
+        error(PROG, str(e))
+        return EXIT_USAGE
+    except (RunError, OSError) as e:
+        error(PROG, os_error(e) if isinstance(e, OSError) else str(e))
+        return EXIT_FAILURE
     except (
         ConfigError,
-        RunError,
         MissingProgram,
         results_mod.ResultsError,
         plan_file.PlanError,
         cost_table.CostTableError,
         fruit_map.FruitMapError,
-        OSError,
-    ) as e:
-        print(f"experiments: {e}", file=sys.stderr)
-        return 1
+    ) as e:  # an input file, or a program the options name
+        error(PROG, str(e))
+        return EXIT_USAGE
     return 0

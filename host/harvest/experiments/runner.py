@@ -53,7 +53,11 @@ DEFAULT_HANG_S = 600.0
 
 
 class RunError(RuntimeError):
-    pass
+    """The run failed: a program it ran (exit 1)."""
+
+
+class RunInputError(RunError):
+    """The run cannot start: its options, or the --out folder they do not fit (exit 2)."""
 
 
 @dataclass(frozen=True)
@@ -122,7 +126,7 @@ def check_manifest(s):
             have = json.load(f)
         diff = [k for k in want if have.get(k) != want[k]]
         if diff:
-            raise RunError(
+            raise RunInputError(
                 f"{path}: this directory was started with different "
                 f"{', '.join(diff)} ({', '.join(f'{k}={have.get(k)!r}' for k in diff)}): "
                 "its rows would not be comparable; use another --out"

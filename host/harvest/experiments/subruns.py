@@ -11,20 +11,20 @@ import os
 import shutil
 
 from . import results as results_mod
-from .runner import RunError, check_manifest
+from .runner import RunInputError, check_manifest
 
 
 def require_main(s):
     """The main run's typed rows; it must exist and have been made with these settings."""
     if not os.path.exists(os.path.join(s.out_dir, "run.json")):
-        raise RunError(
+        raise RunInputError(
             f"{s.out_dir}: no main run yet: run 'experiments run --out {s.out_dir}' "
             "with the same options first"
         )
     check_manifest(s)  # raises when the options differ from the main run's
     rows = results_mod.read(os.path.join(s.out_dir, "results.csv"))
     if not rows:
-        raise RunError(f"{s.out_dir}/results.csv: no results yet: run 'experiments run' first")
+        raise RunInputError(f"{s.out_dir}/results.csv: no results yet: run 'experiments run' first")
     return rows
 
 

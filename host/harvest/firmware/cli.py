@@ -6,7 +6,6 @@ firmware's journal is a host file (semihosting, standing for the board's flash):
 the output folder for each run, or --journal FILE, kept across runs, so a run started
 again on the same file resumes the row the last one left."""
 
-import argparse
 import json
 import os
 import struct
@@ -14,7 +13,11 @@ import subprocess
 import sys
 import time
 
+from ..cmdline import EXIT_FAILURE, EXIT_USAGE, Parser, error, os_error
 from . import rig
+
+PROG = "harvest-stack firmware"
+EXIT_NOT_DONE = 3  # the row did not end in row_done (firmware.json: the phase)
 
 
 def _image_makespans(image):
@@ -76,12 +79,20 @@ def run(a):
     from harvest.canbus import plan_upload
     from harvest.canbus.buses import open_bus
 
+    try:
+        with open(a.plan_image, "rb") as f:
+            image = f.read()
+        with open(a.plan) as f:
+            plan = json.load(f)
+        p = plan["params"]
+        open(a.image, "rb").close()
+    except OSError as e:
+        error(f"{PROG} run", os_error(e))
+        return EXIT_USAGE
+    except (ValueError, KeyError, TypeError) as e:
+        error(f"{PROG} run", a.plan, f"not a plan file: {e}")
+        return EXIT_USAGE
     os.makedirs(a.out, exist_ok=True)
-    with open(a.plan_image, "rb") as f:
-        image = f.read()
-    with open(a.plan) as f:
-        plan = json.load(f)
-    p = plan["params"]
     record = os.path.join(a.out, "sim.jsonl")
     journal = a.journal or os.path.join(a.out, "fw.journal")
     stale = [os.path.join(a.out, "uart0.log")] + ([] if a.journal else [journal])
@@ -140,13 +151,17 @@ def run(a):
     with open(os.path.join(a.out, "firmware.json"), "w") as f:
         json.dump(s, f, indent=2)
     print(json.dumps(s, indent=2))
-    return 0 if s["phase"] == "row_done" else 3
+    return 0 if s["phase"] == "row_done" else EXIT_NOT_DONE
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="python -m harvest firmware", description=__doc__)
-    sub = ap.add_subparsers(dest="cmd", required=True)
-    r = sub.add_parser("run", help="a row with the firmware in QEMU (inside a private netns)")
+    ap = Parser(prog=PROG, description=__doc__)
+    sub = ap.add_subparsers(dest="cmd", required=True, metavar="COMMAND")
+    r = sub.add_parser(
+        "run",
+        help="a row with the firmware in QEMU (inside a private netns)",
+        exit_codes=(f"{EXIT_NOT_DONE} the row not done, firmware.json says how it ended",),
+    )
     r.add_argument("--image", required=True, help="harvest-fw.elf")
     r.add_argument("--plan", required=True, help="the plan file (for the fruit count)")
     r.add_argument("--plan-image", required=True, help="harvest-fw-plan's image of that plan")
@@ -178,4 +193,10 @@ def main(argv=None):
     )
     r.add_argument("--out", required=True, help="folder for the record, logs, firmware.json")
     a = ap.parse_args(argv)
-    return run(a)
+    try:
+        return run(a)
+    except OSError as e:  # QEMU not listening in time, a file of --out not written
+        error(f"{PROG} run", os_error(e))
+    except (RuntimeError, EOFError) as e:  # QEMU ended, the upload refused, the UART closed
+        error(f"{PROG} run", str(e))
+    return EXIT_FAILURE

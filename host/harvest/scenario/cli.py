@@ -1,18 +1,18 @@
-"""`python -m harvest scenario`: write one fruit map (the planner's CSV) from a seed."""
+"""`harvest-stack scenario`: write one fruit map (the planner's CSV) from a seed."""
 
-import argparse
 import os
-import sys
 
+from ..cmdline import EXIT_FAILURE, EXIT_USAGE, Parser, error, os_error
 from . import fruit_map, generate
 from .config import Config, ConfigError, Row, default_config_path, derived_config_text
 
 LONG_ROW_DEFAULT_M = 30.0
+PROG = "harvest-stack scenario"
 
 
 def build_parser():
-    p = argparse.ArgumentParser(
-        prog="python -m harvest scenario",
+    p = Parser(
+        prog=PROG,
         description="Generate a fruit map (CSV id,side,x,y,z,yaw; m, rad) inside the "
         "fruit-planted area of the config. Same arguments, same file.",
         epilog="distributions: uniform = the paper's (uniform position and yaw, m^L left, "
@@ -66,30 +66,32 @@ def main(argv):
     try:
         row = Row(Config.load(args.config))
     except ConfigError as e:
-        print(f"scenario: {e}", file=sys.stderr)
-        return 2
+        error(PROG, str(e))
+        return EXIT_USAGE
     length = args.length
     if length is None:
         length = LONG_ROW_DEFAULT_M if args.distribution == "long" else row.length_m
     if length <= 0:
-        print(f"scenario: --length must be > 0, got {length}", file=sys.stderr)
-        return 2
+        error(PROG, "--length", f"must be > 0, got {length:g}")
+        return EXIT_USAGE
     n_left = args.left
     if n_left is None:
         n_left = generate.long_row_left_count(row, length)
-    if n_left < 0 or args.alpha < 0:
-        print("scenario: --left and --alpha must be >= 0", file=sys.stderr)
-        return 2
-    if not -1.0 <= args.gradient <= 1.0:
-        print(f"scenario: --gradient must be in [-1, 1], got {args.gradient}", file=sys.stderr)
-        return 2
-    if abs(length - row.length_m) > 1e-9 and not args.config_out:
-        print(
-            f"scenario: a {length:g} m row does not fit {args.config} (row.length = "
-            f"{row.length_m:g}): give --config-out PATH to write a config for it",
-            file=sys.stderr,
-        )
-        return 2
+    bad = (
+        ("--left", f"must be >= 0, got {n_left}", n_left < 0),
+        ("--alpha", f"must be >= 0, got {args.alpha:g}", args.alpha < 0),
+        ("--gradient", f"must be in [-1, 1], got {args.gradient:g}", not -1 <= args.gradient <= 1),
+        (
+            "--config-out",
+            f"needed: a {length:g} m row does not fit {args.config} (row.length = "
+            f"{row.length_m:g}); it writes a config for it",
+            abs(length - row.length_m) > 1e-9 and not args.config_out,
+        ),
+    )
+    for what, why, wrong in bad:
+        if wrong:
+            error(PROG, what, why)
+            return EXIT_USAGE
     fruits = generate.generate(
         args.distribution,
         row,
@@ -105,9 +107,15 @@ def main(argv):
             text = derived_config_text(args.config, {"row.length": f"{length:g}"})
             with open(args.config_out, "w", encoding="utf-8") as f:
                 f.write(text)
-    except (OSError, ConfigError) as e:
-        print(f"scenario: cannot write: {e}", file=sys.stderr)
-        return 1
+    except OSError as e:
+        error(PROG, os_error(e))
+        return EXIT_FAILURE
+    except ConfigError as e:  # the config copied for --config-out
+        error(PROG, str(e))
+        return EXIT_USAGE
+    except fruit_map.FruitMapError as e:  # an id the generator made outside the id set
+        error(PROG, str(e))
+        return EXIT_FAILURE
     n_right = sum(1 for f in fruits if f.side == "R")
     print(
         f"scenario: {args.distribution}, {len(fruits) - n_right} left + {n_right} right fruits "

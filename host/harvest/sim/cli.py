@@ -1,4 +1,4 @@
-"""`python -m harvest sim`: the vehicle drive and both SCARA joint controllers on a CAN bus."""
+"""`harvest-stack sim`: the vehicle drive and both SCARA joint controllers on a CAN bus."""
 
 import argparse
 import signal
@@ -9,6 +9,7 @@ import time
 import can
 
 from harvest.canbus import buses
+from harvest.cmdline import EXIT_FAILURE, EXIT_USAGE, Parser, error, os_error
 
 from . import faults as faults_mod
 from .clock import ScaledClock
@@ -16,6 +17,7 @@ from .model import ConfigError, Model
 from .record import Record
 from .runner import REJECT_REASONS, Options, Simulator
 
+PROG = "harvest-stack sim"
 EPILOG = """\
 times: every duration below is simulated seconds except --exec-timeout and --duration
 (wall). A --time-scale of 20 runs the physics, the periodic frames and the injected
@@ -42,8 +44,8 @@ faults (repeat --fault; same fields in a --scenario JSON file {"seed": N, "fault
   nodes: vehicle, left_arm, right_arm, all (default); ARM: left_arm or right_arm
 
 examples:
-  python -m harvest sim --interface socketcan --channel vcan0 --time-scale 20
-  python -m harvest sim --bus udp:239.74.163.2:43113 \\
+  harvest-stack sim --interface socketcan --channel vcan0 --time-scale 20
+  harvest-stack sim --bus udp:239.74.163.2:43113 \\
       --fault drop:fraction=0.05 --fault joint_fault:node=left_arm,joint=2,pick=3 \\
       --record sim.jsonl
 """
@@ -81,8 +83,8 @@ def _non_negative(text):
 
 
 def build_parser():
-    p = argparse.ArgumentParser(
-        prog="python -m harvest sim",
+    p = Parser(
+        prog=PROG,
         description="Simulate the vehicle drive and the left and right SCARA joint controllers "
         "on a CAN bus (frames of executor/can/harvest.dbc), with a time scale, "
         "fault injection and a JSONL record of everything done.",
@@ -298,33 +300,33 @@ def main(argv=None, stop_event=None):
     try:
         proto = protocol.load(args.dbc) if args.dbc else protocol.load()
     except Exception as e:  # cantools raises parser-specific errors for a malformed file
-        print(
-            f"harvest sim: {args.dbc or protocol.DBC_PATH}: cannot load the DBC: {e}",
-            file=sys.stderr,
-        )
-        return 2
+        error(PROG, args.dbc or protocol.DBC_PATH, f"cannot load the DBC: {e}")
+        return EXIT_USAGE
     try:
         model = Model.load(args.config)
         options = _options(args, model)
-    except (ConfigError, faults_mod.FaultError, ValueError, OSError) as e:
-        print(f"harvest sim: {e}", file=sys.stderr)
-        return 2
+    except OSError as e:
+        error(PROG, os_error(e))
+        return EXIT_USAGE
+    except (ConfigError, faults_mod.FaultError, ValueError) as e:
+        error(PROG, str(e))
+        return EXIT_USAGE
     where = bus_spec(args)[0]
     try:
         bus = open_bus(args)
     except ValueError as e:  # a malformed --bus spec
-        print(f"harvest sim: --bus: {e}", file=sys.stderr)
-        return 2
+        error(PROG, "--bus", str(e))
+        return EXIT_USAGE
     except Exception as e:  # python-can raises interface-specific errors
-        print(f"harvest sim: cannot open {where}: {e}", file=sys.stderr)
-        return 1
+        error(PROG, where, f"cannot open: {e}")
+        return EXIT_FAILURE
     stop_event = stop_event or threading.Event()
     try:
         record = Record(args.record)
     except OSError as e:
         bus.shutdown()
-        print(f"harvest sim: {args.record}: cannot write the record: {e.strerror}", file=sys.stderr)
-        return 1
+        error(PROG, args.record, f"cannot write the record: {e.strerror}")
+        return EXIT_FAILURE
     clock = ScaledClock(options.time_scale, time.monotonic)
     try:
         sim = Simulator(
@@ -340,8 +342,8 @@ def main(argv=None, stop_event=None):
     except ValueError as e:  # the DBC's enums disagree with the simulator's
         record.close()
         bus.shutdown()
-        print(f"harvest sim: {e}", file=sys.stderr)
-        return 2
+        error(PROG, args.dbc or protocol.DBC_PATH, str(e))
+        return EXIT_USAGE
     old = {}
     if threading.current_thread() is threading.main_thread():
         for sig in (signal.SIGINT, signal.SIGTERM):

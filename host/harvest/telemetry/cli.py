@@ -1,17 +1,18 @@
-"""`python -m harvest telemetry {log,gantt,summary,mcap}`: record the executor's LCM
-telemetry, turn a log into a Gantt timeline of both arms, planned against actual, or export
-it to MCAP."""
+"""`harvest-stack telemetry {log,gantt,summary,mcap}`: record the executor's LCM telemetry,
+turn a log into a Gantt timeline of both arms, planned against actual, or export it to
+MCAP."""
 
-import argparse
 import json
-import sys
 
+from ..cmdline import EXIT_FAILURE, EXIT_USAGE, Parser, error, os_error
 from . import lcm_types
+
+PROG = "harvest-stack telemetry"
 
 
 def _parser():
-    p = argparse.ArgumentParser(
-        prog="python -m harvest telemetry",
+    p = Parser(
+        prog=PROG,
         description="Record the executor's LCM telemetry (channels HARVEST_*) into an LCM log, "
         "and turn a log into a Gantt timeline (PNG/SVG) of both arms per stop, "
         "planned against actual.",
@@ -22,7 +23,7 @@ def _parser():
         help="folder of the lcm-gen Python output (default: $HV_BUILD_DIR/lcm_types/python, "
         "else the source tree's build/lcm_types/python, else the installed package's copy)",
     )
-    sub = p.add_subparsers(dest="cmd", required=True)
+    sub = p.add_subparsers(dest="cmd", required=True, metavar="COMMAND")
     lg = sub.add_parser("log", help="record every message on an LCM URL into a log file")
     lg.add_argument(
         "--url",
@@ -67,17 +68,29 @@ def _parser():
     return p
 
 
+def _torn(prog, path, torn_at):
+    if torn_at is not None:
+        error(prog, path, f"byte {torn_at}: the last event is cut short (left out)")
+
+
 def main(argv=None):
     args = _parser().parse_args(argv)
+    prog = f"{PROG} {args.cmd}"
+    if args.cmd == "gantt":
+        for out in args.out:
+            if not out.endswith((".png", ".svg")):
+                error(prog, f"--out {out}", "expected a .png or .svg file (see --help)")
+                return EXIT_USAGE
     try:
         if args.cmd == "log":
             from . import logger
 
-            return logger.run(args)
+            return logger.run(args, prog)
         if args.cmd == "mcap":
             from . import mcap_export
 
-            counts = mcap_export.export(args.log, args.out, args.lcm_python, args.lcm_defs)
+            counts, torn_at = mcap_export.export(args.log, args.out, args.lcm_python, args.lcm_defs)
+            _torn(prog, args.log, torn_at)
             print(
                 f"telemetry mcap: wrote {args.out}: "
                 + ", ".join(f"{ch} {n}" for ch, n in sorted(counts.items()))
@@ -86,26 +99,25 @@ def main(argv=None):
         from . import timeline
 
         tl = timeline.read(args.log, args.lcm_python)
+        _torn(prog, args.log, tl.torn_at)
         if tl.plan is None:
-            print(f"telemetry: {args.log}: no HARVEST_PLAN message in the log", file=sys.stderr)
-            return 1
+            error(prog, args.log, "no HARVEST_PLAN message in the log")
+            return EXIT_USAGE
         if args.cmd == "summary":
             print(json.dumps(timeline.summary(tl), indent=2))
             return 0
         from . import gantt
 
         for out in args.out:
-            if not out.endswith((".png", ".svg")):
-                print(
-                    f"telemetry gantt: --out {out}: expected a .png or .svg file", file=sys.stderr
-                )
-                return 2
             gantt.plot(tl, out, args.title)
             print(f"telemetry gantt: wrote {out}")
         return 0
     except lcm_types.LcmTypesMissing as e:
-        print(f"telemetry: {e}", file=sys.stderr)
-        return 1
-    except (IOError, OSError, ValueError) as e:
-        print(f"telemetry: {e}", file=sys.stderr)
-        return 1
+        error(prog, str(e))
+        return EXIT_FAILURE
+    except ValueError as e:  # the log's content (eventlog.LogError too), naming the file
+        error(prog, str(e))
+        return EXIT_USAGE
+    except OSError as e:  # the log not read is bad input; an output not written, a failure
+        error(prog, os_error(e))
+        return EXIT_USAGE if e.filename == getattr(args, "log", None) else EXIT_FAILURE

@@ -8,17 +8,17 @@ last messages and stops. SIGINT/SIGTERM stop it cleanly too.
 
 import os
 import signal
-import sys
 import time
 
 import lcm
 
+from ..cmdline import EXIT_FAILURE, EXIT_USAGE, error
 from . import lcm_types
 
 
 class Logger:
-    def __init__(self, url, path, overwrite=False, stop_on_end=True, types=None):
-        self.lc = lcm.LCM(url)
+    def __init__(self, lc, path, overwrite=False, stop_on_end=True, types=None):
+        self.lc = lc
         self.log = lcm.EventLog(path, "w", overwrite=overwrite)
         self.types = types
         self.stop_on_end = stop_on_end
@@ -57,11 +57,11 @@ class Logger:
         self.log.close()
 
 
-def run(args):
+def run(args, prog):
     types = lcm_types.load(args.lcm_python) if args.until_done else None
     if os.path.exists(args.out) and not args.overwrite:
-        print(f"telemetry log: {args.out}: exists (use --overwrite)", file=sys.stderr)
-        return 2
+        error(prog, args.out, "exists (use --overwrite)")
+        return EXIT_USAGE
     stop = {"now": False}
 
     def on_signal(signum, frame):
@@ -69,9 +69,18 @@ def run(args):
 
     signal.signal(signal.SIGINT, on_signal)
     signal.signal(signal.SIGTERM, on_signal)
-    lg = Logger(
-        args.url, args.out, overwrite=args.overwrite, stop_on_end=args.until_done, types=types
-    )
+    try:
+        lc = lcm.LCM(args.url)
+    except RuntimeError:  # LCM's own line on stderr says why
+        error(prog, f"--url {args.url}", "LCM could not be opened")
+        return EXIT_FAILURE
+    try:
+        lg = Logger(
+            lc, args.out, overwrite=args.overwrite, stop_on_end=args.until_done, types=types
+        )
+    except OSError as e:  # LCM's writer names no file
+        error(prog, args.out, f"cannot write the log: {e.strerror or e}")
+        return EXIT_FAILURE
     if args.ready_file:
         # tell a caller (demo, tests) that we listen, so no early message is lost
         with open(args.ready_file, "w") as f:

@@ -8,9 +8,7 @@ Actual: fruit_event_t messages (approach of the first attempt -> outcome) and th
 executor's state changes (arrival at a stop = phase harvest with that stop).
 """
 
-import lcm
-
-from . import lcm_types
+from . import eventlog, lcm_types
 
 
 class Timeline:
@@ -24,6 +22,7 @@ class Timeline:
         self.faults = []  # (t, side, fruit_id, reason)
         self.final = None
         self.can_stats = None
+        self.torn_at = None  # byte offset of an event the log's end cut short
 
     def fruits(self, outcome=None):
         return [
@@ -55,9 +54,16 @@ def planned_schedule(plan):
 
 
 def read(path, python_dir=None):
-    types = lcm_types.load(python_dir)
     tl = Timeline()
-    log = lcm.EventLog(path, "r")
+    with eventlog.EventLog(path) as log:
+        _read_events(tl, log, lcm_types.load(python_dir))
+        tl.torn_at = log.torn_at
+    if tl.plan is not None:
+        tl.planned, tl.planned_stops, tl.planned_total = planned_schedule(tl.plan)
+    return tl
+
+
+def _read_events(tl, log, types):
     for ev in log:
         msg = lcm_types.decode(ev.channel, ev.data, types)
         if msg is None:
@@ -98,10 +104,6 @@ def read(path, python_dir=None):
                 tl.faults.append((msg.t_s, msg.side, msg.fruit_id, msg.reason))
         elif ev.channel == "HARVEST_CAN_STATS":
             tl.can_stats = msg
-    log.close()
-    if tl.plan is not None:
-        tl.planned, tl.planned_stops, tl.planned_total = planned_schedule(tl.plan)
-    return tl
 
 
 def summary(tl):
