@@ -54,9 +54,9 @@ typedef struct hv_config {
     double stop_penalty_s;     /* vehicle.stop_penalty: the paper's tau */
 
     /* the pick cycle: home -> fruit, cut, fruit -> home, release */
-    double cut_s;     /* pick.cut_time (s) */
-    double release_s; /* pick.release_time (s) */
-    int pick_cycle;   /* plan.pick_cycle (0/1): 1 plans in the robot's time (a pick
+    double cut_s;       /* pick.cut_time (s) */
+    double release_s;   /* pick.release_time (s) */
+    int pick_cycle;     /* plan.pick_cycle (0/1): 1 plans in the robot's time (a pick
                                   costs its whole cycle, a stop what the drive loses
                                   stopping: hv_config_stop_time_s); 0 in the paper's (G one
                                   way home -> fruit, tau = vehicle.stop_penalty) */
