@@ -295,6 +295,8 @@ static void step(fx_t *fx, const hv_exec_event_t *ev)
     hv_exec_actions_t out;
     out.n = 0;
     fx->last_status = hv_exec_step(&fx->sm, ev, fx->now_ns, &out);
+    if (fx->on_step)
+        fx->on_step(fx->on_step_ctx, &fx->sm, ev, fx->now_ns, fx->last_status, &out);
     for (unsigned i = 0; i < out.n; i++)
         node_act(fx, &out.a[i]);
 }
@@ -418,6 +420,16 @@ int fx_find(const fx_t *fx, int from, hv_exec_action_kind_t kind, int sub)
 void fx_event(fx_t *fx, const hv_exec_event_t *ev)
 {
     step(fx, ev);
+}
+
+void fx_grown(fx_t *fx, int final, double advance_m)
+{
+    hv_exec_event_t ev;
+    memset(&ev, 0, sizeof ev);
+    ev.kind = HV_EV_PLAN_GROWN;
+    ev.u.plan.final = final;
+    ev.u.plan.advance_m = advance_m;
+    step(fx, &ev);
 }
 
 hv_status_t fx_append_stop(fx_t *fx, const hv_exec_plan_t *src, int s)
