@@ -95,7 +95,7 @@ int fx_restart(fx_t *fx)
 
 static int estop_bit(int node)
 {
-    return node == HV_EXEC_VEHICLE ? HV_VEH_FAULT_ESTOP : HV_ARM_FAULT_ESTOP;
+    return node == HV_EXEC_VEHICLE ? HV_CAN_VEHICLE_FAULT_ESTOP : HV_CAN_ARM_FAULT_ESTOP;
 }
 
 void fx_latch_estop(fx_t *fx, int node)
@@ -229,12 +229,12 @@ static void node_act(fx_t *fx, const hv_exec_action_t *a)
         int k = ++fx->setpoints_sent[side];
         int approach = memcmp(a->u.sp.q, fx->plan.home[side], sizeof a->u.sp.q) != 0;
         if (side == 0 && fx->f.comm_fault_arm && k == fx->f.comm_fault_arm) {
-            n->fault_bits |= HV_ARM_FAULT_COMM;
+            n->fault_bits |= HV_CAN_ARM_FAULT_COMM_TIMEOUT;
             break;
         }
         if (approach && fx->f.reject_setpoints[side] > 0) {
             fx->f.reject_setpoints[side]--;
-            n->fault_bits |= HV_ARM_FAULT_REJECTED;
+            n->fault_bits |= HV_CAN_ARM_FAULT_SETPOINT_REJECTED;
             n->state = HV_CAN_STATE_FAULT;
             break;
         }
