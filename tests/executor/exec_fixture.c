@@ -422,6 +422,13 @@ void fx_event(fx_t *fx, const hv_exec_event_t *ev)
     step(fx, ev);
 }
 
+void fx_online(fx_t *fx)
+{
+    fx->plan.n_stops = 0;
+    fx->plan.n_picks = 0;
+    fx->prm.online = 1;
+}
+
 void fx_grown(fx_t *fx, int final, double advance_m)
 {
     hv_exec_event_t ev;

@@ -89,6 +89,8 @@ int fx_find(const fx_t *fx, int from, hv_exec_action_kind_t kind, int sub);
 
 /* Step one event now (the fake nodes react to its actions). */
 void fx_event(fx_t *fx, const hv_exec_event_t *ev);
+/* Online: the plan emptied (its stops come by fx_append_stop) and params.online set. */
+void fx_online(fx_t *fx);
 /* Online: step HV_EV_PLAN_GROWN (final: no stop will follow; advance_m: the commit line). */
 void fx_grown(fx_t *fx, int final, double advance_m);
 /* Online: append stop s of `src` (built by fx_plan: each stop's left then right picks

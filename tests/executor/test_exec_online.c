@@ -21,9 +21,7 @@ static void test_a_silent_planner_ends_in_a_controlled_stop(void **state)
     fx_t *fx = malloc(sizeof *fx);
     assert_non_null(fx);
     fx_plan(fx, 1, 1);
-    fx->plan.n_stops = 0;
-    fx->plan.n_picks = 0;
-    fx->prm.online = 1;
+    fx_online(fx);
     fx->prm.wait_plan_timeout_s = 3.0;
     fx_start(fx, NULL);
     fx_run(fx, 2.0);
@@ -50,9 +48,7 @@ static void test_plan_grows_while_running(void **state)
     assert_non_null(fx);
     fx_plan(src, 3, 2); /* what the planner will commit, stop by stop */
     fx_plan(fx, 3, 2);
-    fx->plan.n_stops = 0;
-    fx->plan.n_picks = 0;
-    fx->prm.online = 1;
+    fx_online(fx);
     fx_start(fx, NULL);
     fx_run(fx, 5.0);
     /* homed, nothing committed: waiting where it stands, no move */

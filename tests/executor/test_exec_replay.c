@@ -201,9 +201,7 @@ static void sc_online(fx_t *fx, exec_trace_t *t)
     static fx_t src; /* what the planner commits, stop by stop */
     fx_plan(&src, 3, 2);
     setup(fx, t, 3, 2);
-    fx->plan.n_stops = 0;
-    fx->plan.n_picks = 0;
-    fx->prm.online = 1;
+    fx_online(fx);
     fx_start(fx, NULL);
     fx_run(fx, 5.0);
     fx_append_stop(fx, &src.plan, 0);
@@ -220,16 +218,12 @@ static void sc_online_stops(fx_t *fx, exec_trace_t *t)
     static fx_t src;
     fx_plan(&src, 2, 1);
     setup(fx, t, 1, 1); /* a silent planner: plan_timeout */
-    fx->plan.n_stops = 0;
-    fx->plan.n_picks = 0;
-    fx->prm.online = 1;
+    fx_online(fx);
     fx->prm.wait_plan_timeout_s = 3.0;
     fx_start(fx, NULL);
     run(fx, 20.0);
     setup(fx, t, 1, 1); /* the operator's stop while the vehicle advances, then waits */
-    fx->plan.n_stops = 0;
-    fx->plan.n_picks = 0;
-    fx->prm.online = 1;
+    fx_online(fx);
     fx->motion_ns = 300000000ull;
     fx_start(fx, NULL);
     fx_run(fx, 3.0);
@@ -240,9 +234,7 @@ static void sc_online_stops(fx_t *fx, exec_trace_t *t)
     run(fx, 30.0);
     for (int never = 0; never < 2; never++) { /* stopped while advancing; never arriving */
         setup(fx, t, 1, 1);
-        fx->plan.n_stops = 0;
-        fx->plan.n_picks = 0;
-        fx->prm.online = 1;
+        fx_online(fx);
         fx->f.move_never = never;
         fx_start(fx, NULL);
         fx_run(fx, 3.0);
