@@ -137,6 +137,12 @@ void exec_trace_step(exec_trace_t *t, const hv_exec_sm_t *sm, const hv_exec_even
     }
 }
 
+void exec_trace_hook(void *ctx, const hv_exec_sm_t *sm, const hv_exec_event_t *ev, uint64_t now_ns,
+                     hv_status_t st, const hv_exec_actions_t *out)
+{
+    exec_trace_step(ctx, sm, ev, now_ns, st, out);
+}
+
 void exec_trace_end(exec_trace_t *t)
 {
     const hv_exec_sm_t *sm = t->sm;

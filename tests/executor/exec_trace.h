@@ -30,6 +30,11 @@ void exec_trace_begin(exec_trace_t *t, FILE *f, const char *title);
 void exec_trace_step(exec_trace_t *t, const hv_exec_sm_t *sm, const hv_exec_event_t *ev,
                      uint64_t now_ns, hv_status_t st, const hv_exec_actions_t *out);
 
+/* exec_trace_step with the trace (an exec_trace_t) as ctx: the step hook of exec_fixture.h
+ * (on_step) and of the fuzz targets (hv_fuzz_on_step). */
+void exec_trace_hook(void *ctx, const hv_exec_sm_t *sm, const hv_exec_event_t *ev, uint64_t now_ns,
+                     hv_status_t st, const hv_exec_actions_t *out);
+
 /* The closing summary, of the machine of the last step (nothing when there was none). */
 void exec_trace_end(exec_trace_t *t);
 
