@@ -20,6 +20,16 @@ void hv_fuzz_run_init(hv_fuzz_run_t *R, const hv_exec_plan_t *plan, const hv_exe
     R->now = 1000000000u;
 }
 
+/* the executor's replay only (hv_fuzz_on_step); a fuzzer never sets it */
+static hv_fuzz_step_hook_t step_hook;
+static void *step_hook_ctx;
+
+void hv_fuzz_on_step(hv_fuzz_step_hook_t hook, void *ctx)
+{
+    step_hook = hook;
+    step_hook_ctx = ctx;
+}
+
 static void check_actions(hv_fuzz_run_t *R, hv_exec_phase_t before, const hv_exec_actions_t *out)
 {
     hv_exec_can_tx_t tx = {0, 0};
@@ -62,6 +72,8 @@ void hv_fuzz_step(hv_fuzz_run_t *R, const hv_exec_event_t *ev)
     hv_exec_phase_t before = R->sm.phase;
     before_sm = R->sm;
     hv_status_t st = hv_exec_step(&R->sm, ev, R->now, &out);
+    if (step_hook)
+        step_hook(step_hook_ctx, &R->sm, ev, R->now, st, &out);
     if (st == HV_ERR_EXEC_ACTIONS_FULL)
         hv_fuzz_fail("one step overflowed its action list");
     if (st == HV_ERR_EXEC_EVENT && (out.n != 0 || memcmp(&before_sm, &R->sm, sizeof before_sm)))

@@ -33,6 +33,13 @@ void hv_fuzz_run_init(hv_fuzz_run_t *R, const hv_exec_plan_t *plan, const hv_exe
  * pick is journalled after its outcome, nor given a second outcome. */
 void hv_fuzz_step(hv_fuzz_run_t *R, const hv_exec_event_t *ev);
 
+/* A function called after every step of every run, with the step's event, status and
+ * actions and the machine after it (the executor's replay traces the corpus with it,
+ * tests/executor/exec_replay.c); NULL: none. */
+typedef void (*hv_fuzz_step_hook_t)(void *ctx, const hv_exec_sm_t *sm, const hv_exec_event_t *ev,
+                                    uint64_t now_ns, hv_status_t st, const hv_exec_actions_t *out);
+void hv_fuzz_on_step(hv_fuzz_step_hook_t hook, void *ctx);
+
 /* The nodes' operations of an input (fuzz_exec_step.c lists them): op & 7 with its argument
  * bytes from r. */
 void hv_fuzz_node_op(hv_fuzz_run_t *R, int op, hv_fuzz_reader_t *r);

@@ -31,7 +31,7 @@ KNOWN_CYCLES = {
     "instances with the pick model",
     "executor/can/include/hv/can_bus.h": "the CAN transports and their wire format (item 5)",
 }
-KNOWN_LONG = {"executor/src/exec_sm.c": "the executor's state machine"}
+KNOWN_LONG = {}
 SKIP_DIRS = {"build", ".git", ".venv", "__pycache__"}
 
 INCLUDE_RE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)

@@ -95,7 +95,7 @@ int fx_restart(fx_t *fx)
 
 static int estop_bit(int node)
 {
-    return node == HV_EXEC_VEHICLE ? HV_VEH_FAULT_ESTOP : HV_ARM_FAULT_ESTOP;
+    return node == HV_EXEC_VEHICLE ? HV_CAN_VEHICLE_FAULT_ESTOP : HV_CAN_ARM_FAULT_ESTOP;
 }
 
 void fx_latch_estop(fx_t *fx, int node)
@@ -229,12 +229,12 @@ static void node_act(fx_t *fx, const hv_exec_action_t *a)
         int k = ++fx->setpoints_sent[side];
         int approach = memcmp(a->u.sp.q, fx->plan.home[side], sizeof a->u.sp.q) != 0;
         if (side == 0 && fx->f.comm_fault_arm && k == fx->f.comm_fault_arm) {
-            n->fault_bits |= HV_ARM_FAULT_COMM;
+            n->fault_bits |= HV_CAN_ARM_FAULT_COMM_TIMEOUT;
             break;
         }
         if (approach && fx->f.reject_setpoints[side] > 0) {
             fx->f.reject_setpoints[side]--;
-            n->fault_bits |= HV_ARM_FAULT_REJECTED;
+            n->fault_bits |= HV_CAN_ARM_FAULT_SETPOINT_REJECTED;
             n->state = HV_CAN_STATE_FAULT;
             break;
         }
@@ -295,6 +295,8 @@ static void step(fx_t *fx, const hv_exec_event_t *ev)
     hv_exec_actions_t out;
     out.n = 0;
     fx->last_status = hv_exec_step(&fx->sm, ev, fx->now_ns, &out);
+    if (fx->on_step)
+        fx->on_step(fx->on_step_ctx, &fx->sm, ev, fx->now_ns, fx->last_status, &out);
     for (unsigned i = 0; i < out.n; i++)
         node_act(fx, &out.a[i]);
 }
@@ -418,6 +420,23 @@ int fx_find(const fx_t *fx, int from, hv_exec_action_kind_t kind, int sub)
 void fx_event(fx_t *fx, const hv_exec_event_t *ev)
 {
     step(fx, ev);
+}
+
+void fx_online(fx_t *fx)
+{
+    fx->plan.n_stops = 0;
+    fx->plan.n_picks = 0;
+    fx->prm.online = 1;
+}
+
+void fx_grown(fx_t *fx, int final, double advance_m)
+{
+    hv_exec_event_t ev;
+    memset(&ev, 0, sizeof ev);
+    ev.kind = HV_EV_PLAN_GROWN;
+    ev.u.plan.final = final;
+    ev.u.plan.advance_m = advance_m;
+    step(fx, &ev);
 }
 
 hv_status_t fx_append_stop(fx_t *fx, const hv_exec_plan_t *src, int s)

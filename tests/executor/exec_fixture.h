@@ -64,6 +64,10 @@ typedef struct fx {
     fx_log_entry_t log[FX_MAX_LOG];
     int nlog;
     hv_status_t last_status;
+    /* called after every step when set (after fx_plan): the replay's trace (exec_replay.c) */
+    void (*on_step)(void *ctx, const hv_exec_sm_t *sm, const hv_exec_event_t *ev, uint64_t now_ns,
+                    hv_status_t st, const hv_exec_actions_t *out);
+    void *on_step_ctx;
 } fx_t;
 
 /* A plan of `n_stops` stops with `per_arm` reachable picks per arm per stop. */
@@ -85,6 +89,10 @@ int fx_find(const fx_t *fx, int from, hv_exec_action_kind_t kind, int sub);
 
 /* Step one event now (the fake nodes react to its actions). */
 void fx_event(fx_t *fx, const hv_exec_event_t *ev);
+/* Online: the plan emptied (its stops come by fx_append_stop) and params.online set. */
+void fx_online(fx_t *fx);
+/* Online: step HV_EV_PLAN_GROWN (final: no stop will follow; advance_m: the commit line). */
+void fx_grown(fx_t *fx, int final, double advance_m);
 /* Online: append stop s of `src` (built by fx_plan: each stop's left then right picks
  * contiguous) to fx->plan and prepare it again; hv_exec_plan_append's status. */
 hv_status_t fx_append_stop(fx_t *fx, const hv_exec_plan_t *src, int s);

@@ -124,7 +124,7 @@ static void test_decode_statuses(void **state)
     assert_int_equal(ev.u.arm.reached, 1);
     assert_int_equal(ev.u.arm.sp_seq, 17);
     assert_int_equal(ev.u.arm.cmd_seq, 250);
-    assert_int_equal(ev.u.arm.fault_bits, HV_ARM_FAULT_REJECTED);
+    assert_int_equal(ev.u.arm.fault_bits, HV_CAN_ARM_FAULT_SETPOINT_REJECTED);
 
     struct harvest_can_vehicle_status_t vs;
     harvest_can_vehicle_status_init(&vs);

@@ -13,16 +13,6 @@
 #include "exec_fixture.h"
 #include "hv/exec_status.h"
 
-static void grown(fx_t *fx, int final, double advance_m)
-{
-    hv_exec_event_t ev;
-    memset(&ev, 0, sizeof ev);
-    ev.kind = HV_EV_PLAN_GROWN;
-    ev.u.plan.final = final;
-    ev.u.plan.advance_m = advance_m;
-    fx_event(fx, &ev);
-}
-
 /* A planner that never commits (refused, dead without its journal): WAIT_PLAN ends after
  * wait_plan_timeout_s in a controlled stop journalled as plan_timeout, no e-stop. */
 static void test_a_silent_planner_ends_in_a_controlled_stop(void **state)
@@ -31,9 +21,7 @@ static void test_a_silent_planner_ends_in_a_controlled_stop(void **state)
     fx_t *fx = malloc(sizeof *fx);
     assert_non_null(fx);
     fx_plan(fx, 1, 1);
-    fx->plan.n_stops = 0;
-    fx->plan.n_picks = 0;
-    fx->prm.online = 1;
+    fx_online(fx);
     fx->prm.wait_plan_timeout_s = 3.0;
     fx_start(fx, NULL);
     fx_run(fx, 2.0);
@@ -60,16 +48,14 @@ static void test_plan_grows_while_running(void **state)
     assert_non_null(fx);
     fx_plan(src, 3, 2); /* what the planner will commit, stop by stop */
     fx_plan(fx, 3, 2);
-    fx->plan.n_stops = 0;
-    fx->plan.n_picks = 0;
-    fx->prm.online = 1;
+    fx_online(fx);
     fx_start(fx, NULL);
     fx_run(fx, 5.0);
     /* homed, nothing committed: waiting where it stands, no move */
     assert_int_equal(fx->sm.phase, HV_PH_WAIT_PLAN);
     assert_int_equal(fx->moves_sent, 0);
     assert_int_equal(fx_append_stop(fx, &src->plan, 0), HV_OK);
-    grown(fx, 0, 0.7);
+    fx_grown(fx, 0, 0.7);
     fx_run(fx, 30.0);
     assert_int_equal(fx->sm.phase, HV_PH_WAIT_PLAN);
     assert_int_equal(fx->sm.picked, 4);
@@ -86,7 +72,7 @@ static void test_plan_grows_while_running(void **state)
     /* the rest, then the planner says the plan is final */
     assert_int_equal(fx_append_stop(fx, &src->plan, 1), HV_OK);
     assert_int_equal(fx_append_stop(fx, &src->plan, 2), HV_OK);
-    grown(fx, 1, 1.9);
+    fx_grown(fx, 1, 1.9);
     fx_run(fx, 60.0);
     assert_int_equal(fx->sm.phase, HV_PH_ROW_DONE);
     assert_int_equal(fx->sm.picked, 12);
@@ -104,7 +90,7 @@ static void test_offline_never_waits(void **state)
     assert_non_null(fx);
     fx_plan(fx, 2, 1);
     fx_start(fx, NULL);
-    grown(fx, 0, 5.0); /* ignored without params.online */
+    fx_grown(fx, 0, 5.0); /* ignored without params.online */
     fx_run(fx, 30.0);
     assert_int_equal(fx->sm.phase, HV_PH_ROW_DONE);
     assert_int_equal(fx->sm.waits, 0);

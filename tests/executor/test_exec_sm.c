@@ -625,12 +625,12 @@ static void hand_status(hand_t *h, int node, int state, int cmd_seq, int estop)
         ev.kind = HV_EV_VEHICLE_STATUS;
         ev.u.veh.state = state;
         ev.u.veh.cmd_seq = cmd_seq;
-        ev.u.veh.fault_bits = estop ? HV_VEH_FAULT_ESTOP : 0;
+        ev.u.veh.fault_bits = estop ? HV_CAN_VEHICLE_FAULT_ESTOP : 0;
     } else {
         ev.kind = HV_EV_ARM_STATUS;
         ev.u.arm.state = state;
         ev.u.arm.cmd_seq = cmd_seq;
-        ev.u.arm.fault_bits = estop ? HV_ARM_FAULT_ESTOP : 0;
+        ev.u.arm.fault_bits = estop ? HV_CAN_ARM_FAULT_ESTOP : 0;
     }
     hand_step(h, &ev);
 }
