@@ -1,21 +1,17 @@
 #!/usr/bin/env python3
 """One source per constant: no hand-written copy of a number that crosses a boundary.
 
-The numbers below have one home each (DESIGN §6 and CONTRIBUTING): the DBC
-(executor/can/harvest.dbc) for the protocol's version, node ids, message kinds, fault bits
-and cycle times; the config key table (config/keys.toml) for the configuration's keys,
-ranges and the code's defaults; the format tables (core/cost_table_format.toml,
-plan/plan_format.toml) for the file layouts; hv_pick_cycle_s (core/pick.h) for the pick
-cycle. Everything else is generated from them or reads them. Each check greps the tracked
-files for the forms the copies took before they were removed; a file that matches one
-fails, unless it is where the number lives (`home`) or a known exception (KNOWN).
+The protocol's numbers have one home (DESIGN §6 and CONTRIBUTING): the DBC
+(executor/can/harvest.dbc) for the protocol's version, node ids and names, message kinds,
+fault bits and cycle times. C uses the names generated from it (hv/can_enums.h), Python
+reads it. Each check greps the tracked files for the forms the copies took before they
+were removed; a file that matches one fails unless it is the DBC itself.
 
-usage: scripts/check_one_source.py [--root DIR] [--all] [--count]
+usage: scripts/check_one_source.py [--root DIR] [--count]
   --root   the repository (default: this script's parent folder)
-  --all    also report the known exceptions, as failures
-  --count  print, per constant, the files that restate it (known ones included), and the
-           number of (constant, file) pairs: the count of hand-written copies
-Exit status 0 when no file but a known exception restates a constant, 1 otherwise.
+  --count  print, per constant, the files that restate it, and the number of
+           (constant, file) pairs: the count of hand-written copies
+Exit status 0 when no file restates a constant, 1 otherwise.
 """
 
 import argparse
@@ -100,24 +96,9 @@ CHECKS = {
     ),
 }
 
+
 # Copies left to other work, reported but not failed: path -> {constant: who removes it}.
 # The coordinator empties this once that work is merged.
-KNOWN = {
-    # execsplit (issue #54 item 2) converts the state machine to the generated names of
-    # hv/can_enums.h (HV_CAN_PROTOCOL_VERSION, HV_CAN_*_FAULT_*, HV_CAN_*_CYCLE_MS, ...)
-    "executor/include/hv/exec_sm.h": {
-        "can.protocol_version": "execsplit",
-        "can.node_ids": "execsplit",
-        "can.fault_bits": "execsplit",
-        "can.cycle_times": "execsplit",
-    },
-    "executor/src/exec_sm.c": {
-        "can.fault_bits": "execsplit",
-        "can.cycle_times": "execsplit",
-    },
-}
-
-
 def tracked(root):
     """The files in scope: git's tracked ones, or every file of a tree that is no checkout."""
     if os.path.exists(os.path.join(root, ".git")):
@@ -159,8 +140,7 @@ def scan(root, files=None):
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--root", default=os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-    p.add_argument("--all", action="store_true", help="known exceptions fail too")
-    p.add_argument("--count", action="store_true", help="count the copies, known ones included")
+    p.add_argument("--count", action="store_true", help="count the copies")
     args = p.parse_args(argv)
     hits = scan(args.root)
     if args.count:
@@ -170,20 +150,15 @@ def main(argv=None):
             print(f"{name}: {len(files)} {' '.join(files)}")
         print(f"hand-written copies (constant, file): {len(pairs)}")
         return 0
-    bad = [h for h in hits if args.all or h[0] not in KNOWN.get(h[1], {})]
     for name, path, form, n, line in hits:
-        if (name, path, form, n, line) in bad:
-            continue
-        print(f"known: {path}:{n}: {name} ({form}), left to {KNOWN[path][name]}")
-    for name, path, form, n, line in bad:
         print(f"{path}:{n}: restates {CHECKS[name][0]} ({form}): {line}", file=sys.stderr)
-    if bad:
+    if hits:
         print(
             "a constant that crosses a boundary has one source (DESIGN §6): use the generated "
             "name or read it from its source (scripts/check_one_source.py says where)",
             file=sys.stderr,
         )
-    return 1 if bad else 0
+    return 1 if hits else 0
 
 
 if __name__ == "__main__":

@@ -1,6 +1,5 @@
 """scripts/check_one_source.py: the repository restates no constant that has a source of
-its own (the DBC, the config key table, the format tables), and the check catches a copy
-planted in a small tree of its own."""
+its own (the DBC), and the check catches a copy planted in a small tree of its own."""
 
 import os
 import subprocess
@@ -41,10 +40,3 @@ def test_a_planted_copy_fails_and_is_counted(tmp_path):
     assert "y.c" not in p.stderr  # a mask of no FaultBits is none of its business
     count = run("--root", str(tmp_path), "--count")
     assert "hand-written copies (constant, file): 2" in count.stdout
-
-
-def test_a_known_copy_is_reported_until_all_are_asked_for(tmp_path):
-    write(tmp_path, "executor/src/exec_sm.c", "if (v->fault_bits & 0x07)\n")
-    p = run("--root", str(tmp_path))
-    assert p.returncode == 0 and "known: executor/src/exec_sm.c:1" in p.stdout
-    assert run("--root", str(tmp_path), "--all").returncode == 1
