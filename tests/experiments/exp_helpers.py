@@ -31,3 +31,14 @@ def harvest(*args, **kw):
         stderr=subprocess.PIPE,
         **kw,
     )
+
+
+def assert_checked(plan_path):
+    """The planner's independent checker accepts the plan under the config its inputs name."""
+    c = subprocess.run(
+        [PLANNER, "check", str(plan_path), "--quiet"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+    )
+    assert c.returncode == 0, (plan_path, c.stdout)

@@ -8,10 +8,9 @@ import json
 import os
 import re
 import statistics
-import subprocess
 
 import pytest
-from exp_helpers import CONFIG, COSTGEN, PLANNER, harvest, require
+from exp_helpers import CONFIG, COSTGEN, PLANNER, assert_checked, harvest, require
 
 from harvest.experiments import cost_models, report, results, sensitivity, variants
 from harvest.experiments.runner import METHODS, QUICK_ALPHAS, QUICK_SEEDS
@@ -182,13 +181,7 @@ def test_the_other_cost_model_plans_the_same_instances_in_the_robots_time(derive
         plan = json.loads((other / r["plan"]).read_text())
         assert plan["params"]["pick_time"] == "cycle"
         assert main[(r["alpha"], r["seed"], r["method"])]["fruits_planned"] == r["fruits_planned"]
-        c = subprocess.run(
-            [PLANNER, "check", str(other / r["plan"]), "--quiet"],
-            stdout=subprocess.PIPE,
-            stderr=subprocess.STDOUT,
-            text=True,
-        )
-        assert c.returncode == 0, (r["plan"], c.stdout)
+        assert_checked(other / r["plan"])
 
 
 def test_the_reports_dual_arm_table_has_both_cost_models_from_the_csvs(derived):
@@ -327,13 +320,7 @@ def test_the_side_by_side_mount_plans_the_same_instances_with_its_own_tables(der
     assert {(r["alpha"], r["seed"], r["method"]) for r in rows} == want
     for r in rows:
         assert r["status"] != "error", r
-        c = subprocess.run(
-            [PLANNER, "check", str(other / r["plan"]), "--quiet"],
-            stdout=subprocess.PIPE,
-            stderr=subprocess.STDOUT,
-            text=True,
-        )
-        assert c.returncode == 0, (r["plan"], c.stdout)
+        assert_checked(other / r["plan"])
     # the fruits a reading leaves out of reach are the MILP plans' own count
     main = variants.figures(results.read(str(derived / "results.csv")))
     side = variants.figures(rows)
@@ -364,13 +351,7 @@ def test_flat_costs_plan_the_same_picks_no_dearer(derived):
         if r["method"] == "milp" and r["status"] == "optimal":
             proven += 1
             assert r["makespan_s"] <= m["makespan_s"] + 1e-6, (r, m)
-        c = subprocess.run(
-            [PLANNER, "check", str(other / r["plan"]), "--quiet"],
-            stdout=subprocess.PIPE,
-            stderr=subprocess.STDOUT,
-            text=True,
-        )
-        assert c.returncode == 0, (r["plan"], c.stdout)
+        assert_checked(other / r["plan"])
     assert proven > 0, "no flat MILP plan is optimal: the comparison checked nothing"
 
 

@@ -10,7 +10,7 @@ import sys
 import time
 
 import pytest
-from exp_helpers import BUILD_DIR, CONFIG, COSTGEN, PLANNER, harvest, require
+from exp_helpers import BUILD_DIR, CONFIG, COSTGEN, PLANNER, assert_checked, harvest, require
 
 from harvest.experiments import results
 from harvest.experiments.runner import METHODS, QUICK_ALPHAS, QUICK_SEEDS
@@ -61,13 +61,7 @@ def test_quick_set_gives_a_complete_results_csv(quick_run):
 def test_every_plan_passes_the_planners_independent_check(quick_run):
     out, _ = quick_run
     for r in results.read(str(out / "results.csv")):
-        c = subprocess.run(
-            [PLANNER, "check", str(out / r["plan"]), "--quiet"],
-            stdout=subprocess.PIPE,
-            stderr=subprocess.STDOUT,
-            text=True,
-        )
-        assert c.returncode == 0, (r["plan"], c.stdout)
+        assert_checked(out / r["plan"])
 
 
 def test_the_paper_experiment_plans_on_the_papers_stops(quick_run):
