@@ -341,6 +341,44 @@ def test_a_repeated_end_effector_request_is_the_action_under_way():
     assert [e.get("repeat", False) for e in log.of("ee")] == [False, True, True, False, True, True]
 
 
+def test_a_repeated_command_setpoint_or_move_is_the_request_under_way():
+    """A node takes a request with the seq it last accepted (the executor never reuses an
+    echoed one) as that request sent again: nothing restarts, nothing is refused."""
+    log = Log()
+    a = ArmNode("left_arm", MODEL, log, cut_s=1.5, release_s=0.5, vehicle_position=lambda t: 0.7)
+    a.on_command(0.0, Command.ENABLE, 1)
+    a.on_command(0.1, Command.HOME, 2)
+    a.update(50.0)
+    assert a.homed and a.state == State.IDLE
+    a.on_command(50.0, Command.HOME, 2)  # resent: no second homing
+    assert a.state == State.IDLE and a.motion is None
+    q = [0.05, 0.6, 0.3, -1.0]
+    a.on_setpoint(50.0, q, 3)
+    t_end = a.motion["t_end"]
+    a.on_setpoint(50.2, list(q), 3)  # resent mid-motion: the same motion, same end
+    assert a.state == State.MOVING and a.motion["t_end"] == t_end
+    a.update(t_end + 1.0)
+    assert a.target_reached
+    a.on_setpoint(t_end + 1.0, list(q), 3)  # resent after arriving: still arrived, standing
+    assert a.target_reached and a.state == State.IDLE
+    a.on_ee(t_end + 1.0, EeAction.CUT, 7)  # so a cut right after it is accepted
+    assert a.ee_state == EeState.BUSY
+    assert [e.get("repeat", False) for e in log.of("command")] == [False, False, True]
+    assert [e.get("repeat", False) for e in log.of("setpoint")] == [False, True, True]
+    a.on_setpoint(t_end + 5.0, [0.06, 0.6, 0.3, -1.0], 3)  # same seq, other target: new
+    assert not log.of("setpoint")[-1].get("repeat")
+
+    v = VehicleNode(MODEL, log, travel=(0.0, 2.0))
+    v.on_command(0.0, Command.ENABLE, 1)
+    v.on_move(0.0, 1.0, 0.0, 4)
+    v_end = v.motion["t_end"]
+    v.on_move(0.3, 1.0, 0.0, 4)
+    assert v.motion["t_end"] == v_end and log.of("move")[-1]["repeat"]
+    v.update(v_end + 1.0)
+    v.on_move(v_end + 1.0, 1.0, 0.0, 4)
+    assert v.arrived and v.state == State.IDLE
+
+
 def test_vehicle_move_and_limits():
     log = Log()
     v = VehicleNode(MODEL, log, travel=(0.0, 2.0))

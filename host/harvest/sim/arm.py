@@ -42,6 +42,7 @@ class ArmNode(Node):
         self.faults = [f for f in faults if f.get("node") == name]
         self.target_reached = False
         self.setpoint_seq = 0
+        self.setpoint_target = None  # joint targets of the setpoint accepted with setpoint_seq
         self.setpoints_received = 0
         self.setpoints_accepted = 0
         self.cuts_received = 0
@@ -91,6 +92,15 @@ class ArmNode(Node):
     # -- inputs ----------------------------------------------------------------------------
     def on_setpoint(self, t, q, seq):
         """Handle <Arm>Setpoint with joint positions q (m, rad) and its 5-bit sequence."""
+        if (
+            seq == self.setpoint_seq
+            and list(q) == self.setpoint_target
+            and self.state in (State.IDLE, State.MOVING)
+        ):
+            # sent again before its echo came back: the motion under way (or done) stays
+            self.changed = True
+            self.log(t, "setpoint", seq=seq, positions=list(q), accepted=True, repeat=True)
+            return
         self.setpoints_received += 1
         reason, bits = "", 0
         injected = self._fault_at("reject", "setpoint", self.setpoints_received)
@@ -120,6 +130,7 @@ class ArmNode(Node):
             )
             return
         self.setpoints_accepted += 1
+        self.setpoint_target = list(q)
         self.clear_bits(REJECTED)
         if seq != self.setpoint_seq:
             self.setpoint_seq = seq

@@ -25,6 +25,7 @@ class Node:
         self.fault_bits = 0
         self.homed = False
         self.command_seq = 0
+        self.command_last = None  # the last command accepted, with command_seq
         self.motion = None  # the running commanded motion, or None
         self.changed = True  # status must go out at once
         self._log = log  # log(t, event, **fields)
@@ -111,6 +112,12 @@ class Node:
         """Handle <Node>Command; the seq is echoed only when the command is accepted."""
         name = label(Command, command)
         before = self.state
+        if seq == self.command_seq and command == self.command_last:
+            # The executor sends a request again while its echo is on the way (it never
+            # reuses a seq a node echoes, DBC): the command already accepted, not a new one.
+            self.changed = True
+            self.log(t, "command", command=name, seq=seq, accepted=True, reason="", repeat=True)
+            return
         accepted, why = True, ""
         if command == Command.NONE:
             pass
@@ -159,9 +166,11 @@ class Node:
                 self.set_state(t, State.FAULT if self.fault_bits else State.DISABLED, "CLEAR_ESTOP")
         else:
             accepted, why = False, f"unknown command {command}"
-        if accepted and seq != self.command_seq:
-            self.command_seq = seq
-            self.changed = True
+        if accepted:
+            self.command_last = command
+            if seq != self.command_seq:
+                self.command_seq = seq
+                self.changed = True
         self.log(
             t,
             "command",

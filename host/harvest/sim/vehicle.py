@@ -21,6 +21,7 @@ class VehicleNode(Node):
         self.home_m = home_m
         self.arrived = False
         self.move_seq = 0
+        self.move_request = None  # (target, max speed) of the move accepted with move_seq
 
     def home_targets(self):
         return [self.home_m]
@@ -45,6 +46,24 @@ class VehicleNode(Node):
 
     def on_move(self, t, target_m, max_speed, seq):
         """Handle VehicleMove: drive to target_m at max_speed (0: the configured speed)."""
+        if (
+            seq == self.move_seq
+            and (target_m, max_speed) == self.move_request
+            and self.state in (State.IDLE, State.MOVING)
+        ):
+            # sent again before its echo came back: the drive under way (or done) stays
+            self.changed = True
+            self.log(
+                t,
+                "move",
+                seq=seq,
+                target=target_m,
+                max_speed=max_speed,
+                accepted=True,
+                reason="",
+                repeat=True,
+            )
+            return
         reason, bits = "", 0
         if self.state not in (State.IDLE, State.MOVING):
             reason = f"state {State(self.state).name}"
@@ -64,6 +83,7 @@ class VehicleNode(Node):
             )
             return
         self.clear_bits(POSITION_LIMIT)
+        self.move_request = (target_m, max_speed)
         # the configured speed is the drive's limit; a move may only ask for less
         speed = (
             self.model.vehicle_speed if max_speed <= 0 else min(max_speed, self.model.vehicle_speed)
