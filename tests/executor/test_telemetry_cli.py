@@ -302,3 +302,24 @@ def test_a_torn_end_is_reported_and_damage_refused(tmp_path):
     )
     assert r.returncode == 2 and not (tmp_path / "d.mcap").exists(), r.stderr
     assert r.stderr.startswith(f"harvest-stack telemetry mcap: {damaged}: byte {second}: ")
+
+
+def test_log_stops_cleanly_on_sigterm(tmp_path):
+    """SIGTERM (what systemd and scripts send) ends `telemetry log` with the log closed and
+    exit 0, also when it lands in the middle of LCM's wait."""
+    import signal
+    import time
+
+    ready, out = tmp_path / "ready", tmp_path / "t.lcmlog"
+    p = subprocess.Popen(
+        [sys.executable, "-m", "harvest", "telemetry", "log", "--url", "memq://",
+         "--out", str(out), "--ready-file", str(ready)],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env(),
+    )  # fmt: skip
+    deadline = time.monotonic() + 60
+    while not ready.exists() and p.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.05)
+    p.send_signal(signal.SIGTERM)
+    stdout, stderr = p.communicate(timeout=60)
+    assert p.returncode == 0, stderr
+    assert stdout.startswith(f"telemetry log: {out}: 0 messages"), stdout
