@@ -193,9 +193,9 @@ def status_line(state):
     if m is None:
         return "no executor state yet"
     phase = f"SAFE: {m.safe_reason}" if m.phase == "safe" else m.phase
-    stop = f"stop {m.stop + 1}/{len(state.stops)}" if m.stop >= 0 else "before the first stop"
+    at = f", stop {m.stop + 1}/{len(state.stops)}" if m.stop >= 0 else ""  # -1: at none
     return (
-        f"{phase}, {stop}, t {m.t_s:.1f} s of {m.expected_makespan_s:.1f} s expected\n"
+        f"{phase}{at}, t {m.t_s:.1f} s of {m.expected_makespan_s:.1f} s expected\n"
         f"picked {m.picked}, failed {m.failed}, skipped {m.skipped}, remaining {m.remaining}, "
         f"faults {len(state.faults)}"
     )
