@@ -11,6 +11,7 @@ COMMANDS = {
     "scenario": "generate fruit maps (paper's uniform rows, clusters, gradients, long rows)",
     "experiments": "run the paper's comparison (FOV, Serial, MILP), plots and report",
     "telemetry": "log LCM telemetry and turn a log into a timeline plot",
+    "live": "serve the running robot to Foxglove (WebSocket) from its LCM telemetry",
     "firmware": "a row with harvest-fw.elf in QEMU on the simulator's bus",
 }
 

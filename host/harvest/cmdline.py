@@ -4,6 +4,7 @@ an argparse parser that reports its own errors so, ending each --help with the e
 
 import argparse
 import re
+import signal
 import sys
 import textwrap
 
@@ -23,6 +24,19 @@ def exit_codes_help(*higher):
 def error(program, what, why=None):
     """Print `PROGRAM: what: why` (or `PROGRAM: what`) on stderr."""
     print(f"{program}: {what}" + (f": {why}" if why else ""), file=sys.stderr)
+
+
+def stop_on_signals():
+    """SIGINT and SIGTERM ask a command that runs until stopped to finish cleanly, rather
+    than kill it: returns a callable that is true once one of them came."""
+    came = []
+
+    def on_signal(signum, frame):
+        came.append(signum)
+
+    signal.signal(signal.SIGINT, on_signal)
+    signal.signal(signal.SIGTERM, on_signal)
+    return lambda: bool(came)
 
 
 def os_error(e):

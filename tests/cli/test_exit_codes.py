@@ -43,6 +43,7 @@ PY_PROGRAMS = [
     "harvest-stack telemetry gantt",
     "harvest-stack telemetry summary",
     "harvest-stack telemetry mcap",
+    "harvest-stack live",
     "harvest-stack firmware",
     "harvest-stack firmware run",
 ]
@@ -120,6 +121,7 @@ BAD_OPTION = [(name, (), name) for name in list(C_PROGRAMS) + list(SCRIPTS)] + [
     # argparse hands what a command leaves over to the parser above it
     ("harvest-stack telemetry summary", ("t.lcmlog",), "harvest-stack telemetry"),
     ("harvest-stack telemetry mcap", ("t.lcmlog", "--out", "t.mcap"), "harvest-stack telemetry"),
+    ("harvest-stack live", ("--port", "0"), "harvest-stack live"),
     (
         "harvest-stack firmware run",
         ("--image", "e", "--plan", "p", "--plan-image", "i", "--out", "o"),
@@ -156,6 +158,7 @@ def _missing_input_cases():
         ("harvest-stack telemetry summary", ("{m}",), ()),
         ("harvest-stack telemetry gantt", ("{m}", "--out", "{t}/g.png"), ("g.png",)),
         ("harvest-stack telemetry mcap", ("{m}", "--out", "{t}/o.mcap"), ("o.mcap",)),
+        ("harvest-stack live", ("--config", "{m}", "--ready-file", "{t}/r"), ("r",)),
         ("harvest-stack firmware run", fw, ("fw",)),
     ]
 

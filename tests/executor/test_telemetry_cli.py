@@ -37,7 +37,8 @@ def _pick(fid, side, stop, cycle):
     return p
 
 
-def _write_log(path):
+def _write_log(path, end=("row_done", "none")):
+    """A row of two stops; `end` is the executor's last (phase, safe_reason)."""
     plan = T["plan_t"]()
     plan.plan_path = "p.json"
     plan.expected_makespan_s = 5.0 + 10.0 + 4.0 + 3.0 + 2.0
@@ -58,9 +59,9 @@ def _write_log(path):
     t = 1_000_000
     log.write_event(t, "HARVEST_PLAN", plan.encode())
 
-    def state(phase, stop, t_s, executed):
+    def state(phase, stop, t_s, executed, reason="none"):
         m = T["exec_state_t"]()
-        m.phase, m.safe_reason, m.stop, m.t_s, m.executed_s = phase, "none", stop, t_s, executed
+        m.phase, m.safe_reason, m.stop, m.t_s, m.executed_s = phase, reason, stop, t_s, executed
         m.arm_phase = ["idle", "idle"]
         m.expected_makespan_s = plan.expected_makespan_s
         return m.encode()
@@ -72,6 +73,8 @@ def _write_log(path):
         return m.encode()
 
     for ch, data in (
+        ("HARVEST_EXEC_STATE", state("homing", -1, 0.0, 0.0)),
+        ("HARVEST_EXEC_STATE", state("driving", 0, 0.0, 0.0)),
         ("HARVEST_EXEC_STATE", state("harvest", 0, 5.1, 5.1)),
         ("HARVEST_FRUIT", fruit("a", 0, 0, "approach", 5.1)),
         ("HARVEST_FRUIT", fruit("c", 1, 0, "approach", 5.1)),
@@ -81,9 +84,11 @@ def _write_log(path):
         ("HARVEST_FRUIT", fruit("c", 1, 0, "approach", 9.0, attempt=2)),
         ("HARVEST_FRUIT", fruit("b", 0, 0, "outcome", 15.3, "picked", "ok")),
         ("HARVEST_FRUIT", fruit("c", 1, 0, "outcome", 16.0, "failed", "joint_fault", 3)),
+        ("HARVEST_EXEC_STATE", state("driving", 1, 16.0, 16.0)),
         ("HARVEST_EXEC_STATE", state("harvest", 1, 20.5, 20.5)),
         ("HARVEST_FRUIT", fruit("d", 1, 1, "outcome", 20.5, "skipped", "ik_unreachable", 0)),
-        ("HARVEST_EXEC_STATE", state("row_done", 2, 25.0, 25.0)),
+        ("HARVEST_EXEC_STATE", state("final_drive", 1, 21.0, 21.0)),
+        ("HARVEST_EXEC_STATE", state(end[0], 2, 25.0, 25.0, end[1])),
     ):
         t += 1000
         log.write_event(t, ch, data)
@@ -105,8 +110,58 @@ def test_timeline_and_summary(tmp_path):
     assert (s["picked"], s["failed"], s["skipped"], s["faults"]) == (2, 1, 1, 1)
     assert s["final_phase"] == "row_done" and s["stops_reached"] == 2
     assert s["executed_vs_expected"] == pytest.approx(25.0 / 24.0 - 1.0)
+    # the vehicle: from the first move (homing left out), drives and stands merged
+    assert tl.vehicle == [
+        (0.0, 5.1, "drive"),
+        (5.1, 16.0, "stopped"),
+        (16.0, 20.5, "drive"),
+        (20.5, 21.0, "stopped"),
+        (21.0, 25.0, "drive"),
+    ]
+    assert timeline.planned_drives(tl) == [(0.0, 5.0), (15.0, 19.0), (22.0, 24.0)]
+    assert tl.halts == []
     out = gantt.plot(tl, str(tmp_path / "g.svg"))
     assert "<svg" in open(out).read(400)
+
+
+def _bars(ax, lane):
+    """(start, end, colour) of the bars on the lane named `lane`."""
+    labels = [t.get_text() for t in ax.get_yticklabels()]
+    y = ax.get_yticks()[labels.index(lane)]
+    return sorted(
+        (round(r.get_x(), 6), round(r.get_x() + r.get_width(), 6), r.get_facecolor())
+        for r in ax.patches
+        if hasattr(r, "get_y") and abs(r.get_y() + r.get_height() / 2 - y) < 1e-9
+    )
+
+
+def test_gantt_vehicle_lanes_and_fault_marks(tmp_path):
+    from matplotlib.colors import to_rgba
+
+    _write_log(tmp_path / "t.lcmlog", end=("safe", "estop"))
+    tl = timeline.read(str(tmp_path / "t.lcmlog"))
+    assert tl.halts == [(25.0, "safe", "estop")]
+    fig = gantt.figure(tl)
+    try:
+        ax = fig.axes[0]
+        actual = _bars(ax, "vehicle actual")
+        assert [(a, b) for a, b, _ in actual] == [(a, b) for a, b, _ in tl.vehicle]
+        for (_, _, colour), (_, _, kind) in zip(actual, tl.vehicle):
+            assert colour == to_rgba(gantt.VEHICLE[kind])
+        planned = [(a, b) for a, b, _ in _bars(ax, "vehicle planned")]
+        assert planned == timeline.planned_drives(tl)
+        # the arm fault named at its time on the right arm's actual lane, the halt across
+        texts = {t.get_text().strip(): t.get_position() for t in ax.texts}
+        assert texts["joint_fault"][0] == 8.0
+        right = ax.get_yticks()[[t.get_text() for t in ax.get_yticklabels()].index("right actual")]
+        assert right < texts["joint_fault"][1] < right + 1
+        assert texts["safe: estop"][0] == 25.0
+        assert any(
+            tuple(ln.get_xdata()) == (25.0, 25.0) and ln.get_color() == gantt.HALT["safe"]
+            for ln in ax.get_lines()
+        )
+    finally:
+        gantt.plt.close(fig)
 
 
 def test_cli(tmp_path):
@@ -186,8 +241,8 @@ def test_mcap_export(tmp_path):
         env=env(),
     )
     assert r.returncode == 0, r.stderr
-    assert "HARVEST_EXEC_STATE 3, HARVEST_FRUIT 9, HARVEST_PLAN 1" in r.stdout
-    assert H.mcap_matches_log(tmp_path / "t.mcap", tmp_path / "t.lcmlog") == 13
+    assert "HARVEST_EXEC_STATE 7, HARVEST_FRUIT 9, HARVEST_PLAN 1" in r.stdout
+    assert H.mcap_matches_log(tmp_path / "t.mcap", tmp_path / "t.lcmlog") == 17
 
 
 def test_lcm_schema_from_definitions(tmp_path):
@@ -247,3 +302,24 @@ def test_a_torn_end_is_reported_and_damage_refused(tmp_path):
     )
     assert r.returncode == 2 and not (tmp_path / "d.mcap").exists(), r.stderr
     assert r.stderr.startswith(f"harvest-stack telemetry mcap: {damaged}: byte {second}: ")
+
+
+def test_log_stops_cleanly_on_sigterm(tmp_path):
+    """SIGTERM (what systemd and scripts send) ends `telemetry log` with the log closed and
+    exit 0, also when it lands in the middle of LCM's wait."""
+    import signal
+    import time
+
+    ready, out = tmp_path / "ready", tmp_path / "t.lcmlog"
+    p = subprocess.Popen(
+        [sys.executable, "-m", "harvest", "telemetry", "log", "--url", "memq://",
+         "--out", str(out), "--ready-file", str(ready)],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env(),
+    )  # fmt: skip
+    deadline = time.monotonic() + 60
+    while not ready.exists() and p.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.05)
+    p.send_signal(signal.SIGTERM)
+    stdout, stderr = p.communicate(timeout=60)
+    assert p.returncode == 0, stderr
+    assert stdout.startswith(f"telemetry log: {out}: 0 messages"), stdout

@@ -99,3 +99,22 @@ def test_plan_inputs_resolve_against_the_plan_folder(tmp_path, monkeypatch):
     del plan["inputs"]["fruit_map"]
     with pytest.raises(plan_file.PlanError, match=r"p\.json: field 'inputs\.fruit_map'"):
         plan_file.input_path(path, plan, "fruit_map")
+
+
+def test_the_legends_cover_no_data():
+    """Each axes' legend is drawn beside it, outside the area that holds the data."""
+    cfg = Config.load(CONFIG)
+    fruits = [Fruit("L1", "L", -0.42, 1.05, 0.6, 0.0), Fruit("X9", "R", 0.45, 1.6, 0.5, 0.0)]
+    fig = plan_view.plan_figure(_plan(CONFIG), fruits, Row(cfg).arm_bases())
+    try:
+        fig.canvas.draw()
+        axes = fig.axes[:2]
+        assert all(ax.get_legend() is not None for ax in axes)
+        for ax in axes:
+            legend = ax.get_legend().get_window_extent()
+            for other in axes:
+                assert not legend.overlaps(other.get_window_extent()), ax.get_ylabel()
+        key = [t.get_text() for t in axes[0].get_legend().get_texts()]
+        assert "not picked" in key and "arm base" in key
+    finally:
+        plt.close(fig)

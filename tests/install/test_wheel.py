@@ -1,8 +1,8 @@
 """The Python package stands alone: the wheel `pip wheel host/` builds is installed into a fresh
 venv in a temporary folder, and every harvest-stack command runs from an empty folder with no
-source tree and no build in sight (no HV_* variables): each --help, a scenario, the simulator
-for two seconds on python-can's virtual bus, and telemetry summary and mcap on a small log
-written with the packaged LCM types."""
+source tree and no build in sight (no HV_* variables): each --help, the live view's layout, a
+scenario, the simulator for two seconds on python-can's virtual bus, and telemetry summary and
+mcap on a small log written with the packaged LCM types."""
 
 import json
 import os
@@ -17,7 +17,7 @@ SOURCE_DIR = os.environ.get("HV_SOURCE_DIR") or os.path.dirname(
 )
 # pip needs its package index for the build's and the package's dependencies
 NO_INDEX = ("NewConnectionError", "Temporary failure in name resolution", "Network is unreachable")
-COMMANDS = ["sim", "scenario", "experiments", "telemetry", "firmware"]
+COMMANDS = ["sim", "scenario", "experiments", "telemetry", "live", "firmware"]
 TELEMETRY = ["log", "gantt", "summary", "mcap"]
 
 
@@ -87,6 +87,10 @@ def test_every_help_runs_away_from_the_tree(venv):
         assert "usage" in run(venv, cmd, "--help").stdout, cmd
     for sub in TELEMETRY:
         assert "usage" in run(venv, "telemetry", sub, "--help").stdout, sub
+    # the live view's Foxglove layout is package data
+    run(venv, "live", "--write-layout", "layout.json")
+    with open(venv["cwd"] / "layout.json", encoding="utf-8") as f:
+        assert "3D!harvest" in json.load(f)["configById"]
 
 
 def test_scenario_and_sim_use_the_packaged_data(venv):

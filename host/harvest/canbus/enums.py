@@ -53,6 +53,14 @@ def member(kind, value):
         return None
 
 
+def flag_names(kind, bits):
+    """The DBC's names of the bits set in `bits` of bit table `kind`, lowest first; a bit
+    the table does not name as its hex value."""
+    names = [m.name for m in kind if bits & m]
+    rest = bits & ~sum(kind)
+    return names + ([f"0x{rest:x}"] if rest else [])
+
+
 def label(kind, value):
     """The DBC's label of `value` in enum `kind`, or the number as text when it has none."""
     m = member(kind, value)

@@ -1,8 +1,12 @@
 """Top view of one plan: fruits, stops, which arm picks what, and each stop's idle time."""
 
 import numpy as np
+from matplotlib.lines import Line2D
 
 from .figures import plt, save
+
+# a legend to the right of its axes, outside them (save() crops to what is drawn)
+OUTSIDE = {"loc": "upper left", "bbox_to_anchor": (1.01, 1.0), "fontsize": 8, "frameon": False}
 
 
 def plan_figure(plan, fruits, bases, title=""):
@@ -39,10 +43,7 @@ def plan_figure(plan, fruits, bases, title=""):
                 )
     rest = [f for f in fruits if f.id not in picked]
     if rest:
-        top.plot(
-            [f.y for f in rest], [f.x for f in rest], "x", color="grey", ms=5, label="not picked"
-        )
-        top.legend(loc="upper right", fontsize=8)
+        top.plot([f.y for f in rest], [f.x for f in rest], "x", color="grey", ms=5)
     top.axhline(0.0, color="black", lw=0.5)
     top.set_ylabel("x (m): left < 0 < right")
     top.set_title(
@@ -50,15 +51,18 @@ def plan_figure(plan, fruits, bases, title=""):
         or f"{plan.get('method', '?').upper()} plan: "
         f"{len(stops)} stops, makespan {plan['totals']['makespan_s']:.1f} s"
     )
-    # in the aisle band, between the stop markers and the right bases: no fruit hangs there
-    top.text(
-        0.005,
-        0.60,
-        "o left arm's fruit   \u25a1 right arm's fruit   \u25b2 arm base   \u25bc stop",
-        transform=top.transAxes,
-        va="top",
-        fontsize=8,
-    )
+    # the key beside the axes, where it covers no fruit, base or stop (colours are stops)
+    key = [
+        ("o", "left arm's fruit"),
+        ("s", "right arm's fruit"),
+        ("^", "arm base"),
+        ("v", "stop"),
+        ("x", "not picked"),
+    ]
+    handles = [
+        Line2D([], [], marker=m, ls="none", color="grey" if m == "x" else "#404040") for m, _ in key
+    ]
+    top.legend(handles, [t for _, t in key], **OUTSIDE)
     ys = np.array([st["y_m"] for st in stops])
     cl = np.array([st.get("C_left_s", 0.0) for st in stops])
     cr = np.array([st.get("C_right_s", 0.0) for st in stops])
@@ -83,7 +87,7 @@ def plan_figure(plan, fruits, bases, title=""):
     bars.set_ylim(0.0, 1.15 * max(1.0, float(np.max(np.maximum(cl + il, cr + ir), initial=0.0))))
     bars.set_xlabel("y along the row (m)")
     bars.set_ylabel("time at stop (s)")
-    bars.legend(fontsize=7, ncol=4, loc="upper right")
+    bars.legend(**OUTSIDE)
     bars.grid(axis="y", alpha=0.3)
     return fig
 

@@ -1,6 +1,6 @@
 """`harvest-stack telemetry {log,gantt,summary,mcap}`: record the executor's LCM telemetry,
-turn a log into a Gantt timeline of both arms, planned against actual, or export it to
-MCAP."""
+turn a log into a Gantt timeline of the vehicle and both arms, planned against actual,
+with the faults marked, or export it to MCAP."""
 
 import json
 
@@ -14,8 +14,8 @@ def _parser():
     p = Parser(
         prog=PROG,
         description="Record the executor's LCM telemetry (channels HARVEST_*) into an LCM log, "
-        "and turn a log into a Gantt timeline (PNG/SVG) of both arms per stop, "
-        "planned against actual.",
+        "and turn a log into a Gantt timeline (PNG/SVG) of the vehicle and both arms per "
+        "stop, planned against actual, faults marked with their names.",
     )
     p.add_argument(
         "--lcm-python",

@@ -7,6 +7,7 @@ struct fields, fixed or variable array dimensions, `//` comments. Anything else 
 ValueError naming the file and line.
 """
 
+import json
 import os
 import re
 
@@ -93,6 +94,17 @@ def json_schema(structs, name):
     schema = obj(name)
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     return schema
+
+
+def schema_of(structs, type_name):
+    """(schema name, JSON Schema as bytes) of LCM type `type_name`: how the MCAP export and
+    the live view name and describe a channel of that type."""
+    return f"harvest.{type_name}", json.dumps(json_schema(structs, type_name)).encode()
+
+
+def message_json(msg):
+    """A decoded lcm-gen message as the bytes of its JSON (to_json)."""
+    return json.dumps(to_json(msg)).encode()
 
 
 def to_json(msg):

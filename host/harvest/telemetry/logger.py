@@ -7,13 +7,12 @@ last messages and stops. SIGINT/SIGTERM stop it cleanly too.
 """
 
 import os
-import signal
 import time
 
 import lcm
 
-from ..cmdline import EXIT_FAILURE, EXIT_USAGE, error
-from . import lcm_types
+from ..cmdline import EXIT_FAILURE, EXIT_USAGE, error, stop_on_signals
+from . import lcm_types, lcm_wait
 
 
 class Logger:
@@ -42,10 +41,10 @@ class Logger:
 
     def run(self, duration=None, grace=1.0, stop_flag=None):
         t0 = time.monotonic()
-        while True:
-            self.lc.handle_timeout(100)
+        stopped = stop_flag or (lambda: False)
+        while lcm_wait.handle(self.lc, 100, stopped):
             now = time.monotonic()
-            if stop_flag and stop_flag():
+            if stopped():
                 break
             if duration is not None and now - t0 >= duration:
                 break
@@ -62,13 +61,7 @@ def run(args, prog):
     if os.path.exists(args.out) and not args.overwrite:
         error(prog, args.out, "exists (use --overwrite)")
         return EXIT_USAGE
-    stop = {"now": False}
-
-    def on_signal(signum, frame):
-        stop["now"] = True
-
-    signal.signal(signal.SIGINT, on_signal)
-    signal.signal(signal.SIGTERM, on_signal)
+    stopped = stop_on_signals()
     try:
         lc = lcm.LCM(args.url)
     except RuntimeError:  # LCM's own line on stderr says why
@@ -86,7 +79,7 @@ def run(args, prog):
         with open(args.ready_file, "w") as f:
             f.write(str(os.getpid()))
     try:
-        lg.run(duration=args.duration, grace=args.grace, stop_flag=lambda: stop["now"])
+        lg.run(duration=args.duration, grace=args.grace, stop_flag=stopped)
     finally:
         lg.close()
     per = ", ".join(f"{k} {v}" for k, v in sorted(lg.channels.items()))

@@ -4,7 +4,6 @@ LCM type (lcm_schema), so every field is typed and documented in the viewer. The
 of each message is the LCM log's receive time.
 """
 
-import json
 import os
 import tempfile
 
@@ -52,11 +51,9 @@ def _write(log, f, types, structs):
                 f"({', '.join(sorted(lcm_types.CHANNELS))})"
             )
         if type_name not in schema_ids:
-            schema = lcm_schema.json_schema(structs, type_name)
+            name, schema = lcm_schema.schema_of(structs, type_name)
             schema_ids[type_name] = writer.register_schema(
-                name=f"harvest.{type_name}",
-                encoding="jsonschema",
-                data=json.dumps(schema).encode(),
+                name=name, encoding="jsonschema", data=schema
             )
         if ev.channel not in channel_ids:
             channel_ids[ev.channel] = writer.register_channel(
@@ -68,7 +65,7 @@ def _write(log, f, types, structs):
             channel_ids[ev.channel],
             log_time=t_ns,
             publish_time=t_ns,
-            data=json.dumps(lcm_schema.to_json(msg)).encode(),
+            data=lcm_schema.message_json(msg),
             sequence=counts.get(ev.channel, 0),
         )
         counts[ev.channel] = counts.get(ev.channel, 0) + 1

@@ -5,7 +5,9 @@ Planned: the plan_t message's expected times (docs: executor/include/hv/exec_pla
 drive to a stop, then each arm's pick cycles back to back (cycle = 2 x IK move + cut +
 release); the stop lasts as long as its slower arm, then the next drive.
 Actual: fruit_event_t messages (approach of the first attempt -> outcome) and the
-executor's state changes (arrival at a stop = phase harvest with that stop).
+executor's state changes (arrival at a stop = phase harvest with that stop; the vehicle
+drives in phases driving and final_drive, and stands still otherwise once the row started;
+an end in safe or stopped is a halt, with the executor's reason).
 """
 
 from . import eventlog, lcm_types
@@ -16,10 +18,13 @@ class Timeline:
         self.plan = None
         self.planned = []  # (side, stop, fruit_id, start, end)
         self.planned_stops = []  # (stop, arrive, leave)
+        self.planned_total = 0.0  # the course's end
         self.actual = {}  # (side, fruit_id) -> dict(start, end, outcome, reason, stop, attempts)
         self.actual_stops = {}  # stop -> arrival t_s
         self.states = []
         self.faults = []  # (t, side, fruit_id, reason)
+        self.vehicle = []  # actual: (start, end, "drive" or "stopped"), merged, in time order
+        self.halts = []  # (t, phase safe or stopped, safe_reason): the executor's stops
         self.final = None
         self.can_stats = None
         self.torn_at = None  # byte offset of an event the log's end cut short
@@ -53,11 +58,43 @@ def planned_schedule(plan):
     return bars, stops, t
 
 
+DRIVE_PHASES = ("driving", "final_drive")
+BEFORE_ROW = ("wait_nodes", "enable", "homing")  # plan time has not started yet
+HALT_PHASES = ("safe", "stopped")
+
+
+def planned_drives(tl):
+    """The vehicle's planned drives (start, end): to each stop and the final one."""
+    out, t = [], 0.0
+    for _, arrive, leave in tl.planned_stops:
+        out.append((t, arrive))
+        t = leave
+    out.append((t, tl.planned_total))
+    return [(a, b) for a, b in out if b > a]
+
+
+def _vehicle_intervals(states):
+    """(start, end, kind) between consecutive states from the row's start: each state's kind
+    holds until the next state; consecutive ones of one kind are merged."""
+    out = []
+    rows = [s for s in states if s.phase not in BEFORE_ROW]
+    for cur, nxt in zip(rows, rows[1:]):
+        if nxt.t_s <= cur.t_s:
+            continue
+        kind = "drive" if cur.phase in DRIVE_PHASES else "stopped"
+        if out and out[-1][2] == kind and out[-1][1] == cur.t_s:
+            out[-1] = (out[-1][0], nxt.t_s, kind)
+        else:
+            out.append((cur.t_s, nxt.t_s, kind))
+    return out
+
+
 def read(path, python_dir=None):
     tl = Timeline()
     with eventlog.EventLog(path) as log:
         _read_events(tl, log, lcm_types.load(python_dir))
         tl.torn_at = log.torn_at
+    tl.vehicle = _vehicle_intervals(tl.states)
     if tl.plan is not None:
         tl.planned, tl.planned_stops, tl.planned_total = planned_schedule(tl.plan)
     return tl
@@ -71,6 +108,8 @@ def _read_events(tl, log, types):
         if ev.channel == "HARVEST_PLAN":
             tl.plan = msg
         elif ev.channel == "HARVEST_EXEC_STATE":
+            if msg.phase in HALT_PHASES and (tl.final is None or tl.final.phase != msg.phase):
+                tl.halts.append((msg.t_s, msg.phase, msg.safe_reason))
             tl.states.append(msg)
             tl.final = msg
             if msg.phase == "harvest" and msg.stop >= 0 and msg.stop not in tl.actual_stops:
