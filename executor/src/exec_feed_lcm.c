@@ -1,22 +1,32 @@
-/* The online planner's committed stops over LCM (exec_feed.h). */
+/* The online planner's committed stops and its status over LCM (exec_feed.h). */
+#define _POSIX_C_SOURCE 200809L
 #include "hv/exec_feed.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include <lcm/lcm.h>
 
 #include "harvest_lcm_plan_commit_t.h"
+#include "harvest_lcm_planner_status_t.h"
 #include "hv/exec_status.h"
 
 #define COMMIT_CHANNEL "HARVEST_PLAN_COMMIT"
+#define STATUS_CHANNEL "HARVEST_PLANNER_STATUS"
+/* wall s without a status: the planner is taken as silent (it sends one every 2 s) */
+#define SILENT_S       5.0
 
 typedef struct feed_lcm {
     FILE *log;
     lcm_t *lcm;
     harvest_lcm_plan_commit_t_subscription_t *sub;
+    harvest_lcm_planner_status_t_subscription_t *status_sub;
+    double status_at; /* monotonic wall s of the last status */
+    int last_refused; /* the last plan message was refused here */
+    char note[HV_EXEC_PLANNER_REASON_LEN + 96];
     hv_exec_plan_t *plan;
     hv_arm_t arm[2];
     hv_exec_timing_t timing;
@@ -29,9 +39,17 @@ typedef struct feed_lcm {
     hv_exec_pick_t picks[HV_EXEC_MAX_PICKS]; /* one stop's, being appended */
 } feed_lcm_t;
 
+static double mono_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 static void refuse(feed_lcm_t *f, const char *why)
 {
     f->st.refused++;
+    f->last_refused = 1;
     if (f->log && strcmp(why, f->st.last_refusal) != 0)
         fprintf(f->log, "harvest-exec: the planner's committed plan refused: %s\n", why);
     snprintf(f->st.last_refusal, sizeof f->st.last_refusal, "%s", why);
@@ -96,6 +114,7 @@ static void on_commit(const lcm_recv_buf_t *rbuf, const char *channel,
     feed_lcm_t *f = user;
     hv_exec_plan_t *p = f->plan;
     f->st.messages++;
+    f->last_refused = 0; /* until refuse() says otherwise */
     if (!f->course_set) {
         if (!(m->row_length_m > 0) || !isfinite(m->row_start_m) || !(m->stop_margin_m >= 0) ||
             m->stop_margin_m > f->max_margin_m + 1e-9) {
@@ -143,6 +162,77 @@ static void on_commit(const lcm_recv_buf_t *rbuf, const char *channel,
     f->advance_m = m->commit_y_m;
 }
 
+static int ends(const char *state)
+{
+    return strcmp(state, "refused") == 0 || strcmp(state, "failed") == 0 ||
+           strcmp(state, "ended") == 0;
+}
+
+/* The planner's status: kept, and what is new in it said at once (its end and why, a
+ * detection it refused, what a replay of the camera gave back). */
+static void on_status(const lcm_recv_buf_t *rbuf, const char *channel,
+                      const harvest_lcm_planner_status_t *m, void *user)
+{
+    (void)rbuf;
+    (void)channel;
+    feed_lcm_t *f = user;
+    hv_exec_planner_heard_t *h = &f->st.planner, was = *h;
+    f->status_at = mono_s();
+    h->heard = 1;
+    snprintf(h->state, sizeof h->state, "%s", m->state);
+    snprintf(h->reason, sizeof h->reason, "%s", m->reason);
+    snprintf(h->last_refusal, sizeof h->last_refusal, "%s", m->last_refusal);
+    h->refused = m->refused > 0 ? (unsigned)m->refused : 0;
+    h->replays = m->replays > 0 ? (unsigned)m->replays : 0;
+    h->replayed = m->replayed > 0 ? (unsigned)m->replayed : 0;
+    h->recovered = m->recovered > 0 ? (unsigned)m->recovered : 0;
+    h->lost = m->lost > 0 ? (unsigned)m->lost : 0;
+    h->seen_to_m = m->seen_to_m;
+    h->commit_y_m = m->commit_y_m;
+    if (!f->log)
+        return;
+    if (ends(h->state) && (strcmp(h->state, was.state) != 0 || strcmp(h->reason, was.reason) != 0))
+        fprintf(f->log, "harvest-exec: the planner %s: %s\n", h->state,
+                h->reason[0] ? h->reason : "(no reason given)");
+    if (h->last_refusal[0] && strcmp(h->last_refusal, was.last_refusal) != 0)
+        fprintf(f->log, "harvest-exec: from the planner: %s\n", h->last_refusal);
+    if (h->replays != was.replays || h->lost != was.lost)
+        fprintf(f->log,
+                "harvest-exec: the camera replayed to the planner (%u times): %u detections, "
+                "%u fruits recovered, %u lost\n",
+                h->replays, h->replayed, h->recovered, h->lost);
+}
+
+static const char *planner_note(void *ctx)
+{
+    feed_lcm_t *f = ctx;
+    const hv_exec_planner_heard_t *h = &f->st.planner;
+    double quiet = h->heard ? mono_s() - f->status_at : 0.0;
+    if (h->heard && ends(h->state))
+        snprintf(f->note, sizeof f->note, "the planner %s: %s", h->state,
+                 h->reason[0] ? h->reason : "(no reason given)");
+    else if (f->last_refused)
+        snprintf(f->note, sizeof f->note, "the planner's committed plan refused here: %s",
+                 f->st.last_refusal);
+    else if (!h->heard)
+        snprintf(f->note, sizeof f->note, "%s",
+                 f->st.messages ? "no status from the planner (its plan comes)"
+                                : "no word from the planner");
+    else if (quiet > SILENT_S)
+        snprintf(f->note, sizeof f->note, "no word from the planner for %.0f s (it said: %s)",
+                 quiet, h->state);
+    else if (strcmp(h->state, "camera_sync") == 0)
+        snprintf(f->note, sizeof f->note, "the planner waits for the camera's replay");
+    else if (strcmp(h->state, "camera_wait") == 0)
+        snprintf(f->note, sizeof f->note, "the planner waits for the camera's first frame");
+    else
+        snprintf(f->note, sizeof f->note,
+                 "the planner %s: the camera seen to %.2f m, committed to %.2f m",
+                 strcmp(h->state, "done") == 0 ? "committed the whole row" : "plans", h->seen_to_m,
+                 h->commit_y_m);
+    return f->note;
+}
+
 static int take(void *ctx, hv_exec_event_t *ev)
 {
     feed_lcm_t *f = ctx;
@@ -174,6 +264,7 @@ hv_status_t hv_exec_feed_lcm_open(hv_exec_feed_t *feed, const char *url, hv_exec
         return HV_ERR_EXEC_TELEMETRY;
     }
     f->sub = harvest_lcm_plan_commit_t_subscribe(f->lcm, COMMIT_CHANNEL, on_commit, f);
+    f->status_sub = harvest_lcm_planner_status_t_subscribe(f->lcm, STATUS_CHANNEL, on_status, f);
     f->plan = plan;
     memcpy(f->arm, arm, sizeof f->arm);
     f->timing = *timing;
@@ -181,6 +272,7 @@ hv_status_t hv_exec_feed_lcm_open(hv_exec_feed_t *feed, const char *url, hv_exec
     f->course_set = plan->row_length_m > 0; /* rebuilt from the journal of an earlier start */
     feed->fd = lcm_get_fileno(f->lcm);
     feed->take = take;
+    feed->planner = planner_note;
     feed->ctx = f;
     f->log = feed->log;
     return HV_OK;
@@ -197,6 +289,7 @@ void hv_exec_feed_lcm_close(hv_exec_feed_t *feed)
         return;
     feed_lcm_t *f = feed->ctx;
     harvest_lcm_plan_commit_t_unsubscribe(f->lcm, f->sub);
+    harvest_lcm_planner_status_t_unsubscribe(f->lcm, f->status_sub);
     lcm_destroy(f->lcm);
     free(f);
     feed->ctx = NULL;

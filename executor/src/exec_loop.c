@@ -23,6 +23,12 @@ static int64_t wall_utime(void)
 
 static void step(hv_exec_loop_t *L, const hv_exec_event_t *ev, uint64_t now);
 
+/* Online: the feed's line on the planner (why no plan comes, in WAIT_PLAN); else NULL. */
+static const char *planner_note(const hv_exec_loop_t *L)
+{
+    return L->feed && L->feed->planner ? L->feed->planner(L->feed->ctx) : NULL;
+}
+
 /* Online, at each stop: stops done of those known, fruits picked, and the planner's lead:
  * the robot time of the committed stops still ahead, and how long the vehicle waited. */
 static void online_progress(hv_exec_loop_t *L, uint64_t now, double t)
@@ -59,8 +65,9 @@ static void report(hv_exec_loop_t *L, const hv_exec_action_t *a, uint64_t now)
         else if (sm->phase == HV_PH_WAIT_PLAN)
             fprintf(L->progress,
                     "harvest-exec: [%8.2f s] waiting for the planner: %d stops "
-                    "done of %u known, %u fruits picked\n",
-                    t, sm->stop + 1, (unsigned)sm->plan->n_stops, sm->picked);
+                    "done of %u known, %u fruits picked; %s\n",
+                    t, sm->stop + 1, (unsigned)sm->plan->n_stops, sm->picked,
+                    planner_note(L) ? planner_note(L) : "no planner");
         else
             fprintf(L->progress, "harvest-exec: [%8.2f s] %s\n", t, hv_exec_phase_name(sm->phase));
     } else if (a->kind == HV_ACT_FRUIT_EVENT && a->u.fe.kind == HV_FE_OUTCOME &&
@@ -115,7 +122,7 @@ static void carry_out(hv_exec_loop_t *L, const hv_exec_actions_t *out, uint64_t 
         if (a->kind == HV_ACT_FRUIT_EVENT)
             hv_exec_tm_fruit(L->tm, L->sm, a, now, wall_utime());
         else if (a->kind == HV_ACT_PHASE)
-            hv_exec_tm_state(L->tm, L->sm, now, wall_utime());
+            hv_exec_tm_state(L->tm, L->sm, planner_note(L), now, wall_utime());
         else if (a->kind != HV_ACT_JOURNAL)
             continue;
         report(L, a, now);
@@ -145,7 +152,7 @@ static void periodic_telemetry(hv_exec_loop_t *L, uint64_t now)
     if (!L->tm)
         return;
     if (now >= L->next_state_pub_ns) {
-        hv_exec_tm_state(L->tm, L->sm, now, wall_utime());
+        hv_exec_tm_state(L->tm, L->sm, planner_note(L), now, wall_utime());
         L->next_state_pub_ns = now + 100000000ull; /* 10 Hz */
     }
     if (L->bus && now >= L->next_stats_pub_ns) {
@@ -257,6 +264,6 @@ hv_status_t hv_exec_loop_run(hv_exec_loop_t *L)
                 next_tick = now + tick_ns;
         }
     }
-    hv_exec_tm_state(L->tm, L->sm, now_ns(L), wall_utime());
+    hv_exec_tm_state(L->tm, L->sm, planner_note(L), now_ns(L), wall_utime());
     return HV_OK;
 }

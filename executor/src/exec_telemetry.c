@@ -40,11 +40,11 @@ void hv_exec_tm_plan(hv_exec_telemetry_t *t, const hv_exec_plan_t *plan, const c
         count(t, t->ops->plan(t, plan, path, prm, time_scale, utime));
 }
 
-void hv_exec_tm_state(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, uint64_t now_ns,
-                      int64_t utime)
+void hv_exec_tm_state(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const char *planner,
+                      uint64_t now_ns, int64_t utime)
 {
     if (t && t->ops && t->ops->state)
-        count(t, t->ops->state(t, sm, now_ns, utime));
+        count(t, t->ops->state(t, sm, planner, now_ns, utime));
 }
 
 void hv_exec_tm_fruit(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const hv_exec_action_t *fe,

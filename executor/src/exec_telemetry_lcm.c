@@ -74,7 +74,8 @@ static int pub_plan(hv_exec_telemetry_t *t, const hv_exec_plan_t *plan, const ch
     return rc;
 }
 
-static int pub_state(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, uint64_t now_ns, int64_t utime)
+static int pub_state(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const char *planner,
+                     uint64_t now_ns, int64_t utime)
 {
     harvest_lcm_exec_state_t m;
     memset(&m, 0, sizeof m);
@@ -94,6 +95,7 @@ static int pub_state(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, uint64_t no
     m.executed_s = m.t_s;
     m.expected_makespan_s = sm->plan->expected_makespan_s;
     m.time_scale = sm->time_scale;
+    m.planner = (char *)(planner ? planner : "");
     return harvest_lcm_exec_state_t_publish(lcm_of(t), HV_TM_CH_STATE, &m);
 }
 

@@ -18,6 +18,7 @@
 #include "hv/exec_status.h"
 #include "hv/exec_telemetry.h"
 #include "hv/file_io.h"
+#include "hv/json_quote.h"
 #include "hv/pick.h"
 #include "hv/version.h"
 
@@ -74,7 +75,13 @@ static void usage(FILE *out)
         "journal\n"
         "                          rebuilds them and resumes; a planner's message that "
         "contradicts\n"
-        "                          them is refused (HV_ERR_EXEC_PLAN_CONFLICT)\n"
+        "                          them is refused (HV_ERR_EXEC_PLAN_CONFLICT). The planner's\n"
+        "                          status (HARVEST_PLANNER_STATUS) is said as it comes: its\n"
+        "                          refusal and why, the detections it refused, the camera's\n"
+        "                          replays; a wait names the reason no plan comes (also in\n"
+        "                          telemetry, exec_state_t.planner, and the summary). With no\n"
+        "                          stop for online.wait_plan_timeout of the config it makes a\n"
+        "                          controlled stop (plan_timeout, exit 6) naming that reason\n"
         "bus:\n"
         "  --transport T           socketcan | udp (default udp)\n"
         "  --channel C             socketcan: interface (vcan0); udp: multicast group\n"
@@ -282,14 +289,34 @@ typedef struct world {
     hv_exec_loop_t loop;
     hv_exec_feed_t feed; /* online */
     hv_exec_feed_stats_t feed_stats;
+    char planner_note[HV_EXEC_PLANNER_REASON_LEN + 96]; /* the feed's last line on the planner */
 } world_t;
+
+/* Online: what the planner said of itself as last heard, and the feed's line on it (in a
+ * wait, why no plan came), for the summary. */
+static int planner_summary(const world_t *w, char *buf, size_t n)
+{
+    const hv_exec_planner_heard_t *h = &w->feed_stats.planner;
+    char note[2 * sizeof w->planner_note], state[2 * sizeof h->state], reason[2 * sizeof h->reason],
+        refusal[2 * sizeof h->last_refusal];
+    return snprintf(buf, n,
+                    "  \"planner\": %s,\n  \"planner_state\": %s,\n  \"planner_reason\": %s,\n"
+                    "  \"planner_last_refusal\": %s,\n  \"planner_refused\": %u,\n"
+                    "  \"camera_replays\": %u,\n  \"camera_replayed\": %u,\n"
+                    "  \"camera_recovered\": %u,\n  \"camera_lost\": %u\n",
+                    hv_json_quote(w->planner_note, note, sizeof note),
+                    hv_json_quote(h->state, state, sizeof state),
+                    hv_json_quote(h->reason, reason, sizeof reason),
+                    hv_json_quote(h->last_refusal, refusal, sizeof refusal), h->refused, h->replays,
+                    h->replayed, h->recovered, h->lost);
+}
 
 static void write_summary(const opts_t *o, const world_t *w, double wall_s, double cpu_s,
                           long peak_rss_kb)
 {
     const hv_exec_sm_t *sm = &w->sm;
     const hv_exec_loop_stats_t *st = &w->loop.st;
-    char buf[4096], latched[64];
+    char buf[8192], latched[64];
     double wait_first = 0.0, wait_row = 0.0;
     uint64_t now = w->port.now_ns(w->port.ctx);
     hv_exec_plan_wait_s(sm, now, &wait_first, &wait_row);
@@ -321,7 +348,7 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
         "  \"estop_latched\": \"%s\",\n  \"estop_cleared\": %s,\n"
         "  \"safe_node_name\": \"%s\",\n  \"online\": %s,\n  \"plan_stops\": %u,\n"
         "  \"plan_final\": %s,\n  \"plan_wait_first_s\": %.6f,\n  \"plan_wait_row_s\": %.6f,\n"
-        "  \"plan_waits\": %u,\n  \"plan_messages\": %u,\n  \"plan_refused\": %u\n}\n",
+        "  \"plan_waits\": %u,\n  \"plan_messages\": %u,\n  \"plan_refused\": %u,\n",
         hv_exec_phase_name(sm->phase), hv_exec_safe_reason_name(sm->safe_reason), sm->safe_node,
         hv_exec_stop_reason_name(sm->stop_reason), (unsigned)w->plan.n_picks,
         outcome[HV_OUT_PICKED], outcome[HV_OUT_FAILED], outcome[HV_OUT_SKIPPED],
@@ -337,6 +364,14 @@ static void write_summary(const opts_t *o, const world_t *w, double wall_s, doub
         sm->latched && sm->prm.clear_estop ? "true" : "false", hv_exec_node_name(sm->safe_node),
         o->online ? "true" : "false", (unsigned)w->plan.n_stops, sm->plan_final ? "true" : "false",
         wait_first, wait_row, sm->waits, w->feed_stats.messages, w->feed_stats.refused);
+    if (n > 0 && (size_t)n < sizeof buf) {
+        int k = planner_summary(w, buf + n, sizeof buf - (size_t)n);
+        n = k < 0 ? k : n + k;
+    }
+    if (n > 0 && (size_t)n + 2 < sizeof buf)
+        n += snprintf(buf + n, sizeof buf - (size_t)n, "}\n");
+    else
+        n = -1;
     char err[256];
     if (n < 0 || (size_t)n >= sizeof buf ||
         hv_file_write_atomic(o->summary, buf, (size_t)n, err, sizeof err) != HV_OK)
@@ -628,6 +663,10 @@ int main(int argc, char **argv)
 #ifdef HV_WITH_LCM
     if (o.online) {
         w->feed_stats = *hv_exec_feed_lcm_stats(&w->feed);
+        snprintf(w->planner_note, sizeof w->planner_note, "%s", w->feed.planner(w->feed.ctx));
+        if (halted && w->sm.stop_reason == HV_STOP_PLAN_TIMEOUT)
+            printf("harvest-exec: no plan for %.0f s (online.wait_plan_timeout): %s\n",
+                   (double)w->sm.prm.wait_plan_timeout_s, w->planner_note);
         if (w->feed_stats.refused)
             fprintf(stderr,
                     "harvest-exec: %u of the planner's %u messages refused, the last "

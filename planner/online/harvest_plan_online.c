@@ -14,24 +14,21 @@
 
 #include <lcm/lcm.h>
 
-#include "harvest_lcm_camera_frame_t.h"
 #include "harvest_lcm_exec_state_t.h"
 #include "harvest_lcm_plan_commit_t.h"
 #include "hv/cli.h"
 #include "hv/file_io.h"
-#include "hv/fruit_id.h"
-#include "hv/online.h"
+#include "hv/json_quote.h"
 #include "hv/plan_build.h"
 #include "hv/plan_io.h"
 #include "hv/plan_paths.h"
 #include "hv/plan_status.h"
 #include "hv/version.h"
 #include "hv/pick_model.h"
-#include "hv/online_journal.h"
+#include "plan_online.h"
 
 static const char k_prog[] = "harvest-plan-online";
-#define MAX_HORIZONS 4096
-#define REPUBLISH_S  2.0 /* wall s between repeats of the committed plan (a lost one heals) */
+#define REPUBLISH_S 2.0 /* wall s between repeats of the committed plan and the status */
 
 static const char k_usage[] =
     "usage: harvest-plan-online --config CFG --lcm-url URL [options]\n"
@@ -47,7 +44,21 @@ static const char k_usage[] =
     "Bad detections are refused, logged with their reason and counted, never planned:\n"
     "outside_row (y off the row or not a number), duplicate (a fruit id already known: the\n"
     "first detection stands), late (every stop that reaches it is committed), bad_id (not\n"
-    "of the fruit id set). A lost camera frame (a gap in its seq) is logged and counted.\n"
+    "of the fruit id set).\n"
+    "\n"
+    "The camera's replay: as it starts (fresh or resumed) and after a lost camera frame (a\n"
+    "gap in its seq), the planner asks the camera to send again every fruit it revealed\n"
+    "(camera_replay_t on HARVEST_CAMERA_REPLAY, every second until it comes) and takes no\n"
+    "view of the row before it: fruit revealed while the planner was down is recovered, or\n"
+    "counted lost when every stop that reaches it is committed. The camera's first frame\n"
+    "(seq 0) needs no replay.\n"
+    "\n"
+    "Status: planner_status_t on HARVEST_PLANNER_STATUS, on each change, every 2 s and as\n"
+    "it ends: camera_wait (no frame yet), camera_sync (waiting for the replay), planning,\n"
+    "done; or refused (bad input: config, options, journal), failed (a horizon, the\n"
+    "journal's disk), ended (interrupted, the executor stopped), with the reason as\n"
+    "printed; each detection refused, and the replay's counts. harvest-exec --online shows\n"
+    "it, and names it when it waits for a plan.\n"
     "\n"
     "options:\n"
     "  --config CFG       harvest.cfg (row, arms, camera.lead / camera.window), required\n"
@@ -69,7 +80,8 @@ static const char k_usage[] =
     "                     executor's journalled stops stay valid. Without it a restart\n"
     "                     starts over: the camera's earlier fruit is lost to it, and\n"
     "                     harvest-exec refuses a plan that contradicts its journal\n"
-    "  --summary FILE     write a JSON summary at the end\n"
+    "  --summary FILE     write a JSON summary at the end (detections per verdict, the\n"
+    "                     camera's replays: replayed, recovered, lost)\n"
     "  --out PLAN.json    write the committed plan at the end, in the plan format\n"
     "                     (docs/PLAN_FORMAT.md, no fruit map named: the camera was the input);\n"
     "                     `harvest-plan check PLAN.json --fruits MAP.csv` verifies it\n"
@@ -98,106 +110,12 @@ static int stop_requested(void *ctx)
     return atomic_load(&g_stop);
 }
 
-static double now_s(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int64_t wall_utime(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_REALTIME, &ts);
-    return (int64_t)ts.tv_sec * 1000000 + ts.tv_nsec / 1000;
-}
-
-typedef struct app {
-    hv_online_t o;
-    lcm_t *lcm;
-    int quiet;
-    int32_t next_seq;
-    unsigned frames, frames_lost, bad_id;
-    /* the executor, as its state says */
-    int exec_seen, exec_stop, exec_picked;
-    double exec_vehicle_m;
-    char exec_phase[32];
-    double solve_s[MAX_HORIZONS];
-    size_t n_solves;
-    hv_online_journal_t *journal; /* or NULL */
-    int journal_failed;
-} app_t;
-
-static void journal_failed(app_t *a)
-{
-    fprintf(stderr, "harvest-plan-online: %s: journal write failed: %s\n", a->journal->path,
-            strerror(errno));
-    a->journal_failed = 1;
-    atomic_store(&g_stop, 1);
-}
-
-static void on_frame(const lcm_recv_buf_t *rbuf, const char *channel,
-                     const harvest_lcm_camera_frame_t *m, void *user)
-{
-    (void)rbuf;
-    (void)channel;
-    app_t *a = user;
-    if (a->frames > 0 && m->seq != a->next_seq) {
-        unsigned lost = (unsigned)(m->seq - a->next_seq);
-        a->frames_lost += m->seq > a->next_seq ? lost : 0;
-        fprintf(stderr, "harvest-plan-online: camera frame %d after %d: %s\n", m->seq,
-                a->next_seq - 1, m->seq > a->next_seq ? "frames lost" : "out of order");
-    }
-    a->frames++;
-    a->next_seq = m->seq + 1;
-    for (int i = 0; i < m->n; ++i) {
-        const harvest_lcm_detection_t *d = &m->fruits[i];
-        hv_fruit_t f;
-        memset(&f, 0, sizeof f);
-        size_t len = strlen(d->fruit_id);
-        if (len >= sizeof f.id || hv_fruit_id_check(d->fruit_id, len, NULL) != HV_OK ||
-            (d->side != 0 && d->side != 1)) {
-            a->bad_id++;
-            fprintf(stderr, "harvest-plan-online: detection \"%.40s\": refused: bad_id\n",
-                    d->fruit_id);
-            continue;
-        }
-        memcpy(f.id, d->fruit_id, len + 1);
-        f.side = d->side ? HV_SIDE_RIGHT : HV_SIDE_LEFT;
-        f.x_m = d->x_m;
-        f.y_m = d->y_m;
-        f.z_m = d->z_m;
-        f.yaw_rad = d->yaw_rad;
-        hv_online_verdict_t v;
-        if (a->journal != NULL && hv_online_journal_detection(a->journal, &f) != HV_OK) {
-            journal_failed(a);
-            return;
-        }
-        if (hv_online_detect(&a->o, &f, &v) != HV_OK) {
-            fprintf(stderr, "harvest-plan-online: out of memory\n");
-            atomic_store(&g_stop, 1);
-            return;
-        }
-        if (v != HV_DET_ACCEPTED && v != HV_DET_UNREACHABLE) {
-            fprintf(stderr, "harvest-plan-online: detection %s (%c) at y %.3f m: refused: %s\n",
-                    f.id, d->side ? 'R' : 'L', f.y_m, hv_online_verdict_name(v));
-        }
-    }
-    /* synced once per frame with news (a standing vehicle's camera repeats its view) */
-    if (a->journal != NULL && (m->n > 0 || m->seen_to_m > a->o.seen_to_m) &&
-        hv_online_journal_seen(a->journal, m->seen_to_m) != HV_OK) {
-        journal_failed(a);
-        return;
-    }
-    hv_online_seen(&a->o, m->seen_to_m);
-}
-
 static void on_exec_state(const lcm_recv_buf_t *rbuf, const char *channel,
                           const harvest_lcm_exec_state_t *m, void *user)
 {
     (void)rbuf;
     (void)channel;
-    app_t *a = user;
+    po_app_t *a = user;
     a->exec_seen = 1;
     a->exec_stop = m->stop;
     a->exec_picked = m->picked;
@@ -207,7 +125,7 @@ static void on_exec_state(const lcm_recv_buf_t *rbuf, const char *channel,
 
 /* Robot time committed ahead of the executor: the committed stops after the one it is at
  * (that one's rest is not counted), from there; 0 before it is heard. */
-static double work_ahead_s(const app_t *a, const hv_config_t *cfg)
+static double work_ahead_s(const po_app_t *a, const hv_config_t *cfg)
 {
     if (!a->exec_seen || a->exec_stop < 0 || (size_t)a->exec_stop >= a->o.n_stops) {
         return 0.0;
@@ -217,12 +135,12 @@ static double work_ahead_s(const app_t *a, const hv_config_t *cfg)
 }
 
 /* The committed plan so far, whole (plan_commit_t.lcm says why). */
-static int publish(app_t *a)
+static int publish(po_app_t *a)
 {
     const hv_online_t *o = &a->o;
     harvest_lcm_plan_commit_t m;
     memset(&m, 0, sizeof m);
-    m.utime = wall_utime();
+    m.utime = po_wall_utime();
     m.row_start_m = o->params.row_start_m;
     m.row_length_m = o->params.row_length_m;
     m.stop_margin_m = o->params.stop_margin_m;
@@ -286,7 +204,7 @@ static const char *solve_name(hv_solve_status_t s)
     }
 }
 
-static void progress(const app_t *a, const char *what)
+static void progress(const po_app_t *a, const char *what)
 {
     const hv_online_t *o = &a->o;
     char exec[128] = "executor not heard yet";
@@ -297,12 +215,19 @@ static void progress(const app_t *a, const char *what)
                  a->exec_phase, a->exec_stop + 1, o->n_stops, a->exec_picked, a->exec_vehicle_m,
                  hv_online_commit_y(o) - a->exec_vehicle_m);
     }
+    char camera[128] = "";
+    if (!a->synced)
+        snprintf(camera, sizeof camera, "; waiting for the camera's replay (asked %u times)",
+                 a->replay.requests);
+    else if (a->replay.replays)
+        snprintf(camera, sizeof camera, "; replayed %u: %u recovered, %u lost", a->replay.replayed,
+                 a->replay.recovered, a->replay.lost);
     fprintf(stderr,
             "harvest-plan-online: %s: seen to %.2f m, committed to %.2f m%s: %zu stops, "
-            "%zu fruits; refused %u outside_row, %u duplicate, %u late, %u bad_id; %s\n",
+            "%zu fruits; refused %u outside_row, %u duplicate, %u late, %u bad_id%s; %s\n",
             what, o->seen_to_m, hv_online_commit_y(o), o->done ? " (final)" : "", o->n_stops,
             o->n_order, o->counts[HV_DET_OUTSIDE_ROW], o->counts[HV_DET_DUPLICATE],
-            o->counts[HV_DET_LATE], a->bad_id, exec);
+            o->counts[HV_DET_LATE], a->bad_id, camera, exec);
 }
 
 static int cmp_double(const void *x, const void *y)
@@ -311,24 +236,31 @@ static int cmp_double(const void *x, const void *y)
     return p < q ? -1 : p > q;
 }
 
-static void write_summary(const char *path, app_t *a)
+static void write_summary(const char *path, po_app_t *a)
 {
     const hv_online_t *o = &a->o;
+    const po_replay_counts_t *r = &a->replay;
     qsort(a->solve_s, a->n_solves, sizeof *a->solve_s, cmp_double);
-    char buf[2048], err[256];
-    int n = snprintf(
-        buf, sizeof buf,
-        "{\n  \"done\": %s,\n  \"stops\": %zu,\n  \"fruits_committed\": %zu,\n"
-        "  \"detections\": {\"accepted\": %u, \"unreachable\": %u, \"outside_row\": %u, "
-        "\"duplicate\": %u, \"late\": %u, \"bad_id\": %u},\n"
-        "  \"frames\": %u,\n  \"frames_lost\": %u,\n  \"horizons\": %zu,\n"
-        "  \"horizons_optimal\": %u,\n  \"horizon_s_median\": %.6f,\n  \"horizon_s_max\": "
-        "%.6f\n}\n",
-        o->done ? "true" : "false", o->n_stops, o->n_order, o->counts[HV_DET_ACCEPTED],
-        o->counts[HV_DET_UNREACHABLE], o->counts[HV_DET_OUTSIDE_ROW], o->counts[HV_DET_DUPLICATE],
-        o->counts[HV_DET_LATE], a->bad_id, a->frames, a->frames_lost, a->n_solves, o->steps_optimal,
-        a->n_solves ? a->solve_s[a->n_solves / 2] : 0.0,
-        a->n_solves ? a->solve_s[a->n_solves - 1] : 0.0);
+    char buf[4096], err[256], reason[2 * PO_REASON_LEN], refusal[600];
+    int n =
+        snprintf(buf, sizeof buf,
+                 "{\n  \"done\": %s,\n  \"state\": \"%s\",\n  \"reason\": %s,\n  \"stops\": %zu,\n"
+                 "  \"fruits_committed\": %zu,\n"
+                 "  \"detections\": {\"accepted\": %u, \"unreachable\": %u, \"outside_row\": %u, "
+                 "\"duplicate\": %u, \"late\": %u, \"bad_id\": %u},\n  \"last_refusal\": %s,\n"
+                 "  \"frames\": %u,\n  \"frames_lost\": %u,\n"
+                 "  \"camera_replay\": {\"requests\": %u, \"replays\": %u, \"replayed\": %u, "
+                 "\"recovered\": %u, \"lost\": %u},\n  \"horizons\": %zu,\n"
+                 "  \"horizons_optimal\": %u,\n  \"horizon_s_median\": %.6f,\n  \"horizon_s_max\": "
+                 "%.6f\n}\n",
+                 o->done ? "true" : "false", a->end_state ? a->end_state : "ended",
+                 hv_json_quote(a->reason, reason, sizeof reason), o->n_stops, o->n_order,
+                 o->counts[HV_DET_ACCEPTED], o->counts[HV_DET_UNREACHABLE],
+                 o->counts[HV_DET_OUTSIDE_ROW], o->counts[HV_DET_DUPLICATE], o->counts[HV_DET_LATE],
+                 a->bad_id, hv_json_quote(a->last_refusal, refusal, sizeof refusal), a->frames,
+                 a->frames_lost, r->requests, r->replays, r->replayed, r->recovered, r->lost,
+                 a->n_solves, o->steps_optimal, a->n_solves ? a->solve_s[a->n_solves / 2] : 0.0,
+                 a->n_solves ? a->solve_s[a->n_solves - 1] : 0.0);
     if (n < 0 || (size_t)n >= sizeof buf ||
         hv_file_write_atomic(path, buf, (size_t)n, err, sizeof err) != HV_OK) {
         fprintf(stderr, "harvest-plan-online: %s: cannot write the summary\n", path);
@@ -336,7 +268,8 @@ static void write_summary(const char *path, app_t *a)
 }
 
 /* The committed plan as a plan file (docs/PLAN_FORMAT.md). */
-static int write_plan(const char *out, const char *config, const hv_config_t *cfg, const app_t *a)
+static int write_plan(const char *out, const char *config, const hv_config_t *cfg,
+                      const po_app_t *a)
 {
     const hv_online_t *o = &a->o;
     char err[512] = "", cfg_rel[HV_PLAN_PATH_LEN];
@@ -406,13 +339,19 @@ static int parse_pos(const char *flag, const char *text, double *out, int zero_o
     return 0;
 }
 
-int main(int argc, char **argv)
-{
-    const char *config = NULL, *url = NULL, *summary = NULL, *out = NULL, *journal_path = NULL;
-    double progress_s = 5.0, fixed_limit_s = 0.0; /* 0: the limit follows the work ahead */
-    int quiet = 0;
+typedef struct args {
+    const char *config, *url, *summary, *out, *journal;
+    double progress_s, fixed_limit_s; /* fixed_limit_s 0: the limit follows the work ahead */
+    int quiet;
     hv_online_options_t opt;
-    hv_online_options_default(&opt);
+} args_t;
+
+/* The command line into *g; -1 to go on, else the exit code (help, version, usage). */
+static int parse_args(int argc, char **argv, args_t *g)
+{
+    memset(g, 0, sizeof *g);
+    g->progress_s = 5.0;
+    hv_online_options_default(&g->opt);
     enum {
         O_CONFIG = 256,
         O_LCM_URL,
@@ -452,23 +391,23 @@ int main(int argc, char **argv)
         switch (o) {
         case 'h': fputs(k_usage, stdout); return 0;
         case 'V': printf("harvest-plan-online %s\n", HV_VERSION); return 0;
-        case O_QUIET: quiet = 1; break;
-        case O_CONFIG: config = v; break;
-        case O_LCM_URL: url = v; break;
-        case O_SUMMARY: summary = v; break;
-        case O_OUT: out = v; break;
-        case O_JOURNAL: journal_path = v; break;
-        case O_WINDOW: bad = parse_pos(f, v, &opt.window_m, 0); break;
-        case O_COMMIT: bad = parse_pos(f, v, &opt.commit_m, 0); break;
-        case O_TIME_LIMIT: bad = parse_pos(f, v, &fixed_limit_s, 0); break;
-        case O_PROGRESS: bad = parse_pos(f, v, &progress_s, 1); break;
+        case O_QUIET: g->quiet = 1; break;
+        case O_CONFIG: g->config = v; break;
+        case O_LCM_URL: g->url = v; break;
+        case O_SUMMARY: g->summary = v; break;
+        case O_OUT: g->out = v; break;
+        case O_JOURNAL: g->journal = v; break;
+        case O_WINDOW: bad = parse_pos(f, v, &g->opt.window_m, 0); break;
+        case O_COMMIT: bad = parse_pos(f, v, &g->opt.commit_m, 0); break;
+        case O_TIME_LIMIT: bad = parse_pos(f, v, &g->fixed_limit_s, 0); break;
+        case O_PROGRESS: bad = parse_pos(f, v, &g->progress_s, 1); break;
         case O_THREADS:
             bad = strcmp(v, "1") != 0 && strcmp(v, "2") != 0;
             if (bad) {
                 fprintf(stderr, "harvest-plan-online: --threads: expected 1 or 2, got \"%s\"\n", v);
             } else if (v[0] == '1') {
-                opt.milp.helper_thread = 0;
-                opt.milp.tree_threads = 1;
+                g->opt.milp.helper_thread = 0;
+                g->opt.milp.tree_threads = 1;
             }
             break;
         default: hv_cli_option_error(k_prog, o, optopt, argv[optind - 1]); return HV_EXIT_USAGE;
@@ -481,200 +420,254 @@ int main(int argc, char **argv)
         hv_cli_usage_error(k_prog, argv[optind], "unexpected argument");
         return HV_EXIT_USAGE;
     }
-    if (config == NULL || url == NULL) {
-        hv_cli_usage_error(k_prog, config == NULL ? "--config" : "--lcm-url", "required");
+    if (g->config == NULL || g->url == NULL) {
+        hv_cli_usage_error(k_prog, g->config == NULL ? "--config" : "--lcm-url", "required");
         return HV_EXIT_USAGE;
     }
-    if (opt.commit_m > opt.window_m) {
+    if (g->opt.commit_m > g->opt.window_m) {
         hv_cli_usage_error(k_prog, "--commit", "must not exceed --window");
         return HV_EXIT_USAGE;
     }
+    return -1;
+}
+
+/* What must outlive the online module: the config and its pick model. */
+typedef struct world {
     hv_config_t cfg;
-    char err[512];
-    if (hv_config_load(config, &cfg, err, sizeof err) != HV_OK) {
-        fprintf(stderr, "harvest-plan-online: %s\n", err);
-        return HV_EXIT_USAGE;
-    }
-    if (cfg.pick_cost_flat) { /* its costs are laid out over the config's whole row */
-        fprintf(stderr,
-                "harvest-plan-online: %s: plan.pick_cost_flat = 1 is the experiments' offline "
-                "cost variant, not the robot's times\n",
-                config);
-        return HV_EXIT_USAGE;
-    }
     hv_ik_model_t ik;
     hv_pick_model_t model;
-    if (hv_pick_model_ik(&cfg, &ik, &model) != HV_OK) {
-        fprintf(stderr, "harvest-plan-online: %s: an arm reaches none of its fruit area\n", config);
-        return HV_EXIT_USAGE;
+    hv_online_journal_t journal;
+} world_t;
+
+/* The config, the online module and the journal (resumed); the exit code on a refusal (it is
+ * published: the LCM is open), else HV_EXIT_OK. */
+static int setup(po_app_t *a, args_t *g, world_t *w)
+{
+    char err[512];
+    if (hv_config_load(g->config, &w->cfg, err, sizeof err) != HV_OK) {
+        return po_refuse(a, HV_EXIT_USAGE, "%s", err);
+    }
+    if (w->cfg.pick_cost_flat) { /* its costs are laid out over the config's whole row */
+        return po_refuse(a, HV_EXIT_USAGE,
+                         "%s: plan.pick_cost_flat = 1 is the experiments' offline cost "
+                         "variant, not the robot's times",
+                         g->config);
+    }
+    if (hv_pick_model_ik(&w->cfg, &w->ik, &w->model) != HV_OK) {
+        return po_refuse(a, HV_EXIT_USAGE, "%s: an arm reaches none of its fruit area", g->config);
     }
     hv_instance_params_t par;
-    hv_instance_params_from_config(&cfg, &model, &par);
-    opt.milp.stop = stop_requested;
-    opt.limit_min_s = cfg.online_limit_min_s;
-    opt.limit_max_s = cfg.online_limit_max_s;
+    hv_instance_params_from_config(&w->cfg, &w->model, &par);
+    g->opt.milp.stop = stop_requested;
+    g->opt.limit_min_s = w->cfg.online_limit_min_s;
+    g->opt.limit_max_s = w->cfg.online_limit_max_s;
     /* the plan records the longest a horizon may take */
-    opt.milp.time_limit_s = fixed_limit_s > 0.0 ? fixed_limit_s : opt.limit_max_s;
-    app_t *a = calloc(1, sizeof *a);
-    if (a == NULL) {
+    g->opt.milp.time_limit_s = g->fixed_limit_s > 0.0 ? g->fixed_limit_s : g->opt.limit_max_s;
+    hv_status_t ist = hv_online_init(&a->o, &par, &w->model, &g->opt);
+    if (ist != HV_OK) {
+        return po_refuse(a, HV_EXIT_USAGE, "%s: cannot plan with this config and these options: %s",
+                         g->config, hv_plan_status_name(ist));
+    }
+    if (g->journal == NULL) {
+        return HV_EXIT_OK;
+    }
+    hv_status_t jst = hv_online_journal_open(&w->journal, g->journal, &a->o, err, sizeof err);
+    if (jst != HV_OK) {
+        /* a journal that cannot be opened or written is a failure; one of another row, bad
+         * input */
+        return po_refuse(a,
+                         jst == HV_ERR_IO || jst == HV_ERR_NOMEM ? HV_EXIT_FAILURE : HV_EXIT_USAGE,
+                         "%s", err);
+    }
+    a->journal = &w->journal;
+    if (w->journal.detections > 0 && !g->quiet) {
+        fprintf(stderr,
+                "harvest-plan-online: resumed from %s: %u detections, %u horizons "
+                "(%zu stops, committed to %.2f m%s) as they were%s\n",
+                g->journal, w->journal.detections, w->journal.horizons, a->o.n_stops,
+                hv_online_commit_y(&a->o), a->o.done ? ", final" : "",
+                w->journal.torn_bytes ? "; a torn end was cut off" : "");
+    }
+    return HV_EXIT_OK;
+}
+
+/* Solve every horizon that can be committed now; the exit code when one fails. */
+static int plan_horizons(po_app_t *a, const args_t *g, const world_t *w, double *last_pub)
+{
+    while (hv_online_ready(&a->o) && !atomic_load(&g_stop)) {
+        double t0 = po_now_s();
+        hv_online_step_result_t r;
+        size_t pos = a->o.pos;
+        hv_status_t sst = g->fixed_limit_s > 0.0
+                              ? hv_online_step(&a->o, &r)
+                              : hv_online_step_ahead(&a->o, work_ahead_s(a, &w->cfg), &r);
+        if (sst != HV_OK) {
+            return po_refuse(a, HV_EXIT_FAILURE, "horizon %zu at %.2f m: failed to plan: %s",
+                             a->n_solves + 1, hv_online_commit_y(&a->o), hv_plan_status_name(sst));
+        }
+        /* durable before anyone may act on it */
+        if (a->journal != NULL && a->o.pos != pos &&
+            hv_online_journal_horizon(a->journal, &a->o, r.stops_from) != HV_OK) {
+            return po_refuse(a, HV_EXIT_FAILURE, "%s: journal write failed: %s", a->journal->path,
+                             strerror(errno));
+        }
+        double dt = po_now_s() - t0;
+        if (a->n_solves < PO_MAX_HORIZONS) {
+            a->solve_s[a->n_solves++] = dt;
+        }
+        publish(a);
+        po_status_publish(a);
+        *last_pub = po_now_s();
+        if (!g->quiet) {
+            char what[160];
+            snprintf(what, sizeof what,
+                     "horizon %zu (%zu fruits, %s%s, %.2f s of %.1f s) committed "
+                     "%zu stops",
+                     a->n_solves, r.window_fruits, solve_name(r.status),
+                     r.kept_heuristic ? ", kept the FOV plan" : "", dt, r.limit_s,
+                     r.stops_to - r.stops_from);
+            progress(a, what);
+        }
+        /* what arrived meanwhile is taken before the next horizon */
+        while (lcm_handle_timeout(a->lcm, 0) > 0)
+            ;
+        if (a->fatal_rc) {
+            return a->fatal_rc;
+        }
+    }
+    return HV_EXIT_OK;
+}
+
+/* Until the row is committed and the executor reports row_done, it stops, or a signal. */
+static int run(po_app_t *a, const args_t *g, const world_t *w)
+{
+    double last_pub = 0.0, last_progress = po_now_s();
+    while (!atomic_load(&g_stop)) {
+        lcm_handle_timeout(a->lcm, 20);
+        while (lcm_handle_timeout(a->lcm, 0) > 0)
+            ;
+        if (a->fatal_rc) {
+            return a->fatal_rc;
+        }
+        po_camera_poll(a);
+        int rc = plan_horizons(a, g, w, &last_pub);
+        if (rc != HV_EXIT_OK) {
+            return rc;
+        }
+        double t = po_now_s();
+        if (t - last_pub >= REPUBLISH_S) {
+            publish(a);
+            po_status_publish(a);
+            last_pub = t;
+        } else if (a->status_changed) {
+            po_status_publish(a);
+        }
+        if (!g->quiet && g->progress_s > 0 && t - last_progress >= g->progress_s) {
+            progress(a, "progress");
+            last_progress = t;
+        }
+        if (a->exec_seen && strcmp(a->exec_phase, "safe") == 0) {
+            snprintf(a->reason, sizeof a->reason,
+                     "harvest-plan-online: the executor stopped in the safe state");
+            fprintf(stderr, "%s\n", a->reason);
+            return HV_EXIT_ONLINE_EXEC_SAFE;
+        }
+        if (a->exec_seen && strcmp(a->exec_phase, "stopped") == 0) {
+            snprintf(a->reason, sizeof a->reason,
+                     "harvest-plan-online: the executor made a controlled stop");
+            fprintf(stderr, "%s\n", a->reason);
+            return HV_EXIT_ONLINE_EXEC_STOPPED;
+        }
+        if (a->o.done && a->exec_seen && strcmp(a->exec_phase, "row_done") == 0) {
+            return HV_EXIT_OK;
+        }
+    }
+    if (a->o.done) {
+        return HV_EXIT_OK;
+    }
+    snprintf(a->reason, sizeof a->reason,
+             "harvest-plan-online: interrupted before the row was planned");
+    return HV_EXIT_ONLINE_INTERRUPTED;
+}
+
+int main(int argc, char **argv)
+{
+    args_t g;
+    int rc = parse_args(argc, argv, &g);
+    if (rc >= 0) {
+        return rc;
+    }
+    po_app_t *a = calloc(1, sizeof *a);
+    world_t *w = calloc(1, sizeof *w);
+    if (a == NULL || w == NULL) {
         fprintf(stderr, "harvest-plan-online: out of memory\n");
+        free(a);
+        free(w);
         return HV_EXIT_FAILURE;
     }
-    hv_status_t ist = hv_online_init(&a->o, &par, &model, &opt);
-    if (ist != HV_OK) {
-        fprintf(stderr,
-                "harvest-plan-online: %s: cannot plan with this config and these options: %s\n",
-                config, hv_plan_status_name(ist));
-        free(a);
-        return HV_EXIT_USAGE;
-    }
-    a->quiet = quiet;
-    hv_online_journal_t journal;
-    if (journal_path != NULL) {
-        hv_status_t jst = hv_online_journal_open(&journal, journal_path, &a->o, err, sizeof err);
-        if (jst != HV_OK) {
-            fprintf(stderr, "harvest-plan-online: %s\n", err);
-            hv_online_free(&a->o);
-            free(a);
-            /* a journal that cannot be opened or written is a failure; one of another
-             * row, bad input */
-            return jst == HV_ERR_IO || jst == HV_ERR_NOMEM ? HV_EXIT_FAILURE : HV_EXIT_USAGE;
-        }
-        a->journal = &journal;
-        if (journal.detections > 0 && !quiet) {
-            fprintf(stderr,
-                    "harvest-plan-online: resumed from %s: %u detections, %u horizons "
-                    "(%zu stops, committed to %.2f m%s) as they were%s\n",
-                    journal_path, journal.detections, journal.horizons, a->o.n_stops,
-                    hv_online_commit_y(&a->o), a->o.done ? ", final" : "",
-                    journal.torn_bytes ? "; a torn end was cut off" : "");
-        }
-    }
-    a->lcm = lcm_create(url);
+    a->quiet = g.quiet;
+    /* first, so that a refusal of what follows reaches the executor */
+    a->lcm = lcm_create(g.url);
     if (a->lcm == NULL) {
-        fprintf(stderr, "harvest-plan-online: --lcm-url %s: LCM could not be opened\n", url);
+        fprintf(stderr, "harvest-plan-online: --lcm-url %s: LCM could not be opened\n", g.url);
+        free(a);
+        free(w);
+        return HV_EXIT_FAILURE;
+    }
+    rc = setup(a, &g, w);
+    if (rc != HV_EXIT_OK) {
+        /* nothing was planned: no summary, no plan */
         hv_online_journal_close(a->journal);
         hv_online_free(&a->o);
+        lcm_destroy(a->lcm);
         free(a);
-        return HV_EXIT_FAILURE;
+        free(w);
+        return rc;
     }
-    harvest_lcm_camera_frame_t_subscription_t *cam_sub =
-        harvest_lcm_camera_frame_t_subscribe(a->lcm, "HARVEST_CAMERA", on_frame, a);
     harvest_lcm_exec_state_t_subscription_t *exec_sub =
         harvest_lcm_exec_state_t_subscribe(a->lcm, "HARVEST_EXEC_STATE", on_exec_state, a);
-    /* LCM drops what a subscription has queued beyond its capacity (30 by default); no
-     * frame may be lost while a horizon is solved */
-    harvest_lcm_camera_frame_t_subscription_set_queue_capacity(cam_sub, 0);
+    po_camera_open(a);
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
     char limit_text[128];
-    if (fixed_limit_s > 0.0) {
-        snprintf(limit_text, sizeof limit_text, "%.1f s per horizon", fixed_limit_s);
+    if (g.fixed_limit_s > 0.0) {
+        snprintf(limit_text, sizeof limit_text, "%.1f s per horizon", g.fixed_limit_s);
     } else {
         snprintf(limit_text, sizeof limit_text,
                  "a horizon takes half the robot time committed ahead, %.1f to %.1f s",
-                 opt.limit_min_s, opt.limit_max_s);
+                 g.opt.limit_min_s, g.opt.limit_max_s);
     }
-    if (!quiet) {
+    if (!g.quiet) {
         fprintf(stderr,
                 "harvest-plan-online: row %.2f m, camera %.2f m from %.2f m ahead, "
                 "horizon %.2f m, commit %.2f m, %s; waiting for the camera\n",
-                cfg.row_length_m, cfg.camera_window_m, cfg.camera_lead_m, opt.window_m,
-                opt.commit_m, limit_text);
+                w->cfg.row_length_m, w->cfg.camera_window_m, w->cfg.camera_lead_m, g.opt.window_m,
+                g.opt.commit_m, limit_text);
     }
-    int rc = HV_EXIT_OK;
-    double last_pub = 0.0, last_progress = now_s();
-    while (!atomic_load(&g_stop)) {
-        lcm_handle_timeout(a->lcm, 20);
-        while (lcm_handle_timeout(a->lcm, 0) > 0)
-            ;
-        while (hv_online_ready(&a->o) && !atomic_load(&g_stop)) {
-            double t0 = now_s();
-            hv_online_step_result_t r;
-            size_t pos = a->o.pos;
-            hv_status_t sst = fixed_limit_s > 0.0
-                                  ? hv_online_step(&a->o, &r)
-                                  : hv_online_step_ahead(&a->o, work_ahead_s(a, &cfg), &r);
-            if (sst != HV_OK) {
-                fprintf(stderr, "harvest-plan-online: a horizon failed to plan\n");
-                rc = HV_EXIT_FAILURE;
-                break;
-            }
-            /* durable before anyone may act on it */
-            if (a->journal != NULL && a->o.pos != pos &&
-                hv_online_journal_horizon(a->journal, &a->o, r.stops_from) != HV_OK) {
-                journal_failed(a);
-                rc = HV_EXIT_FAILURE;
-                break;
-            }
-            double dt = now_s() - t0;
-            if (a->n_solves < MAX_HORIZONS) {
-                a->solve_s[a->n_solves++] = dt;
-            }
-            publish(a);
-            last_pub = now_s();
-            if (!quiet) {
-                char what[160];
-                snprintf(what, sizeof what,
-                         "horizon %zu (%zu fruits, %s%s, %.2f s of %.1f s) committed "
-                         "%zu stops",
-                         a->n_solves, r.window_fruits, solve_name(r.status),
-                         r.kept_heuristic ? ", kept the FOV plan" : "", dt, r.limit_s,
-                         r.stops_to - r.stops_from);
-                progress(a, what);
-            }
-            /* what arrived meanwhile is taken before the next horizon */
-            while (lcm_handle_timeout(a->lcm, 0) > 0)
-                ;
-        }
-        if (rc != HV_EXIT_OK) {
-            break;
-        }
-        double t = now_s();
-        if (t - last_pub >= REPUBLISH_S) {
-            publish(a);
-            last_pub = t;
-        }
-        if (!quiet && progress_s > 0 && t - last_progress >= progress_s) {
-            progress(a, "progress");
-            last_progress = t;
-        }
-        if (a->exec_seen && strcmp(a->exec_phase, "safe") == 0) {
-            fprintf(stderr, "harvest-plan-online: the executor stopped in the safe state\n");
-            rc = HV_EXIT_ONLINE_EXEC_SAFE;
-            break;
-        }
-        if (a->exec_seen && strcmp(a->exec_phase, "stopped") == 0) {
-            fprintf(stderr, "harvest-plan-online: the executor made a controlled stop\n");
-            rc = HV_EXIT_ONLINE_EXEC_STOPPED;
-            break;
-        }
-        if (a->o.done && a->exec_seen && strcmp(a->exec_phase, "row_done") == 0) {
-            break;
-        }
+    rc = run(a, &g, w);
+    if (a->end_state == NULL) { /* not refused nor failed: done, or ended for a reason */
+        a->end_state = rc == HV_EXIT_OK ? "done" : "ended";
     }
-    if (a->journal_failed) {
-        rc = HV_EXIT_FAILURE;
-    } else if (rc == HV_EXIT_OK && atomic_load(&g_stop)) {
-        rc = a->o.done ? HV_EXIT_OK : HV_EXIT_ONLINE_INTERRUPTED;
-    }
-    if (!quiet) {
+    po_status_publish(a);
+    if (!g.quiet) {
         progress(a, "end");
     }
-    if (summary != NULL) {
-        write_summary(summary, a);
+    if (g.summary != NULL) {
+        write_summary(g.summary, a);
     }
-    if (out != NULL && a->o.done && write_plan(out, config, &cfg, a) != 0 && rc == HV_EXIT_OK) {
+    if (g.out != NULL && a->o.done && write_plan(g.out, g.config, &w->cfg, a) != 0 &&
+        rc == HV_EXIT_OK) {
         rc = HV_EXIT_FAILURE;
     }
-    harvest_lcm_camera_frame_t_unsubscribe(a->lcm, cam_sub);
+    po_camera_close(a);
     harvest_lcm_exec_state_t_unsubscribe(a->lcm, exec_sub);
     lcm_destroy(a->lcm);
     hv_online_journal_close(a->journal);
     hv_online_free(&a->o);
     free(a);
+    free(w);
     return rc;
 }

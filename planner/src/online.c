@@ -73,14 +73,25 @@ void hv_online_free(hv_online_t *o)
     memset(o, 0, sizeof *o);
 }
 
-static int known_id(const hv_online_t *o, const char *id)
+/* The accepted fruit of this id, or NULL. */
+static const hv_fruit_t *fruit_of_id(const hv_online_t *o, const char *id)
 {
     for (size_t i = 0; i < o->n_fruits; ++i) {
         if (strcmp(o->fruits[i].id, id) == 0) {
-            return 1;
+            return &o->fruits[i];
         }
     }
-    return 0;
+    return NULL;
+}
+
+int hv_online_known(const hv_online_t *o, const hv_fruit_t *f)
+{
+    if (o == NULL || f == NULL || memchr(f->id, '\0', sizeof f->id) == NULL) {
+        return 0;
+    }
+    const hv_fruit_t *k = fruit_of_id(o, f->id);
+    return k != NULL && k->side == f->side && k->x_m == f->x_m && k->y_m == f->y_m &&
+           k->z_m == f->z_m && k->yaw_rad == f->yaw_rad;
 }
 
 hv_status_t hv_online_detect(hv_online_t *o, const hv_fruit_t *fruit, hv_online_verdict_t *verdict)
@@ -95,7 +106,7 @@ hv_status_t hv_online_detect(hv_online_t *o, const hv_fruit_t *fruit, hv_online_
         !isfinite(fruit->yaw_rad) || fruit->y_m < y0 || fruit->y_m > y1 ||
         (fruit->side != HV_SIDE_LEFT && fruit->side != HV_SIDE_RIGHT)) {
         v = HV_DET_OUTSIDE_ROW;
-    } else if (known_id(o, fruit->id)) {
+    } else if (fruit_of_id(o, fruit->id) != NULL) {
         v = HV_DET_DUPLICATE;
     }
     unsigned char why = 0;

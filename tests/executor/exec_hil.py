@@ -95,6 +95,104 @@ def online_row_scenario(workdir, length_m, seed):
         return fruits, cfg, len(f.read().splitlines()) - 1
 
 
+class OnlineRow:
+    """The simulator with its camera on an online row (online_row_scenario), and
+    harvest-plan-online and harvest-exec --online to start, kill and judge; files in tmp_path."""
+
+    def __init__(self, tmp_path, length_m, seed, scale):
+        self.dir, self.scale = tmp_path, scale
+        self.fruits, self.cfg, self.n_map = online_row_scenario(tmp_path, length_m, seed)
+        self.sim = Sim(
+            str(tmp_path),
+            scale,
+            extra=[
+                "--config",
+                str(self.cfg),
+                "--fruits",
+                str(self.fruits),
+                "--lcm-url",
+                ONLINE_URL,
+            ],
+        )
+        self.procs = []
+
+    def planner(self, n, journal="planner.journal", cfg=None, url=ONLINE_URL):
+        p = subprocess.Popen(
+            [
+                PLAN_ONLINE,
+                "--config",
+                str(cfg or self.cfg),
+                "--lcm-url",
+                url,
+                "--time-limit",
+                "2",
+                "--threads",
+                "1",
+                "--journal",
+                str(self.dir / journal),
+                "--summary",
+                str(self.dir / f"planner{n}.json"),
+                "--out",
+                str(self.dir / "plan.json"),
+            ],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        self.procs.append(p)
+        return p
+
+    def executor(self, n, stderr=subprocess.PIPE, cfg=None):
+        p = subprocess.Popen(
+            [
+                EXEC,
+                "--online",
+                "--lcm-url",
+                ONLINE_URL,
+                "--config",
+                str(cfg or self.cfg),
+                "--journal",
+                str(self.dir / "exec.journal"),
+                "--summary",
+                str(self.dir / f"exec{n}.json"),
+                "--transport",
+                "udp",
+                "--channel",
+                GROUP,
+                "--time-scale",
+                str(self.scale),
+                "--heartbeat-timeout",
+                str(HEARTBEAT_TIMEOUT_S),
+            ],
+            stdout=subprocess.PIPE,
+            stderr=stderr,
+            text=True,
+        )
+        self.procs.append(p)
+        return p
+
+    def cuts(self):
+        """Cuts the simulated arms completed so far (none before the record exists)."""
+        return len(self.sim.events("pick")) if os.path.exists(self.sim.record) else 0
+
+    def close(self):
+        for p in self.procs:
+            if p.poll() is None:
+                p.kill()
+                p.wait()
+        self.sim.stop()
+
+
+def check_plan(plan, cfg, fruits):
+    """`harvest-plan check PLAN --config CFG --fruits MAP`, the independent checker: the
+    finished process (returncode 0: every reachable fruit of the map planned exactly once)."""
+    return subprocess.run(
+        [HARVEST_PLAN, "check", str(plan), "--config", str(cfg), "--fruits", str(fruits)],
+        capture_output=True,
+        text=True,
+    )
+
+
 def enter_online_netns():
     """enter_udp_netns() for the online tests, which need the planner's programs too."""
     missing = [

@@ -18,7 +18,6 @@ stop, none twice, and the vehicle reached the course's end.
 import json
 import os
 import signal
-import subprocess
 import sys
 
 import pytest
@@ -26,7 +25,6 @@ import pytest
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import exec_hil as H  # noqa: E402
 
-PLAN_ONLINE, HARVEST_PLAN, URL = H.PLAN_ONLINE, H.HARVEST_PLAN, H.ONLINE_URL
 _skip = H.enter_online_netns()
 pytestmark = pytest.mark.skipif(bool(_skip), reason="SKIPPED: " + "; ".join(_skip))
 
@@ -34,89 +32,9 @@ SCALE = 20.0
 LENGTH_M = 5.0
 
 
-class Row:
-    """The simulator with its camera on a 5 m row, and the two programs to start and kill."""
-
-    def __init__(self, tmp_path):
-        self.dir = tmp_path
-        self.fruits, self.cfg, self.n_map = H.online_row_scenario(tmp_path, LENGTH_M, seed=7)
-        self.sim = H.Sim(
-            str(tmp_path),
-            SCALE,
-            extra=["--config", str(self.cfg), "--fruits", str(self.fruits), "--lcm-url", URL],
-        )
-        self.procs = []
-
-    def planner(self, n, journal="planner.journal"):
-        p = subprocess.Popen(
-            [
-                PLAN_ONLINE,
-                "--config",
-                str(self.cfg),
-                "--lcm-url",
-                URL,
-                "--time-limit",
-                "2",
-                "--threads",
-                "1",
-                "--journal",
-                str(self.dir / journal),
-                "--summary",
-                str(self.dir / f"planner{n}.json"),
-                "--out",
-                str(self.dir / "plan.json"),
-            ],
-            stdout=subprocess.PIPE,
-            stderr=subprocess.PIPE,
-            text=True,
-        )
-        self.procs.append(p)
-        return p
-
-    def executor(self, n, stderr=subprocess.PIPE, cfg=None):
-        p = subprocess.Popen(
-            [
-                H.EXEC,
-                "--online",
-                "--lcm-url",
-                URL,
-                "--config",
-                str(cfg or self.cfg),
-                "--journal",
-                str(self.dir / "exec.journal"),
-                "--summary",
-                str(self.dir / f"exec{n}.json"),
-                "--transport",
-                "udp",
-                "--channel",
-                H.GROUP,
-                "--time-scale",
-                str(SCALE),
-                "--heartbeat-timeout",
-                str(H.HEARTBEAT_TIMEOUT_S),
-            ],
-            stdout=subprocess.PIPE,
-            stderr=stderr,
-            text=True,
-        )
-        self.procs.append(p)
-        return p
-
-    def cuts(self):
-        """Cuts the simulated arms completed so far (none before the record exists)."""
-        return len(self.sim.events("pick")) if os.path.exists(self.sim.record) else 0
-
-    def close(self):
-        for p in self.procs:
-            if p.poll() is None:
-                p.kill()
-                p.wait()
-        self.sim.stop()
-
-
 @pytest.fixture
 def row(tmp_path):
-    r = Row(tmp_path)
+    r = H.OnlineRow(tmp_path, LENGTH_M, seed=7, scale=SCALE)
     yield r
     r.close()
 
@@ -151,19 +69,7 @@ def judge(row, ex_proc, pl_proc, n_cut_before, planner_resumed):
     # the planner: every map fruit accepted once, over both of its runs when it restarted
     assert pl["done"] and det["accepted"] + det["unreachable"] == row.n_map, pl
     assert det["duplicate"] == det["late"] == 0 and pl["frames_lost"] == 0, pl
-    check = subprocess.run(
-        [
-            HARVEST_PLAN,
-            "check",
-            str(row.dir / "plan.json"),
-            "--config",
-            str(row.cfg),
-            "--fruits",
-            str(row.fruits),
-        ],
-        capture_output=True,
-        text=True,
-    )
+    check = H.check_plan(row.dir / "plan.json", row.cfg, row.fruits)
     assert check.returncode == 0, check.stdout + check.stderr
     # the restarted executor: the whole plan, nothing refused; some of it done before the kill
     assert ex["phase"] == "row_done" and ex["plan_final"] and ex["plan_refused"] == 0, ex
@@ -234,6 +140,8 @@ def test_a_planner_that_forgot_is_refused(row):
     assert "HV_ERR_EXEC_PLAN_CONFLICT" in err_path.read_text(), err_path.read_text()[-2000:]
     assert ex2.returncode == 6, out
     assert out.startswith("harvest-exec: stopped plan_timeout:"), out
+    # the stop names why no plan came: the planner's plan, refused here
+    assert "(online.wait_plan_timeout): the planner's committed plan refused here: " in out, out
     with open(row.dir / "exec.journal") as f:
         assert [ln.split()[1] for ln in f if ln.startswith("H ")] == ["plan_timeout"]
     assert stop_records(row.dir / "exec.journal") == before

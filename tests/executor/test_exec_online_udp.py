@@ -6,7 +6,8 @@ namespace. The camera also sends one detection of each bad kind.
 Judged by the simulator's record and the independent checker: every reachable fruit of the
 map is in the committed plan exactly once (harvest-plan check against the map), the
 simulated arms cut as many fruits at each stop as the plan has there and no fruit twice,
-and the vehicle reached the course's end; each bad detection was refused with its reason.
+and the vehicle reached the course's end; each bad detection was refused with its reason,
+which the executor said too (the planner's status on LCM).
 """
 
 import json
@@ -19,7 +20,7 @@ import pytest
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import exec_hil as H  # noqa: E402
 
-PLAN_ONLINE, HARVEST_PLAN, URL = H.PLAN_ONLINE, H.HARVEST_PLAN, H.ONLINE_URL
+PLAN_ONLINE, URL = H.PLAN_ONLINE, H.ONLINE_URL
 _skip = H.enter_online_netns()
 pytestmark = pytest.mark.skipif(bool(_skip), reason="SKIPPED: " + "; ".join(_skip))
 
@@ -106,22 +107,15 @@ def test_online_row_every_fruit_once(tmp_path):
     assert (det["outside_row"], det["duplicate"], det["late"]) == (1, 1, 1), pl
     for reason in ("outside_row", "duplicate", "late"):
         assert f"refused: {reason}" in p_err, p_err[-3000:]
+        # published (planner_status_t) and said by the executor as it came
+        assert "harvest-exec: from the planner: harvest-plan-online: detection" in proc.stderr
+        assert f"refused: {reason}\n" in proc.stderr, proc.stderr[-3000:]
+    assert ex["planner_state"] == "done" and ex["planner_refused"] == 3, ex
+    assert pl["state"] == "done" and pl["camera_replay"]["lost"] == 0, pl
     kinds = sorted(e["kind"] for e in sim.events("camera_bad"))
     assert kinds == ["duplicate", "late", "outside_row"], kinds
     # the committed plan holds every reachable map fruit exactly once (the checker, by IK)
-    check = subprocess.run(
-        [
-            HARVEST_PLAN,
-            "check",
-            str(tmp_path / "plan.json"),
-            "--config",
-            str(cfg),
-            "--fruits",
-            str(fruits),
-        ],
-        capture_output=True,
-        text=True,
-    )
+    check = H.check_plan(tmp_path / "plan.json", cfg, fruits)
     assert check.returncode == 0, check.stdout + check.stderr
     assert plan["totals"]["fruits_planned"] == pl["fruits_committed"] == det["accepted"]
     # the executor ran all of it, and grew its plan as the planner committed

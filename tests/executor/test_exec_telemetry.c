@@ -21,7 +21,7 @@ typedef struct got {
     int plans, states, fruits;
     int n_picks, n_stops;
     double expected;
-    char phase[32], fruit_id[32], event[16], outcome[16];
+    char phase[32], fruit_id[32], event[16], outcome[16], planner[32];
     int picked;
 } got_t;
 
@@ -44,6 +44,7 @@ static void on_state(const lcm_recv_buf_t *rb, const char *ch, const harvest_lcm
     got_t *g = u;
     g->states++;
     strncpy(g->phase, m->phase, sizeof g->phase - 1);
+    strncpy(g->planner, m->planner, sizeof g->planner - 1);
     g->picked = m->picked;
 }
 
@@ -82,7 +83,7 @@ static void test_memq_round_trip(void **state)
         harvest_lcm_fruit_event_t_subscribe(lcm, "HARVEST_FRUIT", on_fruit, &g);
 
     hv_exec_tm_plan(&tm, &fx->plan, "plan.json", &fx->prm, 10.0, 1);
-    hv_exec_tm_state(&tm, &fx->sm, fx->now_ns, 2);
+    hv_exec_tm_state(&tm, &fx->sm, "the planner plans", fx->now_ns, 2);
     hv_exec_action_t fe;
     memset(&fe, 0, sizeof fe);
     fe.kind = HV_ACT_FRUIT_EVENT;
@@ -100,6 +101,7 @@ static void test_memq_round_trip(void **state)
     assert_int_equal(g.n_stops, 2);
     assert_float_equal(g.expected, fx->plan.expected_makespan_s, 1e-9);
     assert_string_equal(g.phase, "row_done");
+    assert_string_equal(g.planner, "the planner plans"); /* online: the feed's line */
     assert_int_equal(g.picked, (int)fx->plan.n_picks);
     assert_string_equal(g.fruit_id, fx->plan.picks[3].id);
     assert_string_equal(g.event, "outcome");
@@ -120,7 +122,7 @@ static void test_bad_url(void **state)
                      HV_ERR_EXEC_TELEMETRY);
     assert_non_null(strstr(err, "nosuchprovider"));
     /* the null sink takes everything and publishes nothing */
-    hv_exec_tm_state(&tm, NULL, 0, 0);
+    hv_exec_tm_state(&tm, NULL, NULL, 0, 0);
     assert_int_equal(tm.published, 0);
 }
 

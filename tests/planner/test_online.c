@@ -214,6 +214,14 @@ static void test_bad_detections(void **state)
     again.y_m += 0.3;
     assert_int_equal(hv_online_detect(&o, &again, &v), HV_OK);
     assert_int_equal(v, HV_DET_DUPLICATE);
+    /* a replay says the first detection again, exactly: known; the duplicate is not */
+    assert_true(hv_online_known(&o, &fr[0]));
+    assert_false(hv_online_known(&o, &again));
+    again = fr[0];
+    again.side = again.side == HV_SIDE_LEFT ? HV_SIDE_RIGHT : HV_SIDE_LEFT;
+    assert_false(hv_online_known(&o, &again));
+    assert_false(hv_online_known(&o, &bad)); /* refused, so never known */
+    assert_false(hv_online_known(&o, &fr[1]));
     size_t next = 1;
     /* plan the first metres, then a fruit near the start turns up: its stops are gone */
     while (o.pos < 150) {

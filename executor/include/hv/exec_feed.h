@@ -1,6 +1,7 @@
 /* Online mode's input (DESIGN §5, §7): the planner's committed stops, appended to the plan
- * while the row runs. A small interface, polled by the event loop beside the bus; the LCM
- * implementation (exec_feed_lcm.c) reads plan_commit_t on HARVEST_PLAN_COMMIT. */
+ * while the row runs, and what the planner says of itself. A small interface, polled by the
+ * event loop beside the bus; the LCM implementation (exec_feed_lcm.c) reads plan_commit_t on
+ * HARVEST_PLAN_COMMIT and planner_status_t on HARVEST_PLANNER_STATUS. */
 #ifndef HV_EXEC_FEED_H
 #define HV_EXEC_FEED_H
 
@@ -18,9 +19,26 @@ typedef struct hv_exec_feed {
     /* Take what arrived without blocking, append it to the plan; 1 with *ev (a
      * HV_EV_PLAN_GROWN) when the state machine must hear of it, else 0. */
     int (*take)(void *ctx, hv_exec_event_t *ev);
+    /* One line on the planner as last heard, never NULL; in WAIT_PLAN the reason no plan
+     * comes: its refusal, a plan refused here, its wait for the camera's replay, silence. */
+    const char *(*planner)(void *ctx);
     void *ctx;
-    FILE *log; /* a refused message is said here at once (a new reason only), or NULL */
+    FILE *log; /* a refused message, the planner's refusals and the camera's replays are
+                  said here at once (each new one), or NULL */
 } hv_exec_feed_t;
+
+#define HV_EXEC_PLANNER_REASON_LEN 640
+
+/* The planner's status as last heard (planner_status_t). */
+typedef struct hv_exec_planner_heard {
+    int heard;      /* a status came */
+    char state[16]; /* camera_wait, camera_sync, planning, done, refused, failed, ended */
+    char reason[HV_EXEC_PLANNER_REASON_LEN];     /* refused, failed, ended: its line */
+    char last_refusal[256];                      /* the last detection it refused */
+    unsigned refused;                            /* detections it refused */
+    unsigned replays, replayed, recovered, lost; /* the camera's replays (its run) */
+    double seen_to_m, commit_y_m;
+} hv_exec_planner_heard_t;
 
 /* What the LCM feed counts. */
 typedef struct hv_exec_feed_stats {
@@ -29,6 +47,7 @@ typedef struct hv_exec_feed_stats {
     unsigned refused;        /* messages refused (another course, a stop that does not
                                 follow, a fruit planned twice, the tables full) */
     char last_refusal[160];  /* why the last one was refused */
+    hv_exec_planner_heard_t planner;
 } hv_exec_feed_stats_t;
 
 /* The LCM feed. `plan` starts empty (n_stops = 0): the first message sets its course,

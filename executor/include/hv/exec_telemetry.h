@@ -44,7 +44,9 @@ typedef struct hv_exec_telemetry hv_exec_telemetry_t;
 typedef struct hv_exec_telemetry_ops {
     int (*plan)(hv_exec_telemetry_t *t, const hv_exec_plan_t *plan, const char *path,
                 const hv_exec_params_t *prm, double time_scale, int64_t utime);
-    int (*state)(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, uint64_t now_ns, int64_t utime);
+    /* planner: online, the feed's line on the planner (hv_exec_feed_t.planner); or NULL */
+    int (*state)(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const char *planner,
+                 uint64_t now_ns, int64_t utime);
     int (*fruit)(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const hv_exec_action_t *fe,
                  uint64_t now_ns, int64_t utime);
     int (*arm)(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const hv_exec_arm_sample_t *s,
@@ -71,8 +73,8 @@ hv_status_t hv_exec_telemetry_lcm_open(hv_exec_telemetry_t *t, const char *url, 
 /* Convenience wrappers: count, and ignore a NULL sink. */
 void hv_exec_tm_plan(hv_exec_telemetry_t *t, const hv_exec_plan_t *plan, const char *path,
                      const hv_exec_params_t *prm, double time_scale, int64_t utime);
-void hv_exec_tm_state(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, uint64_t now_ns,
-                      int64_t utime);
+void hv_exec_tm_state(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const char *planner,
+                      uint64_t now_ns, int64_t utime);
 void hv_exec_tm_fruit(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const hv_exec_action_t *fe,
                       uint64_t now_ns, int64_t utime);
 void hv_exec_tm_arm(hv_exec_telemetry_t *t, const hv_exec_sm_t *sm, const hv_exec_arm_sample_t *s,

@@ -8,11 +8,17 @@ it has seen (while the vehicle stands and nothing is new, only every KEEPALIVE_S
 `bad` > 0 it also sends, spread over the row, `bad` detections of each
 kind the planner must refuse: outside the row, a fruit seen again with another pose, and a
 new fruit behind the vehicle (late); each one is written to the record ("camera_bad").
+
+On request (camera_replay_t on HARVEST_CAMERA_REPLAY, from the planner as it starts and
+after a lost frame) it sends again every fruit revealed so far, in one frame with `replay`
+set, the seq of its last frame and its view: what the planner missed while it was down is
+recovered rather than lost. Each replay is written to the record ("camera_replay").
 """
 
 import time
 
 CHANNEL = "HARVEST_CAMERA"
+REPLAY_CHANNEL = "HARVEST_CAMERA_REPLAY"
 BAD_KINDS = ("outside_row", "duplicate", "late")
 KEEPALIVE_S = 5.0  # simulated s between frames while the vehicle stands
 LATE_BEHIND_M = 1.5  # a late detection lies this far behind the vehicle: out of reach of
@@ -20,7 +26,11 @@ LATE_BEHIND_M = 1.5  # a late detection lies this far behind the vehicle: out of
 
 
 class Camera:
-    def __init__(self, fruits, lead_m, window_m, row_length_m, url, log, period_s=0.5, bad=0):
+    def __init__(
+        self, fruits, lead_m, window_m, row_length_m, url, log, period_s=0.5, bad=0, lc=None
+    ):
+        """`lc`: an LCM-like object (publish, subscribe, handle_timeout) instead of one on
+        `url`, for tests."""
         import lcm
 
         from harvest.telemetry import lcm_types
@@ -30,7 +40,11 @@ class Camera:
         except lcm_types.LcmTypesMissing as e:
             raise ValueError(f"--fruits: the camera needs the LCM types: {e}") from None
         self._frame_t, self._det_t = types["camera_frame_t"], types["detection_t"]
-        self._lcm = lcm.LCM(url)
+        self._replay_t = types["camera_replay_t"]
+        self._lcm = lc if lc is not None else lcm.LCM(url)
+        self._lcm.subscribe(REPLAY_CHANNEL, self._on_request)
+        self._requests = []  # requesters not answered yet
+        self.replays, self.replayed = 0, 0
         self.fruits = sorted(fruits, key=lambda f: (f.y, f.id))
         self.lead, self.window, self.length = lead_m, window_m, row_length_m
         self.log, self.period = log, period_s
@@ -86,8 +100,43 @@ class Camera:
             )
         return out
 
+    def _on_request(self, channel, data):
+        self._requests.append(self._replay_t.decode(data).requester)
+
+    def _replay(self, t, vehicle_m):
+        """Every fruit sent so far, in one frame, for each request heard since the last
+        step (several requests at once get one answer)."""
+        requesters, self._requests = self._requests, []
+        fruits = self.fruits[: self.sent]
+        msg = self._frame_t()
+        msg.utime = int(time.time() * 1e6)
+        msg.seq, msg.replay, msg.vehicle_m = self.seq - 1, True, vehicle_m
+        msg.seen_to_m = self.seen_to if self.seen_to is not None else 0.0
+        msg.fruits = [self._detection(f.id, f.side, f.x, f.y, f.z, f.yaw) for f in fruits]
+        msg.n = len(msg.fruits)
+        self._lcm.publish(CHANNEL, msg.encode())
+        self.replays += 1
+        self.replayed += msg.n
+        self.log(
+            t,
+            "camera_replay",
+            requesters=requesters,
+            seq=msg.seq,
+            seen_to=msg.seen_to_m,
+            fruits=msg.n,
+        )
+
+    def stats(self):
+        """What it revealed and replayed, for the simulator's summary."""
+        return {"revealed": self.sent, "replays": self.replays, "replayed": self.replayed}
+
     def step(self, t, vehicle_m):
-        """Send the frame due at simulated time t (the vehicle at vehicle_m)."""
+        """Answer the replay requests that came, then send the frame due at simulated time
+        t (the vehicle at vehicle_m)."""
+        while self._lcm.handle_timeout(0) > 0:
+            pass
+        if self._requests:
+            self._replay(t, vehicle_m)
         if t < self.next_t:
             return
         self.next_t = t + self.period
@@ -118,5 +167,12 @@ class Camera:
         msg.n, msg.fruits = len(dets), dets
         self._lcm.publish(CHANNEL, msg.encode())
         if dets:
-            self.log(t, "camera", seq=self.seq, seen_to=seen_to, fruits=len(dets))
+            self.log(
+                t,
+                "camera",
+                seq=self.seq,
+                seen_to=seen_to,
+                fruits=len(dets),
+                ids=[d.fruit_id for d in dets],
+            )
         self.seq += 1

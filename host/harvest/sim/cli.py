@@ -371,10 +371,17 @@ def main(argv=None, stop_event=None):
             signal.signal(sig, handler)
     s = sim.stats
     rejected = sum(s[f"rx_{r}"] for r in REJECT_REASONS)
+    camera = ""
+    if sim.camera:
+        c = sim.camera.stats()
+        camera = (
+            f"; camera revealed {c['revealed']} fruits, replayed them {c['replays']} times "
+            f"({c['replayed']} detections)"
+        )
     print(
         f"harvest sim: stopped at t={clock.sim():.2f} s simulated: sent {s['tx']} received "
         f"{s['rx']} dropped {s['tx_dropped']}+{s['rx_dropped']} rejected {rejected} picks "
-        f"{sum(a.picks for a in sim.arms.values())}",
+        f"{sum(a.picks for a in sim.arms.values())}{camera}",
         file=sys.stderr,
     )
     return 0

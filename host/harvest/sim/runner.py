@@ -552,6 +552,7 @@ class Simulator:
                 pending_rx=len(self._rx_queue),
                 picks={n: a.picks for n, a in self.arms.items()},
                 vehicle_position=self.vehicle.positions(self.clock.sim())[0],
+                **({"camera": self.camera.stats()} if self.camera else {}),
             )
 
     def _progress(self):

@@ -3,8 +3,8 @@ installed under share/harvest/lcm): the .lcm files are the one source of truth o
 messages, so the schema a viewer shows carries their field types, array sizes and comments.
 
 Only what lcm_types/ uses is understood: one `package`, `struct`s of primitive, string or
-struct fields, fixed or variable array dimensions, `//` comments. Anything else raises
-ValueError naming the file and line.
+struct fields, fixed or variable array dimensions, `//` comments (one alone on a line after
+a field continues that field's). Anything else raises ValueError naming the file and line.
 """
 
 import json
@@ -39,6 +39,11 @@ def parse(path):
         for lineno, raw in enumerate(f, 1):
             code, _, comment = raw.partition("//")
             code = code.strip()
+            if not code and comment.strip() and fields:
+                # a field's comment continued on the next line
+                f = fields[-1]
+                fields[-1] = (f[0], f[1], f[2], f"{f[3]} {comment.strip()}".strip())
+                continue
             if not code or code in ("{", "}") or code.startswith("package "):
                 continue
             m = _STRUCT.match(code)

@@ -23,6 +23,8 @@ TYPES = (
     "detection_t",
     "camera_frame_t",
     "plan_commit_t",
+    "planner_status_t",
+    "camera_replay_t",
 )
 
 CHANNELS = {
@@ -34,6 +36,8 @@ CHANNELS = {
     "HARVEST_CAN_STATS": "can_stats_t",
     "HARVEST_CAMERA": "camera_frame_t",
     "HARVEST_PLAN_COMMIT": "plan_commit_t",
+    "HARVEST_PLANNER_STATUS": "planner_status_t",
+    "HARVEST_CAMERA_REPLAY": "camera_replay_t",
 }
 
 

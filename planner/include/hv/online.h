@@ -122,6 +122,11 @@ void hv_online_free(hv_online_t *o);
  * arguments: refused input is a verdict, not an error. */
 hv_status_t hv_online_detect(hv_online_t *o, const hv_fruit_t *fruit, hv_online_verdict_t *verdict);
 
+/* 1 when a fruit of f's id was accepted with f's side and pose exactly: the camera saying
+ * again what it said (its replay), which is not a duplicate and must not be detected
+ * again; else 0. */
+int hv_online_known(const hv_online_t *o, const hv_fruit_t *f);
+
 /* The camera has seen the row up to y_m (monotone: a smaller value changes nothing). */
 void hv_online_seen(hv_online_t *o, double y_m);
 
