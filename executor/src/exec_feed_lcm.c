@@ -208,7 +208,10 @@ static const char *planner_note(void *ctx)
     feed_lcm_t *f = ctx;
     const hv_exec_planner_heard_t *h = &f->st.planner;
     double quiet = h->heard ? mono_s() - f->status_at : 0.0;
-    if (h->heard && ends(h->state))
+    /* a planner that ended only because this executor stopped says less than the refusal
+     * of its plan that made the executor wait */
+    int ended_after_refusal = f->last_refused && strcmp(h->state, "ended") == 0;
+    if (h->heard && ends(h->state) && !ended_after_refusal)
         snprintf(f->note, sizeof f->note, "the planner %s: %s", h->state,
                  h->reason[0] ? h->reason : "(no reason given)");
     else if (f->last_refused)

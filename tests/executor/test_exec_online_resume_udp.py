@@ -119,7 +119,9 @@ def stop_records(path):
 
 
 def test_a_planner_that_forgot_is_refused(row):
-    """The planner restarted without its journal commits from scratch: the restarted
+    """A planner restarted without its journal commits from scratch. With the camera's replay
+    and the same config it may commit the journalled stops again; restarted also on another
+    candidate grid (stops 2 cm apart), none of its stops can be the journal's. The restarted
     executor refuses its plan by name, never grows its journalled one, and, the wait for a
     stop it can take over, makes a controlled stop journalled as plan_timeout."""
     from harvest.scenario.config import derived_config_text
@@ -130,14 +132,19 @@ def test_a_planner_that_forgot_is_refused(row):
     cfg2 = row.dir / "exec2.cfg"
     limits = {"online.horizon_limit_min": "1.0", "online.horizon_limit_max": "4.0"}
     cfg2.write_text(derived_config_text(row.cfg, {**limits, "online.wait_plan_timeout": "4.0"}))
-    pl2 = row.planner(2, journal="fresh.journal")
+    cfg_pl2 = row.dir / "planner2.cfg"
+    cfg_pl2.write_text(derived_config_text(row.cfg, {**limits, "grid.step": "0.02"}))
+    pl2 = row.planner(2, journal="fresh.journal", cfg=cfg_pl2)
     err_path = row.dir / "exec2.err"
     with open(err_path, "w") as err:
         ex2 = row.executor(2, stderr=err, cfg=cfg2)
         out, _ = ex2.communicate(timeout=120)
     pl2.communicate(timeout=30)
     assert pl2.returncode == 6  # it ends with the executor's controlled stop
-    assert "HV_ERR_EXEC_PLAN_CONFLICT" in err_path.read_text(), err_path.read_text()[-2000:]
+    # refused by name: its course (another candidate grid) is not the journalled plan's
+    assert "refused, the last for another course than the first message's" in (
+        err_path.read_text()
+    ), err_path.read_text()[-2000:]
     assert ex2.returncode == 6, out
     assert out.startswith("harvest-exec: stopped plan_timeout:"), out
     # the stop names why no plan came: the planner's plan, refused here
