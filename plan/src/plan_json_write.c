@@ -1,5 +1,6 @@
 /* Plan -> JSON text (docs/PLAN_FORMAT.md), with a small writer of our own: a growable
- * buffer, escaped strings, and numbers in the shortest form that reads back exactly. */
+ * buffer, escaped strings, and numbers in the shortest form that reads back exactly. The
+ * fields, their order and the line breaks between them are the schema's (plan_schema.h). */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -8,6 +9,7 @@
 
 #include "hv/file_io.h"
 #include "hv/plan_io.h"
+#include "plan_schema.h"
 
 typedef struct jw {
     char *buf;
@@ -109,35 +111,71 @@ static void jw_fmt(jw_t *w, const char *fmt, ...)
     }
 }
 
-static void jw_picks(jw_t *w, const hv_plan_pick_t *picks, size_t n)
+static void jw_object(jw_t *w, const plan_object_t *o, const char *base);
+
+/* An array of objects: the pointer at f->at, its count at f->count_at. */
+static void jw_array(jw_t *w, const plan_field_t *f, const char *base)
 {
+    const plan_array_t *a = f->array;
+    const char *elems;
+    size_t n;
+    memcpy(&elems, base + f->at, sizeof elems);
+    memcpy(&n, base + f->count_at, sizeof n);
     jw_raw(w, "[");
-    for (size_t k = 0; k < n; ++k) {
-        const hv_plan_pick_t *pk = &picks[k];
-        jw_raw(w, k ? ",\n       {" : "\n       {");
-        jw_key(w, "id");
-        jw_str(w, pk->id);
-        jw_raw(w, ", ");
-        jw_key(w, "x");
-        jw_num(w, pk->x_m);
-        jw_raw(w, ", ");
-        jw_key(w, "y");
-        jw_num(w, pk->y_m);
-        jw_raw(w, ", ");
-        jw_key(w, "z");
-        jw_num(w, pk->z_m);
-        jw_raw(w, ", ");
-        jw_key(w, "yaw");
-        jw_num(w, pk->yaw_rad);
-        jw_raw(w, ", ");
-        jw_key(w, "cost_s");
-        jw_num(w, pk->cost_s);
-        jw_raw(w, ", ");
-        jw_key(w, "start_s");
-        jw_num(w, pk->start_s);
-        jw_raw(w, "}");
+    for (size_t i = 0; i < n; ++i) {
+        jw_raw(w, i ? a->next : a->first);
+        jw_object(w, a->element, elems + i * a->element_size);
     }
-    jw_raw(w, "]");
+    jw_raw(w, n ? a->close : "]");
+}
+
+/* The value of field `f` of the struct at `base`. */
+static void jw_value(jw_t *w, const plan_field_t *f, const char *base)
+{
+    const char *m = base + f->at;
+    switch (f->kind) {
+    case PLAN_NUM:
+    case PLAN_NONNEG: jw_num(w, *(const double *)m); break;
+    case PLAN_GAP:
+        if (*(const double *)m < 0) {
+            jw_raw(w, "null");
+        } else {
+            jw_num(w, *(const double *)m);
+        }
+        break;
+    case PLAN_INT: jw_fmt(w, "%d", *(const int *)m); break;
+    case PLAN_U32: jw_fmt(w, "%u", (unsigned)*(const uint32_t *)m); break;
+    case PLAN_LONG: jw_fmt(w, "%ld", *(const long *)m); break;
+    case PLAN_SIZE: jw_fmt(w, "%zu", *(const size_t *)m); break;
+    case PLAN_STR:
+    case PLAN_ID: jw_str(w, m); break;
+    case PLAN_SIDE: jw_str(w, *(const hv_side_t *)m == HV_SIDE_LEFT ? "L" : "R"); break;
+    case PLAN_FORMAT: jw_str(w, "harvest-plan"); break;
+    case PLAN_VERSION: jw_fmt(w, "%d", HV_PLAN_FORMAT_VERSION); break;
+    case PLAN_OBJECT: jw_object(w, f->object, base); break;
+    case PLAN_ARRAY: jw_array(w, f, base); break;
+    }
+}
+
+/* The fields of `o` from the struct at `base`; an optional object that is not there is
+ * left out, key and all. */
+static void jw_object(jw_t *w, const plan_object_t *o, const char *base)
+{
+    jw_raw(w, o->open);
+    int first = 1;
+    for (size_t i = 0; i < o->n; ++i) {
+        const plan_field_t *f = &o->field[i];
+        if (f->optional && !*(const int *)(base + f->at)) {
+            continue;
+        }
+        if (!first) {
+            jw_raw(w, f->sep ? f->sep : ", ");
+        }
+        first = 0;
+        jw_key(w, f->key);
+        jw_value(w, f, base);
+    }
+    jw_raw(w, o->close);
 }
 
 hv_status_t hv_plan_to_json(const hv_plan_t *plan, char **text, size_t *len)
@@ -146,182 +184,7 @@ hv_status_t hv_plan_to_json(const hv_plan_t *plan, char **text, size_t *len)
         return HV_ERR_ARG;
     }
     jw_t w = {0};
-    jw_raw(&w, "{\n  \"format\": \"harvest-plan\", \"version\": ");
-    jw_fmt(&w, "%d", HV_PLAN_FORMAT_VERSION);
-    jw_raw(&w, ",\n  ");
-    jw_key(&w, "method");
-    jw_str(&w, plan->method);
-
-    jw_raw(&w, ",\n  ");
-    jw_key(&w, "inputs");
-    jw_raw(&w, "{");
-    jw_key(&w, "fruit_map");
-    jw_str(&w, plan->fruit_map);
-    jw_raw(&w, ", ");
-    jw_key(&w, "cost_table_left");
-    jw_str(&w, plan->cost_table_left);
-    jw_raw(&w, ", ");
-    jw_key(&w, "cost_table_right");
-    jw_str(&w, plan->cost_table_right);
-    jw_raw(&w, ", ");
-    jw_key(&w, "config");
-    jw_str(&w, plan->config);
-    jw_raw(&w, "}");
-
-    jw_raw(&w, ",\n  ");
-    jw_key(&w, "params");
-    jw_raw(&w, "{");
-    jw_key(&w, "stop_step_m");
-    jw_num(&w, plan->stop_step_m);
-    jw_raw(&w, ", ");
-    jw_key(&w, "row_start_m");
-    jw_num(&w, plan->row_start_m);
-    jw_raw(&w, ", ");
-    jw_key(&w, "row_length_m");
-    jw_num(&w, plan->row_length_m);
-    jw_raw(&w, ", ");
-    jw_key(&w, "stop_penalty_s");
-    jw_num(&w, plan->stop_penalty_s);
-    jw_raw(&w, ", ");
-    jw_key(&w, "vehicle_speed_mps");
-    jw_num(&w, plan->vehicle_speed_mps);
-    jw_raw(&w, ", ");
-    jw_key(&w, "travel_time_s");
-    jw_num(&w, plan->travel_time_s);
-    jw_raw(&w, ", ");
-    jw_key(&w, "stop_margin_m");
-    jw_num(&w, plan->stop_margin_m);
-    jw_raw(&w, ", ");
-    jw_key(&w, "pick_time");
-    jw_str(&w, plan->pick_time);
-    jw_raw(&w, "}");
-
-    jw_raw(&w, ",\n  ");
-    jw_key(&w, "solver");
-    jw_raw(&w, "{");
-    jw_key(&w, "status");
-    jw_str(&w, plan->solver_status);
-    jw_raw(&w, ", ");
-    jw_key(&w, "gap");
-    if (plan->gap < 0) {
-        jw_raw(&w, "null");
-    } else {
-        jw_num(&w, plan->gap);
-    }
-    jw_raw(&w, ", ");
-    jw_key(&w, "nodes");
-    jw_fmt(&w, "%ld", plan->nodes);
-    jw_raw(&w, ", ");
-    jw_key(&w, "runtime_s");
-    jw_num(&w, plan->runtime_s);
-    jw_raw(&w, ", ");
-    jw_key(&w, "time_limit_s");
-    jw_num(&w, plan->time_limit_s);
-    jw_raw(&w, "}");
-
-    jw_raw(&w, ",\n  ");
-    jw_key(&w, "totals");
-    jw_raw(&w, "{");
-    jw_key(&w, "makespan_s");
-    jw_num(&w, plan->makespan_s);
-    jw_raw(&w, ", ");
-    jw_key(&w, "pick_time_s");
-    jw_num(&w, plan->pick_time_s);
-    jw_raw(&w, ", ");
-    jw_key(&w, "stop_time_s");
-    jw_num(&w, plan->stop_time_s);
-    jw_raw(&w, ", ");
-    jw_key(&w, "travel_time_s");
-    jw_num(&w, plan->total_travel_time_s);
-    jw_raw(&w, ", ");
-    jw_key(&w, "stops");
-    jw_fmt(&w, "%zu", plan->n_stops_total);
-    jw_raw(&w, ", ");
-    jw_key(&w, "fruits_planned");
-    jw_fmt(&w, "%zu", plan->fruits_planned);
-    jw_raw(&w, ", ");
-    jw_key(&w, "fruits_unreachable");
-    jw_fmt(&w, "%zu", plan->fruits_unreachable);
-    jw_raw(&w, ", ");
-    jw_key(&w, "throughput_fruit_per_s");
-    jw_num(&w, plan->throughput_fruit_per_s);
-    jw_raw(&w, "}");
-
-    if (plan->horizon.used) {
-        jw_raw(&w, ",\n  ");
-        jw_key(&w, "horizon");
-        jw_raw(&w, "{");
-        jw_key(&w, "window_m");
-        jw_num(&w, plan->horizon.window_m);
-        jw_raw(&w, ", ");
-        jw_key(&w, "commit_m");
-        jw_num(&w, plan->horizon.commit_m);
-        jw_raw(&w, ", ");
-        jw_key(&w, "windows");
-        jw_fmt(&w, "%u", (unsigned)plan->horizon.windows);
-        jw_raw(&w, ", ");
-        jw_key(&w, "windows_optimal");
-        jw_fmt(&w, "%u", (unsigned)plan->horizon.windows_optimal);
-        jw_raw(&w, "}");
-    }
-
-    jw_raw(&w, ",\n  ");
-    jw_key(&w, "stops");
-    jw_raw(&w, "[");
-    for (size_t s = 0; s < plan->n_stops; ++s) {
-        const hv_plan_stop_t *st = &plan->stops[s];
-        jw_raw(&w, s ? ",\n    {" : "\n    {");
-        jw_key(&w, "index");
-        jw_fmt(&w, "%u", (unsigned)st->index);
-        jw_raw(&w, ", ");
-        jw_key(&w, "y_m");
-        jw_num(&w, st->y_m);
-        jw_raw(&w, ", ");
-        jw_key(&w, "pass");
-        jw_fmt(&w, "%d", st->pass);
-        jw_raw(&w, ",\n     ");
-        jw_key(&w, "C_left_s");
-        jw_num(&w, st->c_left_s);
-        jw_raw(&w, ", ");
-        jw_key(&w, "C_right_s");
-        jw_num(&w, st->c_right_s);
-        jw_raw(&w, ", ");
-        jw_key(&w, "C_s");
-        jw_num(&w, st->c_s);
-        jw_raw(&w, ", ");
-        jw_key(&w, "idle_left_s");
-        jw_num(&w, st->idle_left_s);
-        jw_raw(&w, ", ");
-        jw_key(&w, "idle_right_s");
-        jw_num(&w, st->idle_right_s);
-        jw_raw(&w, ",\n     ");
-        jw_key(&w, "left");
-        jw_picks(&w, st->left, st->n_left);
-        jw_raw(&w, ",\n     ");
-        jw_key(&w, "right");
-        jw_picks(&w, st->right, st->n_right);
-        jw_raw(&w, "}");
-    }
-    jw_raw(&w, plan->n_stops ? "\n  ]" : "]");
-
-    jw_raw(&w, ",\n  ");
-    jw_key(&w, "unreachable");
-    jw_raw(&w, "[");
-    for (size_t u = 0; u < plan->n_unreachable; ++u) {
-        const hv_plan_unreachable_t *ur = &plan->unreachable[u];
-        jw_raw(&w, u ? ",\n    {" : "\n    {");
-        jw_key(&w, "id");
-        jw_str(&w, ur->id);
-        jw_raw(&w, ", ");
-        jw_key(&w, "side");
-        jw_str(&w, ur->side == HV_SIDE_LEFT ? "L" : "R");
-        jw_raw(&w, ", ");
-        jw_key(&w, "reason");
-        jw_str(&w, ur->reason);
-        jw_raw(&w, "}");
-    }
-    jw_raw(&w, plan->n_unreachable ? "\n  ]\n}\n" : "]\n}\n");
-
+    jw_object(&w, &plan_schema, (const char *)plan);
     if (w.failed) {
         free(w.buf);
         return w.why;
