@@ -606,6 +606,12 @@ int main(int argc, char **argv)
         return HV_EXIT_FAILURE;
     }
     a->quiet = g.quiet;
+    /* before the journal is made: a stop asked for while it is written is a stop, not death */
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
     /* first, so that a refusal of what follows reaches the executor */
     a->lcm = lcm_create(g.url);
     if (a->lcm == NULL) {
@@ -627,11 +633,6 @@ int main(int argc, char **argv)
     harvest_lcm_exec_state_t_subscription_t *exec_sub =
         harvest_lcm_exec_state_t_subscribe(a->lcm, "HARVEST_EXEC_STATE", on_exec_state, a);
     po_camera_open(a);
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
     char limit_text[128];
     if (g.fixed_limit_s > 0.0) {
         snprintf(limit_text, sizeof limit_text, "%.1f s per horizon", g.fixed_limit_s);
