@@ -39,6 +39,18 @@ def stop_on_signals():
     return lambda: bool(came)
 
 
+def open_lcm(program, option, url):
+    """lcm.LCM(url), or None once `PROGRAM: OPTION URL: LCM could not be opened` is on stderr
+    (LCM's own line before it says why)."""
+    import lcm
+
+    try:
+        return lcm.LCM(url)
+    except RuntimeError:
+        error(program, f"{option} {url}", "LCM could not be opened")
+        return None
+
+
 def os_error(e):
     """An OSError as `FILE: reason` (Python's own text leaves the file to the end, quoted)."""
     if e.filename is None:

@@ -6,7 +6,15 @@ import os
 import shutil
 
 from .. import generated
-from ..cmdline import EXIT_FAILURE, EXIT_USAGE, Parser, error, os_error, stop_on_signals
+from ..cmdline import (
+    EXIT_FAILURE,
+    EXIT_USAGE,
+    Parser,
+    error,
+    open_lcm,
+    os_error,
+    stop_on_signals,
+)
 
 PROG = "harvest-stack live"
 DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0"
@@ -118,8 +126,6 @@ def main(argv=None):
 
 
 def _serve(args, cfg, types, structs):
-    import lcm
-
     from ..canbus import enums
     from . import scene
     from .server import LiveServer
@@ -130,10 +136,8 @@ def _serve(args, cfg, types, structs):
         error(PROG, str(e))
         return EXIT_USAGE
     stopped = stop_on_signals()
-    try:
-        lc = lcm.LCM(args.lcm_url)
-    except RuntimeError:  # LCM's own line on stderr says why
-        error(PROG, f"--lcm-url {args.lcm_url}", "LCM could not be opened")
+    lc = open_lcm(PROG, "--lcm-url", args.lcm_url)
+    if lc is None:
         return EXIT_FAILURE
 
     try:

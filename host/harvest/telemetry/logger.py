@@ -11,7 +11,7 @@ import time
 
 import lcm
 
-from ..cmdline import EXIT_FAILURE, EXIT_USAGE, error, stop_on_signals
+from ..cmdline import EXIT_FAILURE, EXIT_USAGE, error, open_lcm, stop_on_signals
 from . import lcm_types, lcm_wait
 
 
@@ -62,10 +62,8 @@ def run(args, prog):
         error(prog, args.out, "exists (use --overwrite)")
         return EXIT_USAGE
     stopped = stop_on_signals()
-    try:
-        lc = lcm.LCM(args.url)
-    except RuntimeError:  # LCM's own line on stderr says why
-        error(prog, f"--url {args.url}", "LCM could not be opened")
+    lc = open_lcm(prog, "--url", args.url)
+    if lc is None:
         return EXIT_FAILURE
     try:
         lg = Logger(
